@@ -1,0 +1,206 @@
+"""The scenario and benchmark registries that body packages add to.
+
+A body package ``shintai.<body>`` registers its scenarios in ``shintai/<body>/scenarios.py`` and its
+benchmarks in ``shintai/<body>/benchmarks.py`` with the :func:`scenario` and :func:`benchmark`
+decorators; :func:`load_all` imports every such module, so a new body needs no change here.
+
+A scenario is: an id, the thesis section it reproduces, parameters with defaults and allowed
+ranges, a run function that returns metrics computed from the simulation, checks with their basis,
+and thesis reference values (which go into ``metrics.json`` under ``thesis``, never ``metrics``).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import operator
+import pkgutil
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import shintai
+
+
+class ParameterError(ValueError):
+    """A bad scenario id, ``--set`` key or value: reported as one line, exit status 2."""
+
+
+@dataclass(frozen=True)
+class Param:
+    """A scenario parameter with its default and allowed range (``lo``/``hi``) or ``choices``."""
+
+    name: str
+    default: Any
+    help: str = ""
+    lo: float | None = None
+    hi: float | None = None
+    choices: tuple | None = None
+
+    def allowed(self) -> str:
+        if self.choices is not None:
+            return "one of " + "|".join(str(c) for c in self.choices)
+        if isinstance(self.default, bool):
+            return "true|false"
+        lo = "-inf" if self.lo is None else f"{self.lo:g}"
+        hi = "inf" if self.hi is None else f"{self.hi:g}"
+        kind = "an integer" if isinstance(self.default, int) else "a number"
+        return f"{kind} in [{lo}, {hi}]"
+
+    def parse(self, text: str) -> Any:
+        """Convert ``text`` to the parameter's type and check its range; ParameterError if not."""
+        bad = ParameterError(f"--set {self.name}={text}: expected {self.allowed()}")
+        d = self.default
+        if self.choices is not None:
+            for c in self.choices:
+                if str(c) == text:
+                    return c
+            raise bad
+        if isinstance(d, bool):
+            low = text.strip().lower()
+            if low in ("1", "true", "yes", "on"):
+                return True
+            if low in ("0", "false", "no", "off"):
+                return False
+            raise bad
+        try:
+            value: Any = int(text) if isinstance(d, int) else float(text) if isinstance(d, float) else text
+        except ValueError:
+            raise bad from None
+        if isinstance(value, float) and value != value:  # NaN
+            raise bad
+        if isinstance(value, (int, float)):
+            if (self.lo is not None and value < self.lo) or (self.hi is not None and value > self.hi):
+                raise bad
+        return value
+
+
+OPS: dict[str, Callable[[Any, Any], bool]] = {
+    "<=": operator.le, "<": operator.lt, ">=": operator.ge, ">": operator.gt, "==": operator.eq,
+}
+
+
+@dataclass(frozen=True)
+class Check:
+    """``metrics[metric] op threshold``; ``threshold`` may name another metric.
+
+    ``basis`` says why this threshold: a thesis value, a thesis claim, or derived.
+    """
+
+    metric: str
+    op: str
+    threshold: float | str
+    basis: str
+    name: str | None = None
+
+    def evaluate(self, metrics: dict[str, Any]) -> dict[str, Any]:
+        value = metrics.get(self.metric)
+        thr = metrics.get(self.threshold) if isinstance(self.threshold, str) else self.threshold
+        ok = (value is not None and thr is not None and _finite(value) and _finite(thr)
+              and bool(OPS[self.op](value, thr)))
+        return {"name": self.name or self.metric, "metric": self.metric, "op": self.op,
+                "threshold": thr, "threshold_ref": self.threshold if isinstance(self.threshold, str) else None,
+                "value": value, "ok": ok, "basis": self.basis}
+
+
+def _finite(x: Any) -> bool:
+    try:
+        return x == x and abs(float(x)) != float("inf")
+    except (TypeError, ValueError):
+        return False
+
+
+@dataclass(frozen=True)
+class ThesisValue:
+    """A number the thesis reports, for the ``thesis`` field and the report table."""
+
+    value: Any
+    where: str
+    metric: str | None = None  # the metric of ours it is to be compared with, if any
+
+
+@dataclass
+class Scenario:
+    id: str
+    source: str
+    summary: str
+    run: Callable  # run(ctx: RunContext) -> dict of metrics
+    params: tuple[Param, ...] = ()
+    checks: tuple[Check, ...] = ()
+    thesis: dict[str, ThesisValue] = field(default_factory=dict)
+    demo: bool = False  # headline scenario of its body, part of `make demo`
+    video: bool = False  # can render an MP4 with --video (MuJoCo bodies)
+
+    def param(self, name: str) -> Param:
+        for p in self.params:
+            if p.name == name:
+                return p
+        keys = ", ".join(p.name for p in self.params) or "none"
+        raise ParameterError(f"--set {name}: unknown key for {self.id} (keys: {keys})")
+
+    def resolve(self, overrides: dict[str, str] | None = None) -> dict[str, Any]:
+        """Defaults with ``--set`` overrides parsed and range-checked."""
+        values = {p.name: p.default for p in self.params}
+        for key, text in (overrides or {}).items():
+            values[key] = self.param(key).parse(text)
+        return values
+
+
+@dataclass
+class Benchmark:
+    id: str
+    summary: str
+    run: Callable[[], dict]  # returns a dict of results (ratios, times)
+
+
+SCENARIOS: dict[str, Scenario] = {}
+BENCHMARKS: dict[str, Benchmark] = {}
+
+
+def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
+             demo: bool = False, video: bool = False):
+    """Decorator registering ``run(ctx) -> metrics`` as a scenario."""
+
+    def register(fn):
+        if id in SCENARIOS and SCENARIOS[id].run is not fn:
+            raise ValueError(f"scenario {id!r} registered twice")
+        SCENARIOS[id] = Scenario(id, source, summary, fn, tuple(params), tuple(checks),
+                                 dict(thesis or {}), demo, video)
+        return fn
+
+    return register
+
+
+def benchmark(id: str, summary: str):
+    """Decorator registering ``run() -> dict`` as a benchmark."""
+
+    def register(fn):
+        BENCHMARKS[id] = Benchmark(id, summary, fn)
+        return fn
+
+    return register
+
+
+_LOADED = False
+
+
+def load_all() -> None:
+    """Import ``scenarios`` and ``benchmarks`` of every ``shintai`` subpackage (once)."""
+    global _LOADED
+    if _LOADED:
+        return
+    for pkg in pkgutil.iter_modules(shintai.__path__):
+        if not pkg.ispkg:
+            continue
+        for leaf in ("scenarios", "benchmarks"):
+            name = f"shintai.{pkg.name}.{leaf}"
+            if importlib.util.find_spec(name) is not None:
+                importlib.import_module(name)
+    _LOADED = True
+
+
+def get(scenario_id: str) -> Scenario:
+    load_all()
+    if scenario_id not in SCENARIOS:
+        raise ParameterError(f"unknown scenario {scenario_id!r} (see `shintai list`)")
+    return SCENARIOS[scenario_id]
