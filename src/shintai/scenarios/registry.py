@@ -182,10 +182,15 @@ def benchmark(id: str, summary: str):
 
 
 _LOADED = False
+LOAD_ERRORS: dict[str, str] = {}  # module -> one-line error, for packages whose scenarios failed to import
 
 
 def load_all() -> None:
-    """Import ``scenarios`` and ``benchmarks`` of every ``shintai`` subpackage (once)."""
+    """Import ``scenarios`` and ``benchmarks`` of every ``shintai`` subpackage (once).
+
+    A body package that fails to import is recorded in :data:`LOAD_ERRORS` (the command line
+    reports it) instead of hiding every other body's scenarios.
+    """
     global _LOADED
     if _LOADED:
         return
@@ -194,8 +199,11 @@ def load_all() -> None:
             continue
         for leaf in ("scenarios", "benchmarks"):
             name = f"shintai.{pkg.name}.{leaf}"
-            if importlib.util.find_spec(name) is not None:
-                importlib.import_module(name)
+            try:
+                if importlib.util.find_spec(name) is not None:
+                    importlib.import_module(name)
+            except Exception as exc:  # noqa: BLE001 - reported, not swallowed
+                LOAD_ERRORS[name] = f"{type(exc).__name__}: {exc}".splitlines()[0]
     _LOADED = True
 
 

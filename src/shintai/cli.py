@@ -1,0 +1,196 @@
+"""The ``shintai`` command (contract in DESIGN.md): list, run, reproduce, bench, and demo.
+
+Exit status: 0 every check holds, 1 a check fails or a run errs, 2 a usage or parameter error
+(one line on stderr, no traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import json
+import sys
+import time
+from pathlib import Path
+
+from shintai.scenarios import registry
+from shintai.scenarios.registry import ParameterError
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse, but a usage error is one line and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"shintai: error: {message} (see `shintai {self.prog.split()[-1]} --help`)\n"
+                  if " " in self.prog else f"shintai: error: {message} (see `shintai --help`)\n")
+
+
+def parse_sets(pairs: list[str]) -> dict[str, str]:
+    out = {}
+    for pair in pairs:
+        key, eq, value = pair.partition("=")
+        if not eq or not key:
+            raise ParameterError(f"--set {pair}: expected KEY=VALUE")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def select(pattern: str | None, pool: dict) -> list[str]:
+    ids = sorted(pool)
+    if pattern:
+        ids = [i for i in ids if fnmatch.fnmatch(i, pattern)]
+        if not ids:
+            raise ParameterError(f"--only {pattern}: matches nothing (see `shintai list`)")
+    return ids
+
+
+def warn_load_errors() -> None:
+    for module, err in registry.LOAD_ERRORS.items():
+        print(f"shintai: warning: {module} failed to import: {err}", file=sys.stderr)
+
+
+def cmd_list(args) -> int:
+    for sid in sorted(registry.SCENARIOS):
+        sc = registry.SCENARIOS[sid]
+        print(f"{sid:34s} {sc.source:40s} {sc.summary}")
+    return 0
+
+
+def print_result(result: dict, out: Path) -> None:
+    for c in result.get("checks", []):
+        mark = "ok  " if c["ok"] else "FAIL"
+        print(f"  {mark} {c['name']}: {c['value']} {c['op']} {c['threshold']}  [{c['basis']}]")
+    if "error" in result:
+        print(f"shintai: error: {result['scenario']}: {result['error']} (partial results kept in {out})",
+              file=sys.stderr)
+    print(f"{result['scenario']}: {'pass' if result['ok'] else 'FAIL'} "
+          f"(sim {result['sim_time_s']:.3g} s, wall {result['wall_time_s']:.3g} s) -> {out}/metrics.json")
+
+
+def cmd_run(args) -> int:
+    from shintai.scenarios.runner import run_scenario
+
+    if args.seed < 0:
+        raise ParameterError(f"--seed {args.seed}: expected a non-negative integer")
+    registry.get(args.id)  # unknown id: exit 2 before anything runs
+    out = Path(args.out) if args.out else Path("out") / args.id
+    result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet)
+    print_result(result, out)
+    return 0 if result["ok"] else 1
+
+
+def run_one(job: tuple) -> dict:
+    """Run one scenario for ``reproduce`` (module level so process and Ray executors can ship it)."""
+    from shintai.scenarios.runner import run_scenario
+
+    sid, out, seed, video = job
+    result = run_scenario(sid, out, seed=seed, video=video, quiet=True)
+    return {"scenario": sid, "ok": result["ok"], "error": result.get("error")}
+
+
+def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, title: str,
+              address: str | None = None) -> int:
+    from shintai.evolve.executors import make_executor
+    from shintai.scenarios.report import write_report
+
+    out.mkdir(parents=True, exist_ok=True)
+    jobs = [(sid, str(out / sid), seed, video and registry.SCENARIOS[sid].video) for sid in ids]
+    t0 = time.perf_counter()
+
+    def progress(done, total):
+        print(f"reproduce: {done}/{total} scenarios done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
+
+    try:
+        with make_executor(executor, address=address) as ex:
+            summaries = ex.map(run_one, jobs, progress=progress)
+    finally:  # a report of whatever finished, even if the run was interrupted
+        results = write_report(out, ids, title)
+    for s in summaries:
+        print(f"  {'pass' if s['ok'] else 'FAIL'} {s['scenario']}" + (f": {s['error']}" if s["error"] else ""))
+    print(f"{sum(r.get('ok', False) for r in results)}/{len(results)} pass -> {out}/REPORT.md, {out}/index.html")
+    return 0 if all(r.get("ok") for r in results) else 1
+
+
+def cmd_reproduce(args) -> int:
+    ids = select(args.only, registry.SCENARIOS)
+    return reproduce(ids, Path(args.out), args.executor, args.seed, video=False,
+                     title="shintai reproduction report", address=args.address)
+
+
+def cmd_demo(args) -> int:
+    ids = [sid for sid in sorted(registry.SCENARIOS) if registry.SCENARIOS[sid].demo]
+    return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo")
+
+
+def cmd_bench(args) -> int:
+    ids = select(args.only, registry.BENCHMARKS)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    results = {}
+    for bid in ids:
+        print(f"bench: {bid} ...", file=sys.stderr)
+        t0 = time.perf_counter()
+        try:
+            results[bid] = registry.BENCHMARKS[bid].run()
+        except Exception as exc:  # noqa: BLE001 - one benchmark failing keeps the others
+            results[bid] = {"error": f"{type(exc).__name__}: {exc}".splitlines()[0]}
+        results[bid]["wall_time_s"] = time.perf_counter() - t0
+        print(f"  {bid}: " + ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
+                                       for k, v in results[bid].items()))
+        (out / "bench.json").write_text(json.dumps(results, indent=2) + "\n")
+    print(f"-> {out}/bench.json")
+    return 1 if any("error" in r for r in results.values()) else 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = OneLineParser(prog="shintai", description="Robot bodies of four theses: run, reproduce, benchmark.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
+    sub.add_parser("list", help="every scenario: id, source, summary").set_defaults(fn=cmd_list)
+
+    r = sub.add_parser("run", help="run one scenario")
+    r.add_argument("id")
+    r.add_argument("--out", help="output folder (default out/ID)")
+    r.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a parameter")
+    r.add_argument("--seed", type=int, default=0)
+    r.add_argument("--video", action="store_true", help="render video.mp4 (MuJoCo scenarios)")
+    r.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    r.set_defaults(fn=cmd_run)
+
+    executors = ("serial", "process", "ray")
+    rep = sub.add_parser("reproduce", help="run many scenarios, write REPORT.md and index.html")
+    rep.add_argument("--only", help="glob over scenario ids, e.g. 'snake.*'")
+    rep.add_argument("--out", default="out/reproduce")
+    rep.add_argument("--executor", choices=executors, default="process")
+    rep.add_argument("--address", help="Ray cluster address (with --executor ray); default: RAY_ADDRESS or local")
+    rep.add_argument("--seed", type=int, default=0)
+    rep.set_defaults(fn=cmd_reproduce)
+
+    d = sub.add_parser("demo", help="one headline scenario per body, with videos, into out/demo")
+    d.add_argument("--out", default="out/demo")
+    d.add_argument("--executor", choices=executors, default="process")
+    d.add_argument("--no-video", action="store_true")
+    d.set_defaults(fn=cmd_demo)
+
+    b = sub.add_parser("bench", help="run the benchmarks, write bench.json")
+    b.add_argument("--only", help="glob over benchmark ids")
+    b.add_argument("--out", default="out/bench")
+    b.set_defaults(fn=cmd_bench)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    registry.load_all()
+    warn_load_errors()
+    try:
+        return args.fn(args)
+    except ParameterError as exc:
+        print(f"shintai: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("shintai: interrupted (finished results are kept)", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,222 @@
+"""Interpolation: linear and minimum-jerk segments, re-planned from the current state, and the
+sequence player of seed 003 "nervous" seqplugin (§6.3.4, Appendix C.2.2; spec
+003-part2-ch5-7-appendix.md §2.3.5–2.3.6).
+
+seqplugin semantics kept here: a target posture (one value per DOF) and a time to reach it; the
+command changes continuously from the current state and arrives in that time. A target given
+during a motion is *queued*; ``clear`` flushes the queue and re-plans from the current state
+(``:clear``); an optional via velocity may be given per entry (``:with-velocity``); methods
+``linear``, ``minjerk`` (default, zero velocity at every posture) and ``minjerksequence`` (a
+non-zero velocity at intermediate postures "balanced with the previous queue entry").
+
+The thesis prints no formula (spec §2.3.6); we use the standard quintic of Hoff–Arbib
+(minimum jerk with boundary position, velocity and acceleration), as hrpsys-base's HOFFARBIB
+interpolator does, re-planned from the current (x, v, a) whenever the target changes — so
+re-targeting keeps position, velocity and acceleration continuous.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+
+import numpy as np
+
+from shintai.core.runtime import Module, Snapshot
+
+METHODS = ("linear", "minjerk", "minjerksequence")
+
+
+def quintic_coefficients(x0, v0, a0, xf, vf, af, T: float) -> np.ndarray:
+    """Coefficients c[0..5] (each a vector over DOF) of x(t) = Σ c_k t^k meeting x, v, a at 0 and T.
+
+    c3, c4, c5 as in spec 003-part2 §2.3.6 (the minimum-jerk solution with boundary conditions).
+    """
+    if T <= 0:
+        raise ValueError(f"segment duration must be positive, got {T}")
+    x0, v0, a0, xf, vf, af = (np.asarray(v, dtype=float) for v in (x0, v0, a0, xf, vf, af))
+    d = xf - x0
+    c3 = (20 * d - (8 * vf + 12 * v0) * T - (3 * a0 - af) * T**2) / (2 * T**3)
+    c4 = (-30 * d + (14 * vf + 16 * v0) * T + (3 * a0 - 2 * af) * T**2) / (2 * T**4)
+    c5 = (12 * d - 6 * (vf + v0) * T - (a0 - af) * T**2) / (2 * T**5)
+    return np.array([x0, v0, a0 / 2, c3, c4, c5])
+
+
+@dataclass
+class Segment:
+    """One interpolation segment over [0, T]: a quintic (min jerk) or a straight line."""
+
+    coeffs: np.ndarray  # (6, dof) for a quintic; (2, dof) for a line
+    T: float
+
+    @classmethod
+    def minjerk(cls, x0, v0, a0, xf, vf, af, T) -> Segment:
+        return cls(quintic_coefficients(x0, v0, a0, xf, vf, af, T), T)
+
+    @classmethod
+    def linear(cls, x0, xf, T) -> Segment:
+        if T <= 0:
+            raise ValueError(f"segment duration must be positive, got {T}")
+        x0, xf = np.asarray(x0, dtype=float), np.asarray(xf, dtype=float)
+        return cls(np.array([x0, (xf - x0) / T]), T)
+
+    def state(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity, acceleration at time t (clamped to [0, T])."""
+        t = min(max(t, 0.0), self.T)
+        c = self.coeffs
+        k = np.arange(len(c))
+        x = np.tensordot(t ** k, c, axes=1)
+        v = np.tensordot(k[1:] * t ** (k[1:] - 1), c[1:], axes=1)
+        a = (np.tensordot(k[2:] * (k[2:] - 1) * t ** (k[2:] - 2), c[2:], axes=1)
+             if len(c) > 2 else np.zeros_like(x))
+        return x, v, a
+
+
+def hoff_arbib_jerk(x, v, a, xf, D: float) -> np.ndarray:
+    """Hoff–Arbib online minimum-jerk law toward a resting goal with D seconds left:
+    jerk = −9a/D − 36v/D² + 60(x_f − x)/D³ (spec 003-part2 §2.3.6; hrpsys HOFFARBIB)."""
+    return -9 * a / D - 36 * v / D**2 + 60 * (np.asarray(xf) - x) / D**3
+
+
+def via_velocity(x_prev, x_via, x_next, T_in: float, T_out: float) -> np.ndarray:
+    """``minjerksequence`` velocity at an intermediate posture (thesis: "balanced with the previous
+    queue entry", rule not given — spec §2.3.5 [?]). Our choice, per DOF: zero where the incoming
+    and outgoing slopes differ in sign (a turning point, as with ``minjerk``), else the time-weighted
+    mean of the two slopes (Catmull–Rom-like), which is continuous and never overshoots a monotone run."""
+    s_in = (np.asarray(x_via, dtype=float) - x_prev) / T_in
+    s_out = (np.asarray(x_next, dtype=float) - x_via) / T_out
+    mean = (s_in * T_out + s_out * T_in) / (T_in + T_out)
+    return np.where(s_in * s_out > 0, mean, 0.0)
+
+
+@dataclass
+class QueueEntry:
+    target: np.ndarray
+    duration: float
+    velocity: np.ndarray | None = None  # via velocity at the target (":with-velocity")
+
+
+class SequencePlayer(Module):
+    """The seqplugin posture-sequence player as a runtime module.
+
+    ``push(target, duration, velocity=None, clear=False)`` queues a posture; ``advance(dt)`` moves
+    time; ``state`` is the current (x, v, a). As a :class:`Module` it advances by its own period
+    each update and contributes the current posture to ``channel`` (nervous: the target angle
+    vector, onto which other plugins add their differences).
+    """
+
+    def __init__(self, x0, method: str = "minjerk", channel: str = "target", name: str = "sequence",
+                 period: float | None = None):
+        super().__init__(name, period)
+        self.x = np.atleast_1d(np.asarray(x0, dtype=float)).copy()
+        self.v = np.zeros_like(self.x)
+        self.a = np.zeros_like(self.x)
+        self.queue: deque[QueueEntry] = deque()
+        self.segment: Segment | None = None
+        self.current: QueueEntry | None = None  # the entry the running segment goes to
+        self.start_x = self.x.copy()  # where that segment started
+        self.elapsed = 0.0
+        self.channel = channel
+        self.switch(method)
+
+    # -- commands (seqplugin: propocmd, :clear, :with-velocity, switch) --
+
+    def switch(self, method: str) -> None:
+        """Change the interpolation method for segments planned from now on."""
+        if method not in METHODS:
+            raise ValueError(f"unknown interpolation method {method!r} (allowed: {', '.join(METHODS)})")
+        self.method = method
+
+    def push(self, target, duration: float, velocity=None, clear: bool = False) -> None:
+        """Queue a posture to reach in ``duration`` seconds; ``clear`` flushes the queue and the
+        current segment and re-plans from the current state (``:clear``)."""
+        target = np.atleast_1d(np.asarray(target, dtype=float))
+        if target.shape != self.x.shape:
+            raise ValueError(f"target has {target.size} values, the player has {self.x.size} DOF")
+        if not np.all(np.isfinite(target)) or not duration > 0:
+            raise ValueError("target must be finite and duration positive")
+        vel = None if velocity is None else np.atleast_1d(np.asarray(velocity, dtype=float))
+        if clear:
+            self.clear()
+        self.queue.append(QueueEntry(target, float(duration), vel))
+        if self.segment is None:
+            self._start_next()
+        elif self.method == "minjerksequence" and len(self.queue) == 1 and self.current.velocity is None:
+            self._replan_current()
+
+    def clear(self) -> None:
+        """Empty the queue and stop interpolating; the current state is kept (and re-planned from)."""
+        self.queue.clear()
+        self.segment = None
+        self.elapsed = 0.0
+
+    @property
+    def busy(self) -> bool:
+        return self.segment is not None
+
+    @property
+    def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return self.x.copy(), self.v.copy(), self.a.copy()
+
+    # -- time --
+
+    def _end_velocity(self, entry: QueueEntry) -> np.ndarray:
+        if entry.velocity is not None:
+            return entry.velocity
+        if self.method == "minjerksequence" and self.queue:
+            nxt = self.queue[0]
+            return via_velocity(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
+        return np.zeros_like(self.x)
+
+    def _start_next(self) -> None:
+        entry = self.queue.popleft()
+        self.current, self.start_x, self.elapsed = entry, self.x.copy(), 0.0
+        if self.method == "linear":
+            self.segment = Segment.linear(self.x, entry.target, entry.duration)
+        else:
+            vf = self._end_velocity(entry)
+            self.segment = Segment.minjerk(self.x, self.v, self.a, entry.target, vf, np.zeros_like(self.x),
+                                           entry.duration)
+
+    def _replan_current(self) -> None:
+        """``minjerksequence``: a successor was queued behind the running segment, so its end
+        posture becomes an intermediate one; re-plan the rest from the current (x, v, a) to arrive on
+        time with the via velocity (continuous in x, v, a)."""
+        entry, nxt = self.current, self.queue[0]
+        left = self.segment.T - self.elapsed
+        if left <= 0:
+            return
+        vf = via_velocity(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
+        self.segment = Segment.minjerk(self.x, self.v, self.a, entry.target, vf, np.zeros_like(self.x), left)
+        self.elapsed = 0.0
+
+    def advance(self, dt: float) -> np.ndarray:
+        """Move time forward by ``dt``; returns the current position."""
+        remaining = dt
+        while self.segment is not None:
+            left = self.segment.T - self.elapsed
+            if remaining < left:
+                self.elapsed += remaining
+                self.x, self.v, self.a = self.segment.state(self.elapsed)
+                return self.x.copy()
+            remaining -= left
+            self.x, self.v, self.a = self.segment.state(self.segment.T)
+            if self.method == "linear":
+                self.v = np.zeros_like(self.x)
+            self.segment = None
+            if self.queue:
+                self._start_next()
+        self.v = np.zeros_like(self.x)  # idle: the posture is held
+        self.a = np.zeros_like(self.x)
+        return self.x.copy()
+
+    # -- as a module --
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self._last_t = float(snapshot["t"])
+
+    def update(self, snapshot: Snapshot):
+        t = float(snapshot["t"])
+        self.advance(t - self._last_t)
+        self._last_t = t
+        return {self.channel: self.x.copy()}

@@ -1,0 +1,165 @@
+"""Running one scenario: the context a scenario's run function gets, and what is written.
+
+``run_scenario`` writes into the output folder (DESIGN.md contract): ``metrics.json``, ``log.npz``,
+the PNG plots the scenario drew, and ``video.mp4`` with ``--video``. If the scenario raises (a
+diverging simulation, a NaN state) the error is kept in ``metrics.json`` as one line and whatever
+was logged and plotted before the failure is still written.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from shintai.core.recorder import Recorder
+from shintai.scenarios.registry import Scenario, get
+
+
+class Progress:
+    """Progress of a long run on stderr: a live line on a terminal, a line per 10 % otherwise."""
+
+    def __init__(self, label: str, stream=None, quiet: bool = False):
+        self.label = label
+        self.stream = stream or sys.stderr
+        self.quiet = quiet
+        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
+        self._last_decile = -1
+        self._t0 = time.perf_counter()
+
+    def __call__(self, fraction: float, message: str = "") -> None:
+        if self.quiet:
+            return
+        fraction = min(max(fraction, 0.0), 1.0)
+        elapsed = time.perf_counter() - self._t0
+        line = f"{self.label}: {100 * fraction:5.1f}% {elapsed:6.1f}s {message}".rstrip()
+        if self.tty:
+            self.stream.write("\r" + line.ljust(79) + ("\n" if fraction >= 1.0 else ""))
+            self.stream.flush()
+        else:
+            decile = int(fraction * 10)
+            if decile > self._last_decile:
+                self._last_decile = decile
+                self.stream.write(line + "\n")
+                self.stream.flush()
+
+
+@dataclass
+class RunContext:
+    """What a scenario's ``run(ctx)`` gets: validated parameters, a seeded RNG, the output folder.
+
+    The run function returns its metrics (a dict of numbers computed from the simulation). It sets
+    ``ctx.sim_time_s`` to the simulated time it covered, logs time series into ``ctx.recorder`` and
+    draws plots with ``ctx.figure(name)``.
+    """
+
+    scenario: Scenario
+    params: dict[str, Any]
+    seed: int
+    out: Path
+    video: bool = False
+    quiet: bool = False
+    recorder: Recorder = field(default_factory=Recorder)
+    sim_time_s: float = 0.0
+    extra: dict[str, Any] = field(default_factory=dict)  # extra JSON-able results (tables) for the report
+
+    def __post_init__(self):
+        self.rng = np.random.default_rng(self.seed)
+        self.progress = Progress(self.scenario.id, quiet=self.quiet)
+
+    @property
+    def video_path(self) -> Path:
+        return self.out / "video.mp4"
+
+    @contextmanager
+    def figure(self, name: str, nrows: int = 1, ncols: int = 1, **kwargs):
+        """Yield ``(fig, axes)``; saved as ``<out>/<name>.png`` on exit (also if the block fails)."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        kwargs.setdefault("figsize", (6.4 * ncols ** 0.8, 3.6 * nrows ** 0.8 + 0.6))
+        fig, axes = plt.subplots(nrows, ncols, **kwargs)
+        try:
+            yield fig, axes
+        finally:
+            fig.suptitle(f"{self.scenario.id} ({self.scenario.source})", fontsize=9)
+            fig.tight_layout()
+            fig.savefig(self.out / f"{name}.png", dpi=110)
+            plt.close(fig)
+
+
+def _jsonable(x: Any) -> Any:
+    """Numbers and arrays to plain JSON (NaN/inf become null rather than invalid JSON)."""
+    if isinstance(x, dict):
+        return {str(k): _jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return _jsonable(x.tolist())
+    if isinstance(x, (np.bool_, bool)):
+        return bool(x)
+    if isinstance(x, (np.integer,)):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    return x
+
+
+def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dict[str, str] | None = None,
+                 seed: int = 0, video: bool = False, quiet: bool = False) -> dict[str, Any]:
+    """Run one scenario, write its outputs, and return the content of ``metrics.json``.
+
+    Raises :class:`~shintai.scenarios.registry.ParameterError` for a bad id or ``--set`` before
+    anything runs. Any error during the run is caught and recorded (``"error"``), never lost.
+    """
+    sc = get(scenario_id)
+    params = sc.resolve(overrides)
+    if video and not sc.video:
+        from shintai.scenarios.registry import ParameterError
+
+        raise ParameterError(f"--video: {sc.id} has no MuJoCo body to render")
+    out = Path(out) if out is not None else Path("out") / sc.id
+    out.mkdir(parents=True, exist_ok=True)
+    ctx = RunContext(sc, params, seed, out, video=video, quiet=quiet)
+    t0 = time.perf_counter()
+    error = None
+    metrics: dict[str, Any] = {}
+    try:
+        metrics = dict(sc.run(ctx) or {})
+    except Exception as exc:  # a diverging simulation or a bug: keep what was computed
+        error = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    wall = time.perf_counter() - t0
+    result = {
+        "scenario": sc.id,
+        "source": sc.source,
+        "seed": seed,
+        "params": params,
+        "metrics": metrics,
+        "checks": [c.evaluate(metrics) for c in sc.checks] if error is None else [],
+        "thesis": {k: {"value": v.value, "where": v.where, **({"metric": v.metric} if v.metric else {})}
+                   for k, v in sc.thesis.items()},
+        "sim_time_s": ctx.sim_time_s,
+        "wall_time_s": wall,
+    }
+    if ctx.extra:
+        result["extra"] = ctx.extra
+    if error is not None:
+        result["error"] = error
+    result["ok"] = error is None and all(c["ok"] for c in result["checks"])
+    result = _jsonable(result)
+    ctx.recorder.save(out / "log.npz")
+    tmp = out / "metrics.json.tmp"
+    tmp.write_text(json.dumps(result, indent=2) + "\n")
+    os.replace(tmp, out / "metrics.json")
+    return result

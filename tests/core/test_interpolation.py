@@ -1,0 +1,98 @@
+"""Interpolation and the seqplugin sequence player (seed 003 §6.3.4, App. C.2.2)."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from shintai.core.interpolation import Segment, SequencePlayer, via_velocity
+from shintai.core.runtime import Loop
+from shintai.core.benchmarks import NullBody
+
+finite = st.floats(-5, 5, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(finite, finite, finite, finite, finite, finite, st.floats(0.05, 10))
+def test_quintic_meets_its_boundary_conditions(x0, v0, a0, xf, vf, af, T):
+    seg = Segment.minjerk(x0, v0, a0, xf, vf, af, T)
+    got = seg.state(0.0) + seg.state(T)
+    for g, w in zip(got, (x0, v0, a0, xf, vf, af)):
+        assert float(g) == pytest.approx(w, abs=1e-8 * (1 + abs(w)) * max(1, 1 / T**2))
+
+
+def test_rest_to_rest_profile_is_the_textbook_one():
+    """x = x0 + Δ(10τ³ − 15τ⁴ + 6τ⁵); peak velocity 1.875 Δ/T at τ = 0.5 (spec §2.3.6)."""
+    seg = Segment.minjerk(0, 0, 0, 2.0, 0, 0, 4.0)
+    x, v, a = seg.state(2.0)
+    assert float(x) == pytest.approx(1.0) and float(v) == pytest.approx(1.875 * 2 / 4) and abs(float(a)) < 1e-12
+
+
+def test_queue_runs_in_order_and_arrives_on_time():
+    p = SequencePlayer([0.0])
+    p.push([1.0], 0.5)
+    p.push([3.0], 0.5)  # given during the first motion: queued, not overwriting
+    p.advance(0.5)
+    assert p.x[0] == pytest.approx(1.0) and p.busy
+    p.advance(0.5)
+    assert p.x[0] == pytest.approx(3.0) and not p.busy
+    assert p.v[0] == 0.0  # minjerk: zero velocity at every posture
+
+
+def test_clear_replans_from_the_current_state():
+    p = SequencePlayer([0.0, 0.0])
+    p.push([1.0, 1.0], 1.0)
+    p.push([5.0, 5.0], 1.0)
+    p.advance(0.4)
+    x, v, a = p.state
+    p.push([-1.0, 0.0], 0.8, clear=True)
+    x2, v2, a2 = p.segment.state(0.0)
+    assert np.allclose(x, x2) and np.allclose(v, v2) and np.allclose(a, a2)
+    assert len(p.queue) == 0
+    p.advance(0.8)
+    assert np.allclose(p.x, [-1.0, 0.0])
+
+
+def test_via_velocity_and_minjerksequence():
+    # Fig. C.1 values: (0,0), (250,60), (350,120), (600,60), (850,0) in ms
+    assert via_velocity(0, 60, 120, 0.25, 0.1)[()] > 0  # monotone run: non-zero
+    assert via_velocity(60, 120, 60, 0.1, 0.25)[()] == 0  # turning point: zero
+    p = SequencePlayer([0.0], method="minjerksequence")
+    for x, T in ((60, 0.25), (120, 0.1), (60, 0.25), (0, 0.25)):
+        p.push([x], T)
+    p.advance(0.25)
+    assert p.x[0] == pytest.approx(60) and p.v[0] > 0
+    p.advance(0.6)
+    assert p.x[0] == pytest.approx(0) and not p.busy
+
+
+def test_explicit_via_velocity_and_method_switching():
+    p = SequencePlayer([0.0])
+    p.push([1.0], 1.0, velocity=[0.5])
+    p.push([2.0], 1.0)
+    p.advance(1.0)
+    assert p.v[0] == pytest.approx(0.5)
+    p.switch("linear")
+    p.push([0.0], 1.0, clear=True)
+    p.advance(0.5)
+    assert p.x[0] == pytest.approx(0.5) and p.v[0] == pytest.approx(-1.0)
+    with pytest.raises(ValueError, match="unknown interpolation method"):
+        p.switch("spline")
+
+
+def test_bad_targets_are_refused():
+    p = SequencePlayer([0.0, 0.0])
+    with pytest.raises(ValueError, match="2 DOF"):
+        p.push([1.0], 1.0)
+    with pytest.raises(ValueError, match="finite"):
+        p.push([np.nan, 0.0], 1.0)
+    with pytest.raises(ValueError, match="positive"):
+        p.push([1.0, 1.0], 0.0)
+
+
+def test_player_as_a_module_in_the_loop():
+    body = NullBody(dt=0.001)
+    p = SequencePlayer([0.0], channel="u", period=0.004)
+    p.push([1.0], 0.1)
+    Loop(body, [p]).run(0.2)
+    assert body.command["u"][0] == pytest.approx(1.0)

@@ -1,0 +1,124 @@
+"""The `shintai` command contract (DESIGN.md): list, run, reproduce, bench; exit codes; metrics.json."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from shintai.cli import main
+from shintai.scenarios import registry
+from shintai.scenarios.registry import Check, Param, ParameterError
+from shintai.scenarios.runner import run_scenario
+
+
+def test_every_body_package_imports():
+    registry.load_all()
+    assert registry.LOAD_ERRORS == {}
+    assert {"core.search-index", "core.minjerk"} <= set(registry.SCENARIOS)
+
+
+def test_list_prints_id_source_summary(capsys):
+    assert main(["list"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert any(line.startswith("core.minjerk") and "seed 003" in line for line in lines)
+
+
+def test_run_writes_metrics_log_and_plots(tmp_path):
+    out = tmp_path / "si"
+    assert main(["run", "core.search-index", "--out", str(out), "--quiet"]) == 0
+    m = json.loads((out / "metrics.json").read_text())
+    assert {"scenario", "source", "seed", "params", "metrics", "checks", "thesis", "sim_time_s",
+            "wall_time_s"} <= set(m)
+    assert m["params"]["steps"] == 60 and all(c["ok"] and c["basis"] for c in m["checks"])
+    assert "scalar_error" in np.load(out / "log.npz")
+    assert (out / "search_index.png").stat().st_size > 10_000
+
+
+def test_failing_check_exits_1(tmp_path):
+    # a gain with a|g| > 1 still converges, but not monotonically: the monotone check must fail
+    code = main(["run", "core.search-index", "--out", str(tmp_path), "--set", "gain=0.8", "--quiet"])
+    m = json.loads((tmp_path / "metrics.json").read_text())
+    assert code == 1 and not m["ok"]
+    assert {c["name"]: c["ok"] for c in m["checks"]}["monotone_error"] is False
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["run", "no.such"], "unknown scenario"),
+    (["run", "core.minjerk", "--set", "nope=1"], "unknown key"),
+    (["run", "core.minjerk", "--set", "dt=9"], "dt=9: expected a number in"),
+    (["run", "core.minjerk", "--set", "dt=nan"], "expected a number"),
+    (["run", "core.minjerk", "--set", "dt"], "KEY=VALUE"),
+    (["run", "core.minjerk", "--video"], "no MuJoCo body"),
+    (["run", "core.minjerk", "--seed", "-1"], "non-negative"),
+    (["reproduce", "--only", "zzz.*"], "matches nothing"),
+])
+def test_bad_input_is_one_line_and_exit_2(argv, message, capsys, tmp_path):
+    assert main(argv + ["--out", str(tmp_path)] if argv[0] == "run" else argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0] and "Traceback" not in err[0]
+
+
+def test_usage_error_from_the_shell_is_one_line():
+    proc = subprocess.run([sys.executable, "-m", "shintai", "run"], capture_output=True, text=True)
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_a_failing_run_keeps_what_it_computed(tmp_path):
+    def run(ctx):
+        ctx.recorder.record(0.0, x=1.0)
+        ctx.recorder.record(0.1, x=2.0)
+        raise FloatingPointError("state became NaN at t=0.1")
+
+    registry.SCENARIOS["test.diverges"] = registry.Scenario("test.diverges", "test", "diverges", run,
+                                                            checks=(Check("x", "<", 1, "test"),))
+    try:
+        result = run_scenario("test.diverges", tmp_path, quiet=True)
+    finally:
+        del registry.SCENARIOS["test.diverges"]
+    assert result["error"] == "FloatingPointError: state became NaN at t=0.1" and not result["ok"]
+    assert np.load(tmp_path / "log.npz")["x"].tolist() == [1.0, 2.0]
+    assert json.loads((tmp_path / "metrics.json").read_text())["error"].startswith("FloatingPointError")
+
+
+def test_param_parsing():
+    p = Param("n", 3, lo=1, hi=5)
+    assert p.parse("4") == 4
+    with pytest.raises(ParameterError):
+        p.parse("4.5")
+    assert Param("on", True).parse("false") is False
+    assert Param("plant", "kinematic", choices=("kinematic", "mujoco")).parse("mujoco") == "mujoco"
+    with pytest.raises(ParameterError, match="one of kinematic|mujoco"):
+        Param("plant", "kinematic", choices=("kinematic", "mujoco")).parse("pybullet")
+
+
+def test_check_against_another_metric():
+    c = Check("a", "<=", "b", "ordering")
+    assert c.evaluate({"a": 1.0, "b": 2.0})["ok"] and not c.evaluate({"a": 3.0, "b": 2.0})["ok"]
+    assert not Check("a", "<=", 1.0, "x").evaluate({"a": float("nan")})["ok"]
+    assert not Check("missing", "<=", 1.0, "x").evaluate({})["ok"]
+
+
+@pytest.mark.parametrize("executor", ["serial", "process"])
+def test_reproduce_writes_report_and_index(tmp_path, executor):
+    assert main(["reproduce", "--only", "core.*", "--out", str(tmp_path), "--executor", executor]) == 0
+    report = (tmp_path / "REPORT.md").read_text()
+    assert "core.minjerk" in report and "core.search-index" in report and "2 of 2" in report
+    assert "<table>" in (tmp_path / "index.html").read_text()
+    assert (tmp_path / "core.minjerk" / "metrics.json").exists()
+
+
+def test_report_lists_unfinished_scenarios(tmp_path):
+    from shintai.scenarios.report import write_report
+
+    run_scenario("core.minjerk", tmp_path / "core.minjerk", quiet=True)
+    results = write_report(tmp_path, ["core.minjerk", "core.search-index"])
+    assert results[0]["ok"] and "not run" in results[1]["error"]
+    assert "1 of 2" in (tmp_path / "REPORT.md").read_text()
+
+
+def test_bench_writes_json(tmp_path):
+    assert main(["bench", "--only", "core.loop-overhead", "--out", str(tmp_path)]) == 0
+    bench = json.loads((tmp_path / "bench.json").read_text())
+    assert bench["core.loop-overhead"]["ratio_loop_vs_direct"] > 0
