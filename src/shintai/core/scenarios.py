@@ -115,6 +115,7 @@ COUPLED_XD = np.array([1.0, 2.0])
         Check("learning_monotone", "==", 1, "thesis Eq. 2.33: J(x_{k+1}) < J(x_k)"),
         Check("sign_matrix_probed_ok", "==", 1, "thesis §2.4.1: sgn acquired by probing equals the declared one"),
     ],
+    demo=True,
 )
 def search_index_scenario(ctx):
     p = ctx.params
@@ -155,16 +156,16 @@ def search_index_scenario(ctx):
 def _plot_search_index(ctx, e1, r1, e_wrong, e2, J, scalar):
     with ctx.figure("search_index", 2, 2, figsize=(10, 7)) as (fig, ax):
         k = np.arange(len(e1))
-        floor = 1e-300
-        ax[0, 0].semilogy(k, np.abs(e1[:, 0]) + floor, label="scalar, right sign")
-        ax[0, 0].semilogy(k, np.abs(e2[:, 0]) + floor, label="coupled x₁")
-        ax[0, 0].semilogy(k, np.abs(e2[:, 1]) + floor, label="coupled x₂")
+        eps = 1e-16  # exact zeros (converged to machine precision) drawn at the floor of the log axis
+        ax[0, 0].semilogy(k, np.maximum(np.abs(e1[:, 0]), eps), label="scalar, right sign")
+        ax[0, 0].semilogy(k, np.maximum(np.abs(e2[:, 0]), eps), label="coupled x₁")
+        ax[0, 0].semilogy(k, np.maximum(np.abs(e2[:, 1]), eps), label="coupled x₂")
         ax[0, 0].semilogy(np.arange(len(e_wrong)), np.abs(e_wrong[:, 0]), "r--", label="scalar, wrong sign")
         ax[0, 0].set(xlabel="step k", ylabel="|x − x_d|", title="error (Eq. 2.22)")
         ax[0, 0].legend(fontsize=8)
-        ax[0, 1].semilogy(k[1:], np.abs(np.diff(r1[:, 0])) + floor, label="scalar")
+        ax[0, 1].semilogy(k[1:], np.maximum(np.abs(np.diff(r1[:, 0])), eps), label="scalar")
         ax[0, 1].set(xlabel="step k", ylabel="|ρ_{k+1} − ρ_k|", title="increments (Eq. 2.28)")
-        ax[1, 0].semilogy(np.arange(len(J)), J + floor)
+        ax[1, 0].semilogy(np.arange(len(J)), np.maximum(J, eps))
         ax[1, 0].set(xlabel="step k", ylabel="J(x_k)", title="learning index (Eq. 2.33)")
         g, c, xd = scalar["G"][0][0], scalar["c"][0], scalar["x_d"][0]
         rr = np.linspace(min(r1[:, 0].min(), 0) - 0.5, max(r1[:, 0].max(), 0) + 0.5, 50)
@@ -274,6 +275,7 @@ def hoff_arbib_deviation(rng, dt: float) -> float:
         Check("queue_arrival_error", "<=", 1e-9, "seqplugin: each queued posture reached at its time"),
         Check("hoff_arbib_max_dev", "<=", 1e-6, "the online Hoff–Arbib law integrates to the same quintic (RK4 at dt)"),
     ],
+    demo=True,
 )
 def minjerk_scenario(ctx):
     p = ctx.params

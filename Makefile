@@ -1,0 +1,32 @@
+# shintai: `make demo` and `make test` work on a fresh machine from nothing but python3 (DESIGN.md).
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-stamp
+export MUJOCO_GL ?= egl
+
+.PHONY: install test demo reproduce bench clean
+
+# (Re)install when pyproject.toml changes; pinned versions come from pyproject.toml.
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e ".[ray,dev]"
+	touch $(STAMP)
+
+install: $(STAMP)
+
+test: $(STAMP)
+	$(BIN)/python -m pytest tests -q
+
+demo: $(STAMP)
+	$(BIN)/shintai demo --out out/demo
+
+reproduce: $(STAMP)
+	$(BIN)/shintai reproduce --out out/reproduce
+
+bench: $(STAMP)
+	$(BIN)/shintai bench --out out/bench
+
+clean:
+	rm -rf out .pytest_cache
