@@ -100,7 +100,7 @@ def test_check_against_another_metric():
     assert not Check("missing", "<=", 1.0, "x").evaluate({})["ok"]
 
 
-@pytest.mark.parametrize("executor", ["serial", "process"])
+@pytest.mark.parametrize("executor", ["serial", "process", "ray"])
 def test_reproduce_writes_report_and_index(tmp_path, executor):
     assert main(["reproduce", "--only", "core.*", "--out", str(tmp_path), "--executor", executor]) == 0
     report = (tmp_path / "REPORT.md").read_text()

@@ -1,0 +1,10 @@
+"""Evolution: a genetic algorithm (seed 003 §5.5–5.7, seed 004 §4.1.2) and the executors it runs on."""
+
+from shintai.evolve.executors import (Executor, ItemError, ProcessExecutor, RayExecutor, SerialExecutor,
+                                      make_executor)
+from shintai.evolve.ga import (Checkpoint, GAConfig, GAResult, GeneticAlgorithm, History, load_checkpoint,
+                               save_checkpoint)
+
+__all__ = ["Checkpoint", "Executor", "GAConfig", "GAResult", "GeneticAlgorithm", "History", "ItemError",
+           "ProcessExecutor", "RayExecutor", "SerialExecutor", "load_checkpoint", "make_executor",
+           "save_checkpoint"]
