@@ -244,7 +244,7 @@ def is_decoupled(A: np.ndarray, sgn: np.ndarray) -> bool:
 class StabilityMonitor:
     """Counts, along a run, the steps that break the monotonicity statements of §2.5.2.
 
-    * ``error_increases``: steps where some |{x − x_d}_j| did not shrink (hypothesis Eq. 2.22);
+    * ``error_increases``: steps where some |{x − x_d}_j| above ``tol`` did not shrink (hypothesis Eq. 2.22);
     * ``increment_increases``: steps where some |{ρ_{k+2} − ρ_{k+1}}_i| ≥ |{ρ_{k+1} − ρ_k}_i| (Eq. 2.28),
       among components that are still moving;
     * ``cost_increases``: steps where J(x_{k+1}) ≥ J(x_k) (Eq. 2.33).
@@ -263,8 +263,10 @@ class StabilityMonitor:
                 J: float | None = None) -> None:
         if error is not None:
             e = np.abs(np.asarray(error, dtype=float))
-            if self._e is not None and np.any(e >= self._e - self.tol) and np.any(self._e > self.tol):
-                self.error_increases += 1
+            if self._e is not None:
+                live = self._e > self.tol  # components already at the target are exempt
+                if np.any(e[live] >= self._e[live]):
+                    self.error_increases += 1
             self._e = e
         if drho is not None:
             d = np.abs(np.asarray(drho, dtype=float))
