@@ -1,0 +1,93 @@
+"""Kinematic plant of the wheeled snake — the thesis's own planar model (seed 001 §2.2–§2.3) as a Body.
+
+State q = [w̃_h; φ]. The command is the joint rates φ̇ (``"phi_dot"``, n yaw joints) and the grounded
+pattern σ (``"grounded"``, n entries 0/1; lifting a wheel is a command, §2.3). Both are held over one
+step δt. The head moves as the least-squares solution of the grounded wheels' constraints (2.10),
+ẇ̃_h = A_σ^† B_σ φ̇ (spec §5.2), integrated with RK4; φ̇ is integrated exactly.
+
+Slip: the no-side-slip constraint (2.7) holds exactly only if B_σ φ̇ lies in the range of A_σ. The
+residual v = A_σ ẇ̃_h − B_σ φ̇ is the axle-direction speed the grounded wheels would have to slide with;
+the snapshot reports its largest magnitude (m/s) for the step just taken as ``"slip"``. It is ≈ 0 when
+φ̇ comes from the two-point law with B_{c,σ} of full row rank.
+
+Pitch joints are 0 in the plane (§2.3), so ``"psi"`` (all 2n−1 joints, the 3D models' input) carries the
+yaw angles at the odd joints and zeros at the pitch joints.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.core.runtime import Body, SimulationDiverged
+from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
+from shintai.snake.model import check_mode, configuration, constraint_terms
+
+
+class KinematicSnake(Body):
+    """Planar kinematic snake: snapshot ``t, w_h, phi, psi, grounded, slip``; command ``phi_dot, grounded``."""
+
+    CHANNELS = ("phi_dot", "grounded")
+
+    def __init__(self, w_h0, phi0, geometry: SnakeGeometry = CH3_ROBOT, dt: float = CH3_GAINS.dt,
+                 settings: PlantSettings = PLANT):
+        if not dt > 0:
+            raise ValueError(f"dt must be > 0 s, got {dt!r}")
+        self.geometry = geometry
+        self.dt = float(dt)
+        self.settings = settings
+        self.t = 0.0
+        self.steps = 0
+        cfg = configuration(w_h0, phi0, geometry.l)  # validates shapes
+        if cfg.n != geometry.n:
+            raise ValueError(f"phi0 must have n = {geometry.n} yaw angles, got {cfg.n}")
+        self.w_h = cfg.w_h.copy()
+        self.phi = cfg.phi.copy()
+        self.grounded = np.ones(geometry.n, dtype=bool)  # all wheels on the ground until commanded
+        self.phi_dot = np.zeros(geometry.n)
+        self.slip = 0.0
+
+    def snapshot(self) -> dict:
+        psi = np.zeros(self.geometry.joints)
+        psi[::2] = self.phi
+        return {"t": self.t, "w_h": self.w_h.copy(), "phi": self.phi.copy(), "psi": psi,
+                "grounded": self.grounded.copy(), "slip": self.slip}
+
+    def apply(self, command: dict) -> None:
+        unknown = set(command) - set(self.CHANNELS)
+        if unknown:
+            raise ValueError(f"kinematic snake: unknown command channel(s) {sorted(unknown)}; known: {self.CHANNELS}")
+        if "grounded" in command:
+            self.grounded = check_mode(command["grounded"], self.geometry.n)
+        phi_dot = np.asarray(command.get("phi_dot", np.zeros(self.geometry.n)), dtype=float)
+        if phi_dot.shape != (self.geometry.n,):
+            raise ValueError(f"phi_dot must have n = {self.geometry.n} entries, got shape {phi_dot.shape}")
+        self.phi_dot = phi_dot
+
+    def head_velocity(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
+        A, b_phi_dot = constraint_terms(w_h[2], phi, self.geometry.l, self.phi_dot)
+        A_s, rhs = A[self.grounded], b_phi_dot[self.grounded]
+        w_dot = np.linalg.lstsq(A_s, rhs, rcond=None)[0]
+        return w_dot, A_s @ w_dot - rhs
+
+    def step(self) -> None:
+        """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
+        h = self.dt / self.settings.rk4_steps
+        w, phi, u = self.w_h, self.phi, self.phi_dot
+        k1, residual = self.head_velocity(w, phi)
+        self.slip = float(np.max(np.abs(residual), initial=0.0))
+        f = lambda w_, phi_: self.head_velocity(w_, phi_)[0]  # noqa: E731
+        for i in range(self.settings.rk4_steps):
+            if i:
+                k1 = f(w, phi)
+            mid = phi + 0.5 * h * u
+            k2 = f(w + 0.5 * h * k1, mid)
+            k3 = f(w + 0.5 * h * k2, mid)
+            k4 = f(w + h * k3, phi + h * u)
+            w = w + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            phi = phi + h * u
+        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(phi))):
+            raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")
+        self.w_h, self.phi = w, phi
+        self.steps += 1
+        self.t = self.steps * self.dt
