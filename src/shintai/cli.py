@@ -134,7 +134,7 @@ def cmd_bench(args) -> int:
             results[bid] = registry.BENCHMARKS[bid].run()
         except Exception as exc:  # noqa: BLE001 - one benchmark failing keeps the others
             results[bid] = {"error": f"{type(exc).__name__}: {exc}".splitlines()[0]}
-        results[bid]["wall_time_s"] = time.perf_counter() - t0
+        results[bid]["bench_wall_s"] = time.perf_counter() - t0
         print(f"  {bid}: " + ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
                                        for k, v in results[bid].items()))
         (out / "bench.json").write_text(json.dumps(results, indent=2) + "\n")
