@@ -37,11 +37,12 @@ def test_run_writes_metrics_log_and_plots(tmp_path):
 
 
 def test_failing_check_exits_1(tmp_path):
-    # a gain with a|g| > 1 still converges, but not monotonically: the monotone check must fail
-    code = main(["run", "core.search-index", "--out", str(tmp_path), "--set", "gain=0.8", "--quiet"])
+    # a|g| = 2.4 > 2: the update overshoots more than it corrects and the error grows
+    code = main(["run", "core.search-index", "--out", str(tmp_path), "--set", "gain=1.2", "--quiet"])
     m = json.loads((tmp_path / "metrics.json").read_text())
     assert code == 1 and not m["ok"]
-    assert {c["name"]: c["ok"] for c in m["checks"]}["monotone_error"] is False
+    ok = {c["name"]: c["ok"] for c in m["checks"]}
+    assert ok["final_error"] is False and ok["monotone_error"] is False and ok["wrong_sign_diverges"] is True
 
 
 @pytest.mark.parametrize("argv, message", [
