@@ -1,0 +1,13 @@
+"""Seed 004: the TITAN-VIII quadruped that learns obstacle avoidance and its swing order with Gaussian
+RBF networks trained by a genetic algorithm (Yamaguchi), as a kinematic, quasi-static simulation.
+
+* ``constants``   every number, with its source or the reason it was chosen;
+* ``robot``       leg kinematics (eqs. 1-2), static stability, the crawl-gait executor, body-raise rule;
+* ``world``       floor and prism obstacles, the 96 training environments, named and held-out scenes;
+* ``swing_order`` Table 2 and the exhaustive-search teacher;
+* ``networks``    the action (24-100-3) and swing-order (4-h-24) RBF networks over flat genomes;
+* ``episode``     perception, network inputs and the batched walking-cycle loop;
+* ``fitness``     GA fitness functions, eqs. (9)-(12) and (13)-(15);
+* ``replay``      the paper's action tables replayed (dead reckoning, executor, Br comparison);
+* ``scenarios``   registered scenarios (``quadruped.replay``).
+"""

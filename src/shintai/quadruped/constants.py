@@ -1,0 +1,186 @@
+"""Every number of the TITAN-VIII obstacle-avoidance model, with where it comes from.
+
+Source: seed 004 (Yamaguchi, "Acquisition of Obstacle Avoidance Action for Quadruped Robots Using
+Neural Network") and its extraction ``spec/004-quadruped-nn.md``. "§x" cites the spec, "seed §x"
+the paper's own section numbering. Units are SI inside the package (m, rad); the paper's tables
+are kept in their printed units (mm, deg) and converted where they are used.
+
+Numbers the paper does not give are marked "chosen, because ..."; each is exercised by a test.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+# --- Robot: TITAN-VIII (§1.1, seed §2) ---------------------------------------------------------
+L0, L1, L2, L3 = 0.045, 0.155, 0.200, 0.130  # link lengths [m], seed §2.1
+MASS = 22.0  # [kg], seed §2; with massless legs (chosen, §7.4) it only fixes the CoG at the body centre
+BODY_LENGTH, BODY_WIDTH_SPRAWLED, BODY_HEIGHT = 0.402, 0.602, 0.273  # reference posture [m], seed §2
+
+LEG_NAMES = ("LF", "RF", "LR", "RR")  # legs 1..4 = left front, right front, left rear, right rear (§1.2)
+
+# Joint limits [deg], seed §2.1 as reconstructed in §1.3: θ0 per leg (155° each, mirror symmetric),
+# θ1 and θ2 for every leg. θ0 is measured from the body +x axis (right), 90° = forward.
+THETA0_LIMITS_DEG = ((90.0, 245.0), (-65.0, 90.0), (115.0, 270.0), (-90.0, 65.0))
+THETA1_LIMITS_DEG = (-65.0, 65.0)
+THETA2_LIMITS_DEG = (-65.0, 90.0)  # as printed
+# Zero of the printed θ2 range in the angle of eq. (1) (θ2 absolute, from horizontal): chosen -90°, i.e.
+# the printed range is measured from the downward vertical and allows θ2 in [-155°, 0°] (shank from
+# 65° past vertical inwards to horizontal outwards). Because: read from horizontal, no shank could point
+# more than 65° down, a foot on the floor could then never stand closer than 0.27 m (horizontally) to a
+# shoulder at the body centre's height, and the initial stance would be unreachable with the shoulders
+# at the body's corners (tests/quadruped/test_kinematics.py); read from the vertical, every cycle of the
+# paper's Tables 3, 6 and 7 is reachable (SHOULDER_XY below).
+THETA2_ZERO_DEG = -90.0
+
+# Shoulder (hip) positions in the body frame [m]: not in the paper (§7.1). Chosen from a grid over
+# (x_s, y_s, z_s) in steps of 25 mm as the centre of the region in which every cycle of the paper's
+# executed Tables 3, 6 and 7 (their actions, Zr and swing orders, in their environments) is free of
+# joint-limit violations (tests/quadruped/test_robot.py::test_paper_tables_are_feasible): shoulders
+# at the body's corners, at the height of the body centre. The region is narrow (y_s 0.25-0.30 m at
+# x_s = 0.1 m): the robot has little kinematic slack.
+SHOULDER_XY = ((-0.1, 0.275), (0.1, 0.275), (-0.1, -0.275), (0.1, -0.275))
+SHOULDER_DZ = 0.0  # shoulder height above the body centre [m], chosen with SHOULDER_XY
+
+# Collision footprint of the trunk: chosen, because only the sprawled width (602 mm) is printed.
+# The trunk is taken as the printed length times 0.2 m, and 0.1 m thick about the body centre.
+TRUNK_WIDTH = 0.20
+TRUNK_THICKNESS = 0.10
+
+# --- Stance, start, goal (§1.2, §2.5, seed §4.1.1) --------------------------------------------
+INITIAL_FEET = ((-0.25, 0.30), (0.25, 0.25), (-0.25, -0.25), (0.25, -0.30))  # body frame [m]
+ZR_NOMINAL = 0.300  # body height at the start, CoG (0, 0, 0.3) [m]
+GOAL_RADIUS = 0.2  # [m]
+MAX_CYCLES = 50  # walking cycles per environment, seed §4.1.2
+
+# --- Gait (§1.6, §2.4, seed §3.2, §4.1) ---------------------------------------------------------
+CRAWL_ORDER = (4, 2, 3, 1)  # right rear, right front, left rear, left front (seed §4.1.1)
+GROUND_BAND = 0.050  # forbidden band around an obstacle edge for a foot on the ground [m]
+TOP_BAND = 0.030  # forbidden band inside the edge for a foot on an obstacle top [m]
+RAISE_LOOKAHEAD = 0.300  # the body rises when a landing point is within 300 mm in front of an obstacle (seed §3.2)
+# Raised body height Zr = ZR_NOMINAL + RAISE_GAIN * h: chosen, because the only data point is
+# h = 0.12 m -> Zr = 360 mm (Tables 3-7) and the swing-order teacher range tops out at 370 mm.
+RAISE_GAIN = 0.5
+# Minimum stability margin kept at every swing instant: chosen, because the paper only asks for
+# the CoG to be inside the support polygon (§1.5) and a margin of zero is not "inside" numerically.
+STABILITY_MARGIN = 0.010  # [m]
+# Swing-foot clearance above the highest surface under its straight path: chosen (not printed, §7.6).
+SWING_CLEARANCE = 0.030  # [m]
+# Samples along a body shift for the trunk collision test: chosen so that the samples are at most
+# ~0.1 m apart for the largest shifts, less than the 0.2 m obstacle depth.
+SHIFT_SAMPLES = 5
+
+# --- Environment (§2, seed §4.1.1, Table 1) ----------------------------------------------------
+WALL_HEIGHT = 0.30  # not surmountable
+TRAINING_HEIGHTS = (0.06, 0.12)  # surmountable heights used in training
+# An obstacle is surmountable below this height: chosen between the largest surmountable height
+# the paper uses (0.12 m) and the wall (0.3 m).
+SURMOUNTABLE_BELOW = 0.20
+# Table 1 (reconstructed corner assignment, §2.6): inner x of the right and left obstacle per x-row,
+# and the y of corners 1..4 of the right and left obstacle per y-row. The outer x is ±0.5.
+OUTER_X = 0.5
+TABLE1_X_ROWS = ((0.1, -0.1), (0.1, -0.2), (0.2, -0.1), (0.2, -0.2))
+TABLE1_Y_ROWS = (((0.85, 0.65, 0.55, 0.75), (0.86, 0.66, 0.65, 0.85)),
+                 ((0.85, 0.65, 0.66, 0.86), (0.75, 0.55, 0.65, 0.85)))
+HEIGHT_PAIRS = ((0.30, 0.06), (0.30, 0.12), (0.06, 0.30), (0.12, 0.30))  # (z_or, z_ol), one wall each
+DESTINATIONS = ((0.0, 1.8), (0.15, 2.2), (-0.15, 2.2))  # initial destination errors (x_de, y_de) [m]
+
+# Named scenarios: corners o1..o4 as printed [m], heights, initial destination error.
+SCENARIO_421 = dict(right=((0.2, 0.85), (0.2, 0.65), (0.5, 0.55), (0.5, 0.75)), z_right=0.30,
+                    left=((-0.5, 0.85), (-0.5, 0.65), (-0.1, 0.66), (-0.1, 0.86)), z_left=0.12,
+                    destination=(-0.15, 2.2))  # seed §4.2.1 (= §6.2.1)
+SCENARIO_422 = dict(right=((0.11, 0.87), (0.11, 0.56), (0.57, 0.55), (0.57, 0.86)), z_right=0.07,
+                    left=((-0.56, 0.92), (-0.56, 0.59), (-0.14, 0.66), (-0.14, 0.99)), z_left=0.30,
+                    destination=(0.35, 2.1))  # seed §4.2.2
+SCENARIO_52 = dict(right=((0.1, 0.85), (0.1, 0.65), (0.5, 0.66), (0.5, 0.86)), z_right=0.12,
+                   left=((-0.5, 0.75), (-0.5, 0.55), (-0.2, 0.65), (-0.2, 0.85)), z_left=0.30,
+                   destination=(-0.15, 2.2))  # seed §5.2 (= §6.2.2)
+
+# Unseen-environment generator (§6.5 check 8): corner jitter, surmountable heights, destinations.
+JITTER = 0.05  # [m]
+UNSEEN_HEIGHTS = (0.05, 0.13)  # [m]
+UNSEEN_DEST_X = (-0.35, 0.35)  # [m]
+UNSEEN_DEST_Y = (1.8, 2.2)  # [m]
+
+# --- Perception (§2.3, seed §4) -----------------------------------------------------------------
+# Features of an obstacle not in front of the robot: (x_max, x_min, y_max, y_min, z_max, z_min) [m].
+SENTINEL_RIGHT = (1.0, 0.99, -0.99, -1.0, 0.0, 0.0)
+SENTINEL_LEFT = (-0.99, -1.0, -0.99, -1.0, 0.0, 0.0)
+
+# --- Networks (§3, seed §4, §5) -----------------------------------------------------------------
+ACTION_INPUTS, ACTION_HIDDEN, ACTION_OUTPUTS = 24, 100, 3  # seed §4: m = 100
+ORDER_INPUTS, ORDER_OUTPUTS = 4, 24  # seed §5
+# Hidden units of the swing-order network: chosen (not printed, §7.17) as 4 x 24 outputs, the same
+# "about 4 x" rule the paper found best for the action network.
+ORDER_HIDDEN = 96
+# Initial/allowed ranges of the action network's genes: chosen (§7.17). Centres span the range of
+# the inputs they compare with (feet, Zr, obstacle features incl. sentinels, destination error);
+# widths and weights are sized so that one hidden unit can command a whole step (~0.25 m, ~15 deg).
+ACTION_CENTRE_RANGE = (-1.0, 2.5)  # [m] or [rad]; the destination y error reaches 2.2 m
+ACTION_SIGMA_RANGE = (0.05, 3.0)
+ACTION_WEIGHT_RANGE = (-0.5, 0.5)  # outputs are ΔXr, ΔYr [m] and Δθr [rad]
+ORDER_CENTRE_RANGE = (-1.2, 1.2)  # the order network's inputs are scaled to [-1, 1] (see networks.py)
+ORDER_SIGMA_RANGE = (0.05, 2.0)
+SIGMA_FLOOR = 1e-6  # |σ| is floored so that eq. (7) stays finite for any genome
+
+# --- GA (§3.2, seed §4.1.2) ---------------------------------------------------------------------
+GA_POPULATION = 100
+GA_ELITES = 10
+GA_TOURNAMENT = 3
+GA_CROSSOVER_RATE = 0.6  # uniform crossover
+FITNESS_PENALTY = 10.0  # eqs. (10), (11)
+
+# --- Swing-order teacher (§3.3, seed §5.1) ------------------------------------------------------
+TEACHER_ZR = (0.300, 0.370)  # [m]
+TEACHER_DX = (-0.100, 0.100)  # [m]
+TEACHER_DY = (0.150, 0.350)  # [m]
+TEACHER_DTHETA = (math.radians(-15.0), math.radians(15.0))  # [rad]
+TEACHER_PER_ORDER = 20
+PAPER_OPTIMAL_ORDERS = 19  # 19 x 20 = 380 patterns
+# Samples drawn to label the teacher set: chosen so that rare optimal orders still get 20 samples
+# after local resampling (the paper's "adjusted step" is not reproducible exactly, §7.18).
+TEACHER_DRAWS = 4000
+TEACHER_SEED = 4
+
+# --- Paper tables (seed §5.2, §6.2) -------------------------------------------------------------
+# Rows: ΔXr [mm], ΔYr [mm], Δθr [deg], Zr [mm], order index (Table 2). Table 3 adds Br [mm].
+_T3 = np.array([
+    [22.026, 237.002, 0.809, 300.0, 418.090],
+    [43.958, 217.174, -0.818, 360.0, 372.904],
+    [45.347, 200.484, -0.639, 360.0, 354.896],
+    [32.227, 189.676, 1.413, 360.0, 362.871],
+    [12.261, 186.691, 4.182, 360.0, 390.217],
+    [-15.944, 241.234, 3.894, 360.0, 520.653],
+    [-17.443, 240.270, 4.289, 360.0, 528.034],
+    [-18.958, 239.279, 4.695, 300.0, 535.676],
+    [-20.522, 238.245, 5.122, 300.0, 543.786],
+    [-22.187, 237.142, 5.586, 300.0, 552.667]])
+TABLE3_ACTIONS = _T3[:, :4]
+TABLE3_BR = _T3[:, 4]
+TABLE3_ORDERS = (21,) * 10
+TABLE4_BR = np.array([417.078, 372.904, 354.896, 362.871, 389.931, 520.653, 528.034, 448.019, 446.065,
+                      443.984])
+TABLE4_ORDERS = (11, 21, 21, 21, 11, 21, 21, 13, 13, 13)
+TABLE5_BR = np.array([418.090, 372.904, 354.896, 362.871, 390.217, 520.653, 528.034, 448.019, 446.065,
+                      443.984])
+TABLE5_ORDERS = (21,) * 7 + (13,) * 3
+TABLE6_ACTIONS = np.array([
+    [-26.645, 183.469, 0.751, 300.0], [-35.059, 157.334, 0.497, 360.0], [-32.240, 162.725, 0.311, 360.0],
+    [-24.792, 181.329, 0.089, 360.0], [-14.077, 211.723, -0.166, 360.0], [2.710, 274.449, -0.255, 360.0],
+    [2.834, 266.891, -0.172, 300.0], [1.787, 265.774, -0.159, 300.0], [0.661, 264.499, -0.143, 300.0],
+    [-0.516, 263.101, -0.126, 300.0]])
+TABLE6_ORDERS = (13,) * 5 + (21,) * 5
+TABLE7_ACTIONS = np.array([
+    [45.379, 198.899, -0.298, 300.0], [55.253, 181.795, 0.837, 360.0], [49.297, 172.875, 1.419, 360.0],
+    [36.077, 165.824, 1.896, 360.0], [18.925, 159.794, 2.220, 360.0], [-0.386, 155.208, 2.319, 360.0],
+    [-23.440, 241.344, 0.167, 360.0], [-23.620, 239.286, 0.087, 300.0], [-24.022, 237.751, 0.013, 300.0],
+    [-24.397, 236.259, -0.060, 300.0], [-24.746, 234.816, -0.131, 300.0]])
+TABLE7_ORDERS = (21,) * 3 + (11,) * 2 + (10,) + (21,) * 5
+# Final destination errors the paper prints for these runs [m] (seed §6.2.2, §6.2.1).
+PAPER_FINAL_ERROR = {"table3": (0.068, -0.027), "table6": (-0.017, -0.027), "table7": (-0.018, -0.014)}
+# Dead-reckoned reference values of §5.7 / §6.5 check 4: final |e| [m], cycle of first entry into the
+# goal circle, distance one cycle earlier [m].
+DEAD_RECKONED = {"table3": (0.076, 10, 0.250), "table6": (0.034, 10, 0.235), "table7": (0.026, 11, 0.249)}
+REPLAY_TOLERANCE = 0.01  # [m], §6.5 check 4 "within about 1 cm"
