@@ -4,6 +4,9 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 export MUJOCO_GL ?= egl
+# one BLAS thread per process: shintai parallelises across processes (see src/shintai/__init__.py)
+export OPENBLAS_NUM_THREADS ?= 1
+export OMP_NUM_THREADS ?= 1
 
 .PHONY: install test demo reproduce bench clean
 
