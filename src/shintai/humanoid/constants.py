@@ -1,0 +1,390 @@
+"""Constants of seed 000 (Kimura 2018): the humanoid HRP2-JSK, the tricycle, Kenshiro's leg, the
+pedalling/steering laws. One place for every number; each has its source.
+
+Sources: the thesis ``/work/shared/seeds/000_875fac3b182a28c6.txt`` (cited by section, table,
+figure or equation) and its English extractions ``/work/shared/spec/000-part1-ch1-3.md`` ("spec
+§x") and ``000-part3-ch7-8-appendix.md`` ("spec-A §x"). A value the thesis does not give is marked
+*chosen* with the reason. Angles are radians, lengths metres, masses kg, unless a name says otherwise.
+
+Frames (chosen, used by every model of :mod:`shintai.humanoid`): x forward, y left, z up. Pitch
+joints turn about +y, roll about +x, yaw about +z (right-hand rule), so a *forward* pitch of hip,
+shoulder, elbow and ankle is negative and a forward pitch of waist and neck positive (§A.2.1 names
+ranges "forward/backward", not signs).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+DEG = math.pi / 180.0
+GRAVITY = 9.81  # m/s², chosen standard value
+
+# ------------------------------------------------------------------------------------------------
+# Timing
+# ------------------------------------------------------------------------------------------------
+
+CONTROL_PERIOD = 0.004  # s, hrpsys real-time period "約 4 ms" (§A.2.1, Fig. A.14; spec-A §4.4)
+# Chosen: 1 ms physics keeps the closed loops (grips, pedals, saddle weld) stiff and stable; four
+# physics steps make one 4 ms control step.
+PHYSICS_TIMESTEP = 0.001
+SUBSTEPS = round(CONTROL_PERIOD / PHYSICS_TIMESTEP)
+
+# ------------------------------------------------------------------------------------------------
+# Steering / pedalling laws (Ch. 3)
+# ------------------------------------------------------------------------------------------------
+
+DELTA_C = 20 * DEG  # δ_c, switching offset of the stepping leg from TDC (Eq. 3.6, §3.3.3, §3.5.2)
+THETA_H_INIT = 0.0  # θ_h^init, handle switching angle (Eq. 3.19)
+THETA_C_INIT = math.pi / 2 + DELTA_C  # θ_c^init, crank switching angle (Eq. 3.19)
+THETA_H_MAX = 25 * DEG  # Θ_H used in the experiments (Table 3.4)
+THETA_H0 = 90 * DEG  # Θ_H0, the tricycle's physical steering limit "約 90 deg" (§A.1.1)
+D_THETA_H = 5 * DEG  # Δθ_h, handle command sampling interval (§3.5.1)
+D_THETA_C = 10 * DEG  # Δθ_c, crank command sampling interval (§3.5.1)
+DELTA_T = 0.8  # s, motion transition time per function (§3.5.2, Eq. 3.20)
+T_2PI = 2 * math.pi * 2 * DELTA_T / D_THETA_C  # 57.6 s per crank revolution (Eq. 3.20)
+F_TRG_PASSIVE_LEG_IMPROVED = 50.0  # N, passive-leg f^trg_z of the improved outdoor run (§3.5.4)
+
+
+@dataclass(frozen=True)
+class Impedance:
+    """Position-based impedance parameters of one limb role (Eq. 3.13, Table 3.4).
+
+    Scalars: isotropic diagonal M_v, D_v, K_v (spec §6 item 3). ``f_trg`` is the target contact
+    force (x, y, z) in N; ``theta_h_max`` is Θ_H for the arms, None for the legs.
+    """
+
+    m: float  # N s²/m
+    d: float  # N s/m
+    k: float  # N/m
+    f_trg: tuple[float, float, float]
+    theta_h_max: float | None = None
+
+
+IMPEDANCE = {  # Table 3.4
+    "active_arm": Impedance(10.0, 600.0, 3000.0, (0.0, 0.0, 0.0), THETA_H_MAX),
+    "passive_arm": Impedance(10.0, 500.0, 300.0, (0.0, 0.0, 0.0), THETA_H_MAX),
+    "active_leg": Impedance(10.0, 600.0, 3000.0, (0.0, 0.0, 150.0)),
+    "passive_leg": Impedance(10.0, 500.0, 300.0, (0.0, 0.0, 150.0)),
+}
+
+# ------------------------------------------------------------------------------------------------
+# HRP2-JSK (App. A.2.1, Tables A.1 and A.2)
+# ------------------------------------------------------------------------------------------------
+
+HRP2_HEIGHT = 1.607  # m, Table A.1 (from CAD)
+HRP2_WIDTH = 0.627  # m, Table A.1
+HRP2_DEPTH = 0.324  # m, Table A.1
+HRP2_MASS = 56.5  # kg, Table A.1 (measured on a scale)
+HRP2_DOF = 32  # Table A.1: arms 2×(7+1), legs 2×6, waist 2, neck 2
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """One row of Table A.2: the range as printed (two magnitudes, deg), max torque, max speed.
+
+    ``neg_deg``/``pos_deg`` are the printed magnitudes mapped to the negative/positive side of the
+    joint axis for the **right** limb (or the centre joints); the left limb mirrors roll and yaw
+    (see :func:`joint_range`). Which printed word ("forward", "out", …) maps to which side follows the
+    module's sign convention and is noted per row.
+    """
+
+    name: str
+    axis: str  # "x" roll, "y" pitch, "z" yaw
+    neg_deg: float
+    pos_deg: float
+    torque: float  # N m, maximum output torque
+    speed_rpm: float  # maximum speed
+
+    @property
+    def speed(self) -> float:
+        """Maximum speed in rad/s."""
+        return self.speed_rpm * 2 * math.pi / 60
+
+
+# Table A.2 (spec-A §4.4). Order within each limb = order along the kinematic chain (HRP-2
+# convention: yaw–roll–pitch at the hip, pitch–roll–yaw at the shoulder).
+NECK_JOINTS = (
+    JointSpec("neck_yaw", "z", 45, 45, 9.6, 64.0),  # "左右方向 45"
+    JointSpec("neck_pitch", "y", 30, 45, 9.6, 64.0),  # forward (down, +) 45 / back 30
+)
+WAIST_JOINTS = (
+    JointSpec("waist_yaw", "z", 45, 45, 151.8, 41.9),  # "左右方向 45"
+    JointSpec("waist_pitch", "y", 5, 60, 278.9, 22.8),  # forward (+) 60 / back 5
+)
+ARM_JOINTS = (  # right arm; 7 DoF + the 1-DoF hand
+    JointSpec("shoulder_pitch", "y", 180, 60, 160.3, 39.2),  # forward (−) 180 / back 60
+    JointSpec("shoulder_roll", "x", 95, 10, 100.4, 22.9),  # out (−y for the right arm) 95 / in 10
+    JointSpec("shoulder_yaw", "z", 92, 92, 48.7, 39.4),  # out 92 / in 92
+    JointSpec("elbow_pitch", "y", 137, 2, 108.5, 21.2),  # forward (−) 137 / back 2
+    JointSpec("wrist_yaw", "z", 92, 92, 13.9, 44.0),  # out 92 / in 92
+    JointSpec("wrist_roll", "x", 90, 90, 18.7, 63.4),  # "forward 90 / back 90"
+    JointSpec("wrist_pitch", "y", 90, 90, 16.0, 26.5),  # forward 90 / back 90
+    # hand thumb roll, open 60 / close 16: chosen + opens, − closes
+    JointSpec("gripper", "x", 16, 60, 13.9, 44.0),
+)
+LEG_JOINTS = (  # right leg
+    JointSpec("hip_yaw", "z", 45, 30, 86.2, 33.8),  # out (toe to −y for the right leg) 45 / in 30
+    JointSpec("hip_roll", "x", 35, 20, 175.4, 36.2),  # out (−y) 35 / in 20
+    JointSpec("hip_pitch", "y", 125, 42, 151.4, 42.1),  # forward (−) 125 / back 42
+    JointSpec("knee_pitch", "y", 2, 150, 168.3, 37.9),  # "forward 2 / back 150": flexion +
+    JointSpec("ankle_pitch", "y", 75, 42, 131.6, 48.3),  # forward (toe up, −) 75 / back 42
+    # Printed "前方 20, 後方 35" (forward/back) for a roll joint, probably out/in (spec-A §9 item
+    # 14): chosen out (−y for the right leg) 20 / in 35.
+    JointSpec("ankle_roll", "x", 20, 35, 73.1, 87.0),
+)
+
+
+def joint_range(spec: JointSpec, side: str = "") -> tuple[float, float]:
+    """(lower, upper) in rad of a Table A.2 joint on side ``"r"``, ``"l"`` or ``""`` (centre).
+
+    Roll and yaw joints of the left limb are the mirror image of the right: (−pos, neg).
+    """
+    lo, hi = -spec.neg_deg * DEG, spec.pos_deg * DEG
+    if side == "l" and spec.axis in ("x", "z"):
+        lo, hi = -hi, -lo
+    return lo, hi
+
+
+# Link lengths: not in the thesis (spec §5.1 item 3). Chosen from the height 1607 mm (Table A.1)
+# and commonly published, approximate HRP-2 dimensions (marked "HRP-2": thigh and shank 0.30 m,
+# hip joints 0.06 m off the centre line, upper arm and forearm about 0.25 m), the rest filled in so
+# the standing model is 1.607 m tall with the neck 30 mm longer than HRP-2's (§A.2.1 item 2).
+@dataclass(frozen=True)
+class Hrp2Links:
+    """HRP2-JSK-like link dimensions (m), in the waist (pelvis) frame at the zero posture.
+
+    Standing at zero posture: sole 0, ankle 0.105, knee 0.405, hip 0.705, waist origin 0.780,
+    waist joints 0.880, shoulders 1.300, neck 1.430, head top 1.607 (= Table A.1 height).
+    """
+
+    hip_y: float = 0.06  # hip joint off the centre line (HRP-2)
+    hip_z: float = -0.075  # hip yaw/roll/pitch axes meet below the waist origin (chosen)
+    thigh: float = 0.30  # HRP-2
+    shank: float = 0.30  # HRP-2
+    ankle_height: float = 0.105  # ankle axis above the sole (HRP-2)
+    foot_length: float = 0.24  # sole 240 × 136 mm (HRP-2)
+    foot_width: float = 0.136
+    foot_forward: float = 0.015  # sole centre ahead of the ankle axis (chosen)
+    foot_outward: float = 0.010  # sole centre outside the ankle axis (chosen: soles 4 mm apart)
+    waist_z: float = 0.10  # waist yaw/pitch joints above the waist origin (chosen)
+    shoulder_y: float = 0.25  # half the shoulder span; ±0.25 + arm radius ≈ width 627 mm
+    shoulder_z: float = 0.42  # shoulders above the waist joints (chosen: height budget)
+    neck_z: float = 0.55  # neck joints above the waist joints (HRP-2 + 30 mm, §A.2.1)
+    head_top: float = 0.177  # head top above the neck joints → total height 1.607
+    upper_arm: float = 0.25  # HRP-2
+    forearm: float = 0.25  # elbow to wrist, HRP-2
+    hand: float = 0.10  # wrist to grasp centre (chosen, HRP-2 1-DoF gripper)
+    chest_depth: float = 0.30  # Table A.1 depth 324 mm incl. the back-mounted ZBOX (§A.2.1)
+    hip_cover: float = 0.10  # waist origin above the hip cover's underside, which sits on the saddle (chosen)
+    ankle_ft: float = 0.07  # ankle F/T sensor below the ankle axis, between ankle and sole (chosen)
+    wrist_ft: float = 0.02  # wrist F/T sensor beyond the wrist axes, between wrist and hand (chosen)
+    imu_z: float = 0.20  # chest IMU above the waist joints (chosen; the IMU is in the chest, §6.2.1)
+
+
+HRP2_LINKS = Hrp2Links()
+
+# Link masses: not in the thesis beyond the 56.5 kg total (Table A.1). Chosen after HRP-2's
+# layout: heavy chest (two PCs, batteries, ZBOX), waist with the hip cover (§A.2.1 item 11),
+# 9.5 kg legs and 5.5 kg arms. Keys are body names of robots/hrp2.py; "l_"/"r_" parts apply to both.
+HRP2_MASSES = {
+    "waist": 10.0,
+    "chest_yaw_link": 1.0,
+    "chest": 12.5,
+    "neck_yaw_link": 0.3,
+    "head": 2.7,
+    # per arm: 5.5 kg
+    "shoulder_pitch_link": 0.8, "shoulder_roll_link": 0.7, "upper_arm": 1.8, "forearm": 0.9,
+    "wrist_yaw_link": 0.3, "wrist_roll_link": 0.3, "hand": 0.6, "thumb": 0.1,
+    # per leg: 9.5 kg
+    "hip_yaw_link": 0.8, "hip_roll_link": 1.2, "thigh": 3.5, "shank": 2.0, "ankle_link": 0.5, "foot": 1.5,
+}
+
+# Postures (chosen), per limb with the left limb's signs (roll, yaw and the gripper mirror for the
+# right). Standing: knees bent with the ankles under the hips, arms slightly out. Riding: what the IK
+# pursues in the null space of the hand/foot targets — waist leaning forward to the low handle
+# (Fig. 3.15), arms reaching forward, knees up; the grippers closed on the bars.
+STANDING_POSTURE = {"hip_pitch": -0.25, "knee_pitch": 0.5, "ankle_pitch": -0.25, "shoulder_roll": 0.15,
+                    "elbow_pitch": -0.3}
+RIDING_WAIST_PITCH = 0.35
+RIDING_POSTURE = {"shoulder_pitch": -0.7, "elbow_pitch": -0.9, "hip_pitch": -1.2, "knee_pitch": 1.6,
+                  "ankle_pitch": -0.3}
+GRIPPER_CLOSED = 0.2  # rad toward "close" (the left gripper closes toward +; Table A.2: 16° range)
+
+# Joint servos (hrpsys joint PD): not in the thesis. Chosen stiffness so that the maximum torque
+# of Table A.2 is reached at a 0.05 rad (2.9°) error — stiff enough to hold the riding posture,
+# and the actuator force is clipped to ±max torque (forcerange). Critically damped (dampratio 1).
+SERVO_SATURATION_ERROR = 0.05  # rad
+SERVO_DAMPRATIO = 1.0
+# Reflected rotor inertia (armature), chosen: HRP-2 class harmonic drives (rotor ~1e-5 kg m²,
+# ratios ~100–160) give 0.1–0.3 kg m² at the big joints; small joints 0.02.
+ARMATURE_BIG = 0.2  # kg m², joints whose max torque (Table A.2) is at least ARMATURE_SPLIT
+ARMATURE_SMALL = 0.02  # kg m², wrists, grippers, neck
+ARMATURE_SPLIT = 40.0  # N m
+
+# ------------------------------------------------------------------------------------------------
+# Tricycle (App. A.1.1, Figs. A.1, A.2)
+# ------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class TricycleSpec:
+    """Tricycle geometry (m) in the vehicle frame: origin on the ground under the crank shaft.
+
+    Thesis values (Figs. A.1/A.2) and chosen ones (marked). The steering axis passes through the
+    front axle; the grips hang ``grip_sweep`` behind the point where it crosses the grip height.
+    """
+
+    crank_to_front: float = 0.600  # crank shaft → front shaft, horizontal (Fig. A.1)
+    crank_to_back: float = 0.600  # crank shaft → back shaft, horizontal (Fig. A.1)
+    # Fig. A.1 "Crank Diameter: 250 mm" vs Kenshiro's r = 100 mm (Fig. 3.31), spec §6 item 7.
+    # Chosen r = 125 mm: App. A.1.1 is the tricycle's own specification and "diameter" read as the
+    # pedal circle; Kenshiro's model keeps its own r (KENSHIRO below).
+    crank_radius: float = 0.125
+    front_tire_radius: float = 0.250  # Fig. A.1
+    back_tire_radius: float = 0.200  # Fig. A.1
+    saddle_above_crank: float = 0.450  # saddle height from crank shaft (Fig. A.1)
+    grip_height: float = 0.900  # handle grip height from the ground (Fig. A.1)
+    saddle_to_grip: float = 0.350  # horizontal saddle → handle grip (Fig. A.1)
+    pedal_width: float = 0.270  # Fig. A.2; chosen to mean pedal centre to pedal centre
+    handle_width: float = 0.480  # Fig. A.2 → grips at ±0.24 from the steering axis
+    tread: float = 0.400  # back-wheel tread width (Fig. A.2)
+    travel_per_rev: float = 2.45  # D_c, m per crank revolution (§A.1.1)
+    # Chosen: the crank shaft height (not given) puts the pedal 0.125 m above the ground at BDC.
+    crank_height: float = 0.250
+    # Chosen: steering axis raked back 20° (city-cycle head angle 70°; spec §6 item 6: unknown).
+    steer_rake: float = 20 * DEG
+    # Chosen: grips 0.10 m behind the steering axis (swept-back bar). With the rake this puts the
+    # saddle 0.087 m behind the crank shaft, close to Kenshiro's D_cx = 80 mm (Fig. 3.31).
+    grip_sweep: float = 0.100
+    pedal_size: tuple[float, float, float] = (0.100, 0.090, 0.020)  # chosen city-cycle pedal (x, y, z)
+    # Masses: not in the thesis (spec §6 item 14). Chosen for a steel adult tricycle, 21 kg in all.
+    frame_mass: float = 14.0
+    handle_mass: float = 2.0  # bar, stem and fork
+    front_wheel_mass: float = 1.5
+    back_wheel_mass: float = 1.5  # each
+    crank_mass: float = 0.5  # with the chainring
+    pedal_mass: float = 0.25  # each
+    # Crank load: not in the thesis (spec §6 item 14), so a parameter of the builder; these are
+    # the defaults. Viscous load plus a dry friction that keeps the parked crank still.
+    crank_damping: float = 1.0  # N m s/rad
+    crank_friction: float = 1.0  # N m
+    pedal_damping: float = 0.01  # N m s/rad, chosen: bearings of the free pedal
+    pedal_com_drop: float = 0.005  # m, chosen: pedal mass below its axle, so an unloaded pedal hangs level
+    wheel_damping: float = 0.01  # N m s/rad, chosen: wheel bearings
+    steer_damping: float = 0.5  # N m s/rad, chosen: headset bearing
+    wheel_friction: float = 1.2  # tyre–floor friction coefficient, chosen: "no slip" (§3.5.1)
+
+    @property
+    def gear_ratio(self) -> float:
+        """Drive-wheel turns per crank turn: D_c / (2π r_back) ≈ 1.95 (spec-A §4.1, derived)."""
+        return self.travel_per_rev / (2 * math.pi * self.back_tire_radius)
+
+    @property
+    def front_axle(self) -> tuple[float, float]:
+        """(x, z) of the front shaft."""
+        return self.crank_to_front, self.front_tire_radius
+
+    @property
+    def steer_top(self) -> tuple[float, float]:
+        """(x, z) where the raked steering axis crosses the grip height."""
+        x0, z0 = self.front_axle
+        return x0 - (self.grip_height - z0) * math.tan(self.steer_rake), self.grip_height
+
+    @property
+    def grip_x(self) -> float:
+        """x of both grips at θ_h = 0."""
+        return self.steer_top[0] - self.grip_sweep
+
+    @property
+    def saddle(self) -> tuple[float, float]:
+        """(x, z) of the saddle top: 0.35 m behind the grips, 0.45 m above the crank shaft."""
+        return self.grip_x - self.saddle_to_grip, self.crank_height + self.saddle_above_crank
+
+
+TRICYCLE = TricycleSpec()
+
+# Position servos on handle and crank, only to drive the tricycle without a rider (tests, demos);
+# chosen stiff, and damped for the inertia they move (the crank carries the vehicle's mass through
+# the gear, ≈ 3.5 kg m²): joint → (kp N m/rad, kv N m s/rad).
+TRICYCLE_DRIVE_SERVOS = {"handle": (2000.0, 100.0), "crank": (5000.0, 300.0)}
+
+# ------------------------------------------------------------------------------------------------
+# Kenshiro (App. A.2.2, §3.5.5, Fig. 3.31)
+# ------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class KenshiroSpec:
+    """Kenshiro's sagittal leg and crank (Fig. 3.31) and the §3.5.5 parameters."""
+
+    l1: float = 0.348  # thigh L1 (Fig. 3.31)
+    l2: float = 0.343  # shank L2
+    l3: float = 0.260  # foot L3
+    d_ap: float = 0.075  # ankle joint → pedal contact point D_ap
+    d_cx: float = 0.080  # hip (fixed point) → crank centre, x: chosen forward (Fig. 3.31 not in text)
+    d_cz: float = 0.605  # hip → crank centre, z (crank below the hip)
+    crank_radius: float = 0.100  # r (Fig. 3.31, Eq. 3.23)
+    samples: int = 18  # T per active half revolution (Eq. 3.23)
+    phi_min: float = 5 * math.pi / 6  # Φ > 5π/6 (Eq. 3.23)
+    k_n: float = 0.002  # K_n = 2 mm/N, passive update gain (Eq. 3.24–3.25)
+    control_period: float = 0.016  # s (§3.5.5)
+    ft_resolution: float = 0.25  # N, foot F/T sensor resolution, translational (§3.5.5)
+    mass: float = 51.9  # kg, whole robot (Table A.3)
+    # Chosen (not in the thesis): the contact point lies on the sole D_ap below the ankle, and
+    # the foot reaches 0.06 m behind / 0.20 m ahead of the ankle (L3 = 0.26 m in all).
+    heel: float = 0.060
+    # Chosen leg masses (Kenshiro's 51.9 kg body, human-like proportions) and pedal spacing.
+    thigh_mass: float = 4.0
+    shank_mass: float = 2.5
+    foot_mass: float = 1.0
+    pedal_spacing: float = 0.270  # same tricycle as HRP2-JSK (Fig. A.2)
+    # Chosen joint ranges (human-like) and servo torque limits (muscle-driven, no table given).
+    hip_range: tuple[float, float] = (-120 * DEG, 30 * DEG)
+    knee_range: tuple[float, float] = (0.0, 150 * DEG)
+    ankle_range: tuple[float, float] = (-45 * DEG, 45 * DEG)
+    hip_torque: float = 200.0  # N m
+    knee_torque: float = 200.0
+    ankle_torque: float = 100.0
+    armature: float = 0.05  # kg m², chosen: reflected inertia of the tendon drives
+
+    @property
+    def d_th(self) -> float:
+        """D_th of Eq. 3.22–3.23: r √(2(1 − cos(π/T))) |cos Φ| ≈ 0.0151 m."""
+        return self.crank_radius * math.sqrt(2 * (1 - math.cos(math.pi / self.samples))) * abs(math.cos(self.phi_min))
+
+
+KENSHIRO = KenshiroSpec()
+
+# ------------------------------------------------------------------------------------------------
+# Laws and scenarios of Ch. 3 (active/passive functions, switching, Kenshiro pedalling) — added by
+# the laws' author (humanoid/active.py, passive.py, switching.py, operation.py, kenshiro.py)
+# ------------------------------------------------------------------------------------------------
+
+# Chosen: a measured handle/crank angle must pass a switching angle (Eq. 3.19) by this much before
+# the roles swap, so that estimation noise at the switching angle cannot make them chatter.
+SWITCH_HYSTERESIS = 0.5 * DEG
+# Chosen: Kenshiro's active leg ends its plan exactly at the switching angle (Eq. 3.7 with
+# i = T), which a position-controlled crank reaches only asymptotically; its roles swap once the
+# measured crank angle is within half a sample (Δθ_c/2 = 5°) of it, with a hysteresis of half that.
+KENSHIRO_SWITCH_LEAD = 5 * DEG
+# Chosen: time per brain sample i of Kenshiro's plan (Eqs. 3.7, 3.24), interpolated by the middle
+# layer (App. A.2.2). The thesis's first half revolution (18 samples) took about 5 s (§3.5.5,
+# "0 [s] ~ 約 5 [s]") → 0.28 s, rounded to 17 control periods of 16 ms.
+KENSHIRO_SAMPLE_PERIOD = 17 * 0.016
+# Chosen: Kenshiro sits still this long (servos holding the riding posture) before pedalling.
+KENSHIRO_SETTLE_S = 0.5
+# Chosen: the passive leg's tendons are relaxed to this fraction of the servo stiffness (hip and
+# knee 8 N m/rad). Its foot's vertical stiffness is then 150–410 N/m over the passive half
+# revolution (level foot), below 1/K_n = 500 N/m. [DERIVED] Eq. 3.24 with Δf_i = f_i − f_{i−1} sums to
+# q = q_0 + K_n (f − f_0); against a foot stiffness k that fixed point is reached only if K_n k < 1,
+# so a stiff position-servoed leg (k ≈ 10⁵ N/m here) makes the update diverge, and K_n = 2 mm/N
+# presupposes a compliant passive leg — the thesis calls K_n the passive foot's "stiffness"
+# (§3.5.5) and gives the HRP2 passive limbs a tenth of the active stiffness (Table 3.4).
+KENSHIRO_RELAXED_TENDON = 0.002
+# Chosen: Kenshiro's crank angle is estimated (method (a)) from the feet pressing their pedals with
+# at least this vertical force (8 steps of the 0.25 N sensor resolution); a lifted foot is ignored.
+KENSHIRO_CONTACT_N = 2.0
+# Chosen: … and whose pedal-axle point (from the leg's forward kinematics) lies within this distance
+# of the crank circle (a fifth of r); a foot fallen off its pedal can still press something.
+KENSHIRO_ON_PEDAL_M = 0.02

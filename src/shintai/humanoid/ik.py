@@ -1,0 +1,241 @@
+"""Inverse kinematics: damped least squares on MuJoCo site Jacobians (``mj_jacSite``).
+
+Seed 000 needs IK twice: the active limbs' joint inputs u for a target end-effector pose (Eq. 3.10–3.11)
+and the reachability test of the passive law (Eq. 3.14: keep ξ^ref if ξ(t) is outside the
+Reachability Map [133]). The thesis's Reachability Map is not specified (spec §6 item 9); its
+stand-in here is :func:`reachable`: the IK converges to the target within tolerance with every joint
+inside its limits.
+
+:func:`solve` works on a scratch ``MjData``, so a running simulation is not disturbed. Several sites
+are solved at once; each target is a position, a position and an orientation, or a :class:`Target`
+(which can also align one site axis with a world direction, leaving the rotation about it free —
+e.g. a hand on a bar, or a sole on a pedal that turns freely about its axle). Joint limits are kept
+by clamping with an active set: a joint at a limit that the step would push further is frozen for
+that step. A ``posture`` (joint values) is pursued in the null space of the targets.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import mujoco
+import numpy as np
+
+from shintai.sim.body import MujocoBody
+
+POSTURE_SETTLED = 1e-5  # rad: with a posture, iterate on until the joints move less than this
+_ONE_DOF = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
+
+
+@dataclass(frozen=True)
+class Target:
+    """What one site should reach (world frame). Give any of:
+
+    ``pos`` (3,) position; ``rot`` (3, 3) orientation of the site frame; ``axis`` = (local, world):
+    the site's unit axis ``local`` (site frame) made parallel to the unit vector ``world``.
+    """
+
+    pos: np.ndarray | None = None
+    rot: np.ndarray | None = None
+    axis: tuple[np.ndarray, np.ndarray] | None = None
+
+
+class IKResult(NamedTuple):
+    """``q``: the full qpos found; ``ok``: converged within tolerance (inside the joint limits);
+    ``residual``: the largest position error (m) and the largest orientation error (rad)."""
+
+    q: np.ndarray
+    ok: bool
+    residual: tuple[float, float]
+
+
+TargetSpec = Target | np.ndarray | tuple
+
+
+def as_target(spec: TargetSpec) -> Target:
+    """A :class:`Target` from a position, a (position, rotation) pair or a Target."""
+    if isinstance(spec, Target):
+        return spec
+    if isinstance(spec, tuple) and len(spec) == 2:
+        pos, rot = spec
+        return Target(None if pos is None else np.asarray(pos, float), None if rot is None else np.asarray(rot, float))
+    pos = np.asarray(spec, dtype=float)
+    if pos.shape != (3,):
+        raise ValueError(f"an IK target is a position (3,), a (position, rotation) pair or a Target, "
+                         f"got shape {pos.shape}")
+    return Target(pos=pos)
+
+
+class _Problem:
+    """The model, the scratch data, the moving joints' addresses and limits."""
+
+    def __init__(self, model: mujoco.MjModel, joints: Iterable[str] | None):
+        self.model = model
+        self.data = mujoco.MjData(model)
+        if joints is None:
+            ids = [j for j in range(model.njnt) if int(model.jnt_type[j]) in _ONE_DOF]
+        else:
+            ids = [self._joint_id(name) for name in joints]
+        self.qadr = model.jnt_qposadr[ids]
+        self.dadr = model.jnt_dofadr[ids]
+        limited = model.jnt_limited[ids].astype(bool)
+        self.lo = np.where(limited, model.jnt_range[ids, 0], -np.inf)
+        self.hi = np.where(limited, model.jnt_range[ids, 1], np.inf)
+
+    def _joint_id(self, name: str) -> int:
+        j = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if j < 0:
+            raise KeyError(f"IK: unknown joint {name!r}")
+        if int(self.model.jnt_type[j]) not in _ONE_DOF:
+            raise ValueError(f"IK moves hinge and slide joints only; {name!r} is not one")
+        return j
+
+    def site_id(self, name: str) -> int:
+        s = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_SITE, name)
+        if s < 0:
+            raise KeyError(f"IK: unknown site {name!r}")
+        return s
+
+    def kinematics(self, qpos: np.ndarray) -> None:
+        self.data.qpos[:] = qpos
+        mujoco.mj_kinematics(self.model, self.data)
+        mujoco.mj_comPos(self.model, self.data)
+
+
+def _rows(problem: _Problem, site: int, target: Target):
+    """Error rows, Jacobian rows (selected dofs) and (position error, rotation error) of one target."""
+    m, d = problem.model, problem.data
+    jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+    mujoco.mj_jacSite(m, d, jacp, jacr, site)
+    jacp, jacr = jacp[:, problem.dadr], jacr[:, problem.dadr]
+    errors, jacs, pos_err, rot_err = [], [], 0.0, 0.0
+    if target.pos is not None:
+        e = target.pos - d.site_xpos[site]
+        errors.append(e), jacs.append(jacp)
+        pos_err = float(np.linalg.norm(e))
+    xmat = d.site_xmat[site].reshape(3, 3)
+    if target.rot is not None:
+        e = rotation_error(target.rot, xmat)
+        errors.append(e), jacs.append(jacr)
+        rot_err = float(np.linalg.norm(e))
+    if target.axis is not None:
+        local, world = (np.asarray(v, float) / np.linalg.norm(v) for v in target.axis)
+        a = xmat @ local
+        across = np.cross(a, world)
+        errors.append(across), jacs.append((np.eye(3) - np.outer(a, a)) @ jacr)
+        rot_err = max(rot_err, float(np.arctan2(np.linalg.norm(across), a @ world)))
+    return errors, jacs, pos_err, rot_err
+
+
+def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
+    """World rotation vector taking orientation ``current`` to ``target`` (both 3×3)."""
+    q_t, q_c, q_d = np.zeros(4), np.zeros(4), np.zeros(4)
+    mujoco.mju_mat2Quat(q_t, np.ascontiguousarray(target).ravel())
+    mujoco.mju_mat2Quat(q_c, np.ascontiguousarray(current).ravel())
+    mujoco.mju_negQuat(q_c, q_c)
+    mujoco.mju_mulQuat(q_d, q_t, q_c)
+    vel = np.zeros(3)
+    mujoco.mju_quat2Vel(vel, q_d, 1.0)
+    return vel
+
+
+def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray) -> np.ndarray:
+    """Damped-least-squares step on the free columns."""
+    j = jac[:, free]
+    step = np.zeros(jac.shape[1])
+    step[free] = j.T @ np.linalg.solve(j @ j.T + damping**2 * np.eye(len(err)), err)
+    return step
+
+
+def _null_step(jac: np.ndarray, pull: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """``pull`` projected on the null space of the free columns of ``jac``."""
+    j = jac[:, free]
+    step = np.zeros(jac.shape[1])
+    step[free] = pull[free] - np.linalg.pinv(j, rcond=1e-6) @ (j @ pull[free])
+    return step
+
+
+def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, TargetSpec], q0: np.ndarray | None = None,
+          joints: Iterable[str] | None = None, *, tol: float = 1e-4, rot_tol: float = 1e-3, max_iter: int = 300,
+          damping: float = 1e-2, max_step: float = 0.2, posture: Mapping[str, float] | None = None,
+          posture_gain: float = 0.2) -> IKResult:
+    """Joint values putting each target site (by name) on its target; see the module docstring.
+
+    ``q0``: starting qpos (default: the body's current qpos, or the model's qpos0). ``joints``: the
+    hinge/slide joints that may move (default: all of them); everything else keeps its ``q0``
+    value. ``tol`` (m) and ``rot_tol`` (rad) decide ``ok``. ``posture``: joint values (of moving
+    joints) to approach without disturbing the targets; the search then goes on after the targets
+    are reached, until the posture settles.
+    """
+    model = body_or_model.model if isinstance(body_or_model, MujocoBody) else body_or_model
+    if q0 is None:
+        q0 = body_or_model.data.qpos if isinstance(body_or_model, MujocoBody) else model.qpos0
+    problem = _Problem(model, joints)
+    sites = {problem.site_id(name): as_target(spec) for name, spec in targets.items()}
+    rest = _posture_vector(problem, posture)
+    q = np.array(q0, dtype=float)
+    q[problem.qadr] = np.clip(q[problem.qadr], problem.lo, problem.hi)
+    best, converged, moved = (np.inf, q.copy(), (np.inf, np.inf)), None, np.inf
+    for _ in range(max_iter):
+        problem.kinematics(q)
+        err, jac, residual = _stack(problem, sites)
+        score = max(residual[0] / tol, residual[1] / rot_tol)
+        if score <= 1.0:
+            converged = (q.copy(), residual)
+            if rest is None or moved < POSTURE_SETTLED:
+                break
+        elif score < best[0]:
+            best = (score, q.copy(), residual)
+        after = _limited_step(problem, q[problem.qadr], jac, err, rest, damping, max_step, posture_gain)
+        moved = float(np.abs(after - q[problem.qadr]).max())
+        q[problem.qadr] = after
+    if converged is not None:
+        return IKResult(converged[0], True, converged[1])
+    return IKResult(best[1], False, best[2])
+
+
+def _posture_vector(problem: _Problem, posture: Mapping[str, float] | None) -> np.ndarray | None:
+    if not posture:
+        return None
+    names = [mujoco.mj_id2name(problem.model, mujoco.mjtObj.mjOBJ_JOINT, j)
+             for j in problem.model.dof_jntid[problem.dadr]]
+    unknown = set(posture) - set(names)
+    if unknown:
+        raise KeyError(f"IK posture names joints that do not move: {sorted(unknown)}")
+    return np.array([posture.get(n, np.nan) for n in names])
+
+
+def _stack(problem: _Problem, sites: dict[int, Target]):
+    errors, jacs, pos_err, rot_err = [], [], 0.0, 0.0
+    for site, target in sites.items():
+        e, j, p, r = _rows(problem, site, target)
+        errors += e
+        jacs += j
+        pos_err, rot_err = max(pos_err, p), max(rot_err, r)
+    return np.concatenate(errors), np.vstack(jacs), (pos_err, rot_err)
+
+
+def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max_step, posture_gain) -> np.ndarray:
+    """The moving joints after one DLS step (+ null-space posture pull), inside their limits: a joint
+    at a limit that the step pushes further is frozen and the step recomputed without it."""
+    free = np.ones(len(q), dtype=bool)
+    for _ in range(len(q)):
+        step = _dls_step(jac, err, damping, free)
+        if rest is not None:
+            pull = np.where(np.isnan(rest), 0.0, posture_gain * (rest - q))
+            step += _null_step(jac, pull, free)
+        step *= min(1.0, max_step / max(np.abs(step).max(), 1e-12))
+        blocked = free & (((q <= problem.lo) & (step < 0)) | ((q >= problem.hi) & (step > 0)))
+        if not blocked.any():
+            break
+        free &= ~blocked
+    return np.clip(q + step, problem.lo, problem.hi)
+
+
+def reachable(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, TargetSpec],
+              q0: np.ndarray | None = None, joints: Iterable[str] | None = None, **options) -> bool:
+    """The Reachability-Map stand-in of Eq. 3.11/3.14: IK reaches every target within tolerance
+    with the joints inside their limits."""
+    return solve(body_or_model, targets, q0, joints, **options).ok

@@ -1,0 +1,126 @@
+"""Switching the search indices between two manipulators (seed 000 §3.4.4, Eq. 3.19, Fig. 3.14; role
+tables of §3.5.2).
+
+Motion measurement, method (a) of §3.4.4 (there is no sensor on the tricycle): the handle and crank
+angles come from the robot's own forward kinematics of its hand and foot points. The thesis gives no
+algorithm (spec §6 item 10); ours is the least-squares angle of one rotation about the known axis
+that carries the points' θ = 0 directions onto the measured points (:func:`fit_angle`).
+
+Switching rule, Eq. 3.19: θ_*^SW = θ_*^init + kπ, θ_h^init = 0, θ_c^init = π/2 + δ_c. When the
+measured angle passes a switching angle the two limbs exchange the offline (active) and online
+(passive) index. Roles (§3.5.2): arms — left active on −Θ_H ≤ θ_h ≤ 0, right on 0 ≤ θ_h ≤ Θ_H; legs —
+right active on π/2 + δ_c ≤ θ_c < 3π/2 + δ_c (mod 2π), left otherwise.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from shintai.humanoid.active import PEDAL_PHASE_OFFSET, v
+from shintai.humanoid.constants import TRICYCLE, TricycleSpec
+from shintai.humanoid.vehicles.tricycle import grip_position, steer_axis, steer_point
+
+Y_AXIS = np.array([0.0, 1.0, 0.0])
+
+
+def wrap_pi(angle: float) -> float:
+    """An angle in (−π, π]."""
+    return float(np.pi - np.mod(np.pi - angle, 2 * np.pi))
+
+
+def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> float:
+    """Method (a): the rotation angle θ about the axis (``axis_point``, ``axis_dir``) that best maps the
+    θ = 0 directions ``zero_dirs`` onto the measured ``points`` (least squares, in (−π, π]).
+
+    With w_k the measured point and z_k the θ = 0 direction, both projected on the plane normal to the
+    unit axis a, Σ‖w_k − R(θ) z_k‖² is smallest at θ = atan2(Σ a·(z_k × w_k), Σ z_k·w_k). The radius
+    drops out, so a contact point off the pedal axle along the crank arm does not bias θ.
+    """
+    a = np.asarray(axis_dir, dtype=float)
+    a = a / np.linalg.norm(a)
+    num = den = 0.0
+    for p, z in zip(points, zero_dirs, strict=True):
+        w = np.asarray(p, dtype=float) - np.asarray(axis_point, dtype=float)
+        w = w - a * (a @ w)
+        z = np.asarray(z, dtype=float)
+        z = z - a * (a @ z)
+        num += a @ np.cross(z, w)
+        den += z @ w
+    if num == 0.0 and den == 0.0:
+        raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
+    return float(np.arctan2(num, den))
+
+
+def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
+    """θ_c ∈ [0, 2π) from the foot points on the pedals (``{"left": p, "right": p}`` or one of them).
+
+    At θ_c = 0 the left pedal points forward (φ = π/2) and the right one backward (module
+    :mod:`shintai.humanoid.active`); θ_c turns about +y.
+    """
+    zero = [v(PEDAL_PHASE_OFFSET[leg]) for leg in feet]
+    return float(np.mod(fit_angle(list(feet.values()), zero, crank_centre, axis_dir), 2 * np.pi))
+
+
+def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
+    """θ_h from the hand points on the grips (``{"left": p, "right": p}`` or one of them), in the
+    vehicle frame, about the steering axis of the tricycle's nominal model."""
+    axis_point = steer_point(t)
+    zero = [grip_position(0.0, side[0], t) - axis_point for side in hands]
+    return fit_angle(list(hands.values()), zero, axis_point, steer_axis(t))
+
+
+def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:
+    """Eq. 3.19: the switching angles θ^init + kπ, k ∈ Z, that lie in [lo, hi)."""
+    k = np.arange(np.ceil((lo - theta_init) / np.pi), np.ceil((hi - theta_init) / np.pi))
+    return theta_init + k * np.pi
+
+
+def active_leg(theta_c: float, delta_c: float) -> str:
+    """The stepping (active) leg at general crank angle θ_c (§3.5.2 role table)."""
+    return "right" if np.pi / 2 + delta_c <= np.mod(theta_c, 2 * np.pi) < 3 * np.pi / 2 + delta_c else "left"
+
+
+def active_arm(theta_h: float, heading: float = 0.0) -> str:
+    """The active arm at handle angle θ_h (§3.5.2): left on −Θ_H ≤ θ_h < 0, right on 0 < θ_h ≤ Θ_H.
+    At θ_h = θ_h^init = 0, where the table gives both, the arm of the side the handle is heading to
+    (the sign of ``heading``; left if it is 0 too — our choice)."""
+    side = theta_h if theta_h != 0 else heading
+    return "right" if side > 0 else "left"
+
+
+class SwitchingDiagnostic:
+    """Fig. 3.14 for one limb pair: measure the angle by method (a) and tell when the roles swap.
+
+    ``estimate(snapshot) -> angle`` is the method-(a) estimate, unwrapped here (θ_c is unbounded,
+    Eq. 3.3) into ``angle``. ``role_of(angle) -> side`` is the role table, whose changes are the
+    switching angles of Eq. 3.19. :meth:`guard_to` makes the guard of a role
+    :class:`~shintai.core.runtime.Switcher` transition: it holds once the table gives the new side
+    on both sides of a band of ±``hysteresis`` around the measured angle — a band we add so that
+    estimation noise at a switching angle cannot make the roles chatter (the thesis is silent on it).
+    Switches are kept in ``log`` as (t, unwrapped angle, new active side).
+    """
+
+    def __init__(self, estimate: Callable[[dict], float], role_of: Callable[[float], str], hysteresis: float):
+        self.estimate = estimate
+        self.role_of = role_of
+        self.hysteresis = hysteresis
+        self.angle: float | None = None
+        self.log: list[tuple[float, float, str]] = []
+
+    def measure(self, snapshot) -> float:
+        measured = self.estimate(snapshot)
+        self.angle = measured if self.angle is None else self.angle + wrap_pi(measured - self.angle)
+        return self.angle
+
+    def guard_to(self, side: str) -> Callable[[dict], bool]:
+        def guard(snapshot) -> bool:
+            angle = self.measure(snapshot)
+            h = self.hysteresis
+            swap = self.role_of(angle - h) == side == self.role_of(angle + h)
+            if swap:
+                self.log.append((float(snapshot["t"]), angle, side))
+            return swap
+
+        return guard
