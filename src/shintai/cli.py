@@ -89,7 +89,7 @@ def run_one(job: tuple) -> dict:
 
 
 def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, title: str,
-              address: str | None = None) -> int:
+              address: str | None = None, checks_only_ran: bool = False) -> int:
     from shintai.evolve.executors import make_executor
     from shintai.scenarios.report import write_report
 
@@ -108,6 +108,8 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
     for s in summaries:
         print(f"  {'pass' if s['ok'] else 'FAIL'} {s['scenario']}" + (f": {s['error']}" if s["error"] else ""))
     print(f"{sum(r.get('ok', False) for r in results)}/{len(results)} pass -> {out}/REPORT.md, {out}/index.html")
+    if checks_only_ran:  # the demo shows failing checks in its report; only a run that errs fails it
+        return 0 if not any("error" in r for r in results) else 1
     return 0 if all(r.get("ok") for r in results) else 1
 
 
@@ -119,7 +121,8 @@ def cmd_reproduce(args) -> int:
 
 def cmd_demo(args) -> int:
     ids = [sid for sid in sorted(registry.SCENARIOS) if registry.SCENARIOS[sid].demo]
-    return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo")
+    return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo",
+                     checks_only_ran=True)
 
 
 def cmd_bench(args) -> int:

@@ -207,3 +207,6 @@ def _plot_plan(ctx, k) -> None:
         ax[1].set_xlabel("sample i")
         ax[1].set_ylabel("−(p_{i+1} − p_i)·u_i [m]")
         ax[1].legend(fontsize=8)
+
+
+from shintai.humanoid import tricycle_scenarios  # noqa: F401,E402

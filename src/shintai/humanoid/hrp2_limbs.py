@@ -1,0 +1,138 @@
+"""HRP2-JSK's hands and feet as the :class:`~shintai.humanoid.operation.Limb` the laws of seed 000
+§3.4 drive (the robot side of Fig. 3.16 steps 2–3).
+
+* ``point`` — forward kinematics of the grasp centre / sole (sites ``s_grasp`` / ``s_sole``).
+* ``force`` — f^msr of Eq. 3.13: the environment's force on the hand / foot from the wrist / ankle
+  6-axis F/T sensor (:func:`~shintai.humanoid.robots.hrp2.ft_reaction`; pressing on a pedal gives +z).
+* ``command`` — u of Eqs. 3.10–3.11: the IK (:mod:`shintai.humanoid.ik`) of that limb's joints
+  (7 arm / 6 leg joints, within their Table A.2 ranges) for the target ξ, as joint-servo targets.
+  An unreachable ξ (IK does not converge inside the joint limits, the Reachability-Map stand-in)
+  keeps the previous command — the second branch of Eq. 3.14 applied to the joint input; such
+  ticks are counted in ``unreachable``.
+
+Frame (chosen): all three live in the **vehicle frame**, fixed to the robot's waist through the
+hip–saddle weld (§3.3.2: the waist is bonded to the saddle). The robot knows it from its own waist
+pose; the tricycle's nominal model (:mod:`~shintai.humanoid.vehicles.tricycle`), which the active
+plans use, is written in it, and it stays valid while the tricycle drives off (E3–E7). On level
+ground its z is the vertical of f^trg = (0, 0, 150) N (Table 3.4).
+
+Orientation (Table 3.1; the thesis's impedance is position-only, spec §6 item 3): a sole keeps
+its y axis on the crank axis with the pitch free (the pedal turns freely, "line contact"); a hand
+keeps its x axis on the bar of the nominal handle at the handle angle its own point shows
+(method (a), :func:`~shintai.humanoid.switching.estimate_handle_angle`), roll about the bar free.
+The IK starts from the limb's previous command, not from the measured joints, so the servo target
+does not drift with the servo error (as hrpsys solves IK on its reference model).
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from shintai.humanoid import ik, quat_axis
+from shintai.humanoid.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
+from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
+from shintai.humanoid.switching import estimate_handle_angle
+from shintai.humanoid.vehicles.tricycle import steer_axis
+from shintai.sim.body import MujocoBody
+
+KINDS = ("hand", "foot")
+BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
+CRANK_AXIS_IN_SOLE = np.array([0.0, 1.0, 0.0])  # the pedal axle along the sole's y axis
+
+
+def waist_pose(body: MujocoBody) -> tuple[np.ndarray, np.ndarray]:
+    """(position, rotation) of the robot's waist, world frame."""
+    return body.body_pos("waist"), body.data.body("waist").xmat.reshape(3, 3).copy()
+
+
+class VehicleFrame:
+    """The vehicle frame as the robot knows it: the waist pose composed with the waist → vehicle
+    transform of the hip–saddle weld, taken once at the start (``body`` seated, kinematics done)."""
+
+    def __init__(self, body: MujocoBody):
+        self.body = body
+        p_w, r_w = waist_pose(body)
+        p_v, r_v = body.body_pos("tricycle"), body.data.body("tricycle").xmat.reshape(3, 3)
+        self.offset, self.rot_in_waist = r_w.T @ (p_v - p_w), r_w.T @ r_v
+
+    def pose(self) -> tuple[np.ndarray, np.ndarray]:
+        p_w, r_w = waist_pose(self.body)
+        return p_w + r_w @ self.offset, r_w @ self.rot_in_waist
+
+    def to_vehicle(self, world_point) -> np.ndarray:
+        p, r = self.pose()
+        return r.T @ (np.asarray(world_point, dtype=float) - p)
+
+    def to_world(self, vehicle_point) -> np.ndarray:
+        p, r = self.pose()
+        return p + r @ np.asarray(vehicle_point, dtype=float)
+
+    def rotate_to_vehicle(self, world_vector) -> np.ndarray:
+        return self.pose()[1].T @ np.asarray(world_vector, dtype=float)
+
+
+class Hrp2Limb:
+    """One hand (on its grip) or foot (on its pedal) of the seated HRP2 as a ``Limb``.
+
+    ``side`` is "left" or "right", ``kind`` "hand" or "foot"; ``frame`` a shared
+    :class:`VehicleFrame`. ``name`` is e.g. ``left_foot`` (the LimbPair logs under it).
+    """
+
+    def __init__(self, body: MujocoBody, side: str, kind: str, frame: VehicleFrame | None = None):
+        if side not in ("left", "right") or kind not in KINDS:
+            raise ValueError(f"a limb is side 'left'/'right' and kind {KINDS}, got {side!r}, {kind!r}")
+        s = side[0]
+        self.body, self.side, self.kind, self.name = body, side, kind, f"{side}_{kind}"
+        self.frame = frame or VehicleFrame(body)
+        self.site = HAND[s] if kind == "hand" else SOLE[s]
+        self.sensor = WRIST_FT[s] if kind == "hand" else ANKLE_FT[s]
+        self.joints = ARM[s] if kind == "hand" else LEG[s]
+        self.q = np.array([body.joint_qpos(j) for j in self.joints])
+        self.unreachable = 0
+
+    def point(self, snapshot) -> np.ndarray:
+        """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
+        return self.frame.to_vehicle(self.body.site_pos(self.site))
+
+    def force(self, snapshot) -> np.ndarray:
+        """f^msr: the environment's force on the hand / foot, vehicle frame [N] (Eq. 3.13)."""
+        return self.frame.rotate_to_vehicle(ft_reaction(self.body, snapshot, self.sensor)[0])
+
+    def target(self, xi) -> ik.Target:
+        """The world-frame IK target of the contact point at ξ (vehicle frame), with its axis rule."""
+        rot = self.frame.pose()[1]
+        if self.kind == "foot":
+            return ik.Target(pos=self.frame.to_world(xi), axis=(CRANK_AXIS_IN_SOLE, rot[:, 1]))
+        theta_h = estimate_handle_angle({self.side: np.asarray(xi, dtype=float)})
+        bar = np.zeros(3)  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
+        mujoco.mju_rotVecQuat(bar, np.array([0.0, 1.0, 0.0]), quat_axis(steer_axis(), theta_h))
+        return ik.Target(pos=self.frame.to_world(xi), axis=(BAR_IN_HAND, -SIDES[self.side[0]] * rot @ bar))
+
+    def solve(self, xi) -> ik.IKResult:
+        """IK of this limb's joints for ξ, from its previous command (the rest of the body as measured)."""
+        q0 = self.body.data.qpos.copy()
+        model = self.body.model
+        for joint, value in zip(self.joints, self.q):
+            q0[model.joint(joint).qposadr[0]] = value
+        return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)
+
+    def reachable(self, xi) -> bool:
+        """Eq. 3.14's gate: ξ is inside the limb's reachable set (IK converges within the joint limits)."""
+        return self.solve(xi).ok
+
+    def command(self, xi, snapshot) -> dict:
+        """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable."""
+        result = self.solve(xi)
+        if result.ok:
+            adr = [self.body.model.joint(j).qposadr[0] for j in self.joints]
+            self.q = result.q[adr]
+        else:
+            self.unreachable += 1
+        return dict(zip(self.joints, self.q))
+
+
+def riding_limbs(body: MujocoBody, kind: str) -> dict[str, Hrp2Limb]:
+    """Both hands or both feet of the seated robot, keyed "left"/"right", sharing one vehicle frame."""
+    frame = VehicleFrame(body)
+    return {side: Hrp2Limb(body, side, kind, frame) for side in ("left", "right")}

@@ -1,0 +1,484 @@
+"""HRP2-JSK drives the tricycle in MuJoCo (seed 000 §3.5.1–3.5.3, E1, E2, E4).
+
+The robot (:mod:`~shintai.humanoid.riding`) plugs into the operation algorithm of Fig. 3.16
+(:mod:`~shintai.humanoid.operation`) through :class:`~shintai.humanoid.hrp2_limbs.Hrp2Limb`:
+the active limb follows its plan from the tricycle's *nominal* kinematic model (Eq. 3.7 for a foot,
+the grip at θ_h for a hand, §3.4.2) under the active impedance, the passive limb runs the passive
+impedance (Eq. 3.13) and acquires its reference once per passive phase (Eq. 3.14), and the roles
+swap when the angle measured from the robot's own FK (method (a), §3.4.4) passes a switching angle
+(Eq. 3.19). Gains and force targets are Table 3.4's; Δθ_h = 5°, Δθ_c = 10°, Δt = 0.8 s (§3.5.1).
+
+Model errors (the reason for the passive function, §3.3.2): the simulated crank centre /
+steering axis sits ``crank_error_mm`` / ``handle_error_mm`` away from the nominal model all the
+controllers use. The same error is in the active/passive run and in the comparison run with two
+active limbs, so the two configurations meet the same tricycle.
+
+``time_scale`` multiplies Δt (1 = the thesis's 0.8 s); the defaults run the thesis's timing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.core.runtime import Loop
+from shintai.humanoid import riding
+from shintai.humanoid.constants import (CONTROL_PERIOD, D_THETA_C, D_THETA_H, DEG, DELTA_C, DELTA_T, IMPEDANCE,
+                                        SWITCH_HYSTERESIS, TRICYCLE)
+from shintai.humanoid.active import grip_plan
+from shintai.humanoid.hrp2_limbs import riding_limbs
+from shintai.humanoid.operation import SIDES, LimbPair, OperationSchedule, role_switcher, travel_distance
+from shintai.humanoid.switching import (SwitchingDiagnostic, active_arm, active_leg, estimate_crank_angle,
+                                        estimate_handle_angle)
+from shintai.humanoid.vehicles.tricycle import crank_centre, pedal_position
+from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
+from shintai.sim.render import VideoRecorder
+
+LEG_GAINS = {"active": IMPEDANCE["active_leg"], "passive": IMPEDANCE["passive_leg"]}
+ARM_GAINS = {"active": IMPEDANCE["active_arm"], "passive": IMPEDANCE["passive_arm"]}
+F_TRG = IMPEDANCE["passive_leg"].f_trg[2]  # 150 N (Table 3.4)
+PEDAL_HALF_THICKNESS = TRICYCLE.pedal_size[2] / 2
+
+
+# --- the limbs' plans and the measured angles (vehicle frame) -------------------------------------
+
+
+def foot_plan(leg: str):
+    """X_active^ref of a foot: Eq. 3.7's pedal point at the target crank angle, on the nominal crank
+    circle (the sole on the level platform top, :func:`~shintai.humanoid.vehicles.tricycle.pedal_position`)."""
+    return lambda theta_c: pedal_position(theta_c, leg[0])
+
+
+def hand_plan(arm: str):
+    """X_active^ref of a hand: its grip at the target θ_h on the nominal handle (§3.4.2)."""
+    return lambda theta_h: grip_plan(theta_h, arm)
+
+
+def pedal_axles(feet: dict, snapshot) -> dict:
+    """Each foot's pedal-axle point: the sole point less the platform's half thickness along the
+    sole normal (vehicle frame), so that method (a) sees points on the crank circle."""
+    axles = {}
+    for leg, limb in feet.items():
+        normal = limb.frame.rotate_to_vehicle(limb.body.site_xmat(limb.site)[:, 2])
+        axles[leg] = limb.point(snapshot) - PEDAL_HALF_THICKNESS * normal
+    return axles
+
+
+def crank_diagnostic(feet: dict) -> SwitchingDiagnostic:
+    """Fig. 3.14 for the legs: θ_c by method (a) from both feet about the nominal crank centre."""
+    return SwitchingDiagnostic(lambda s: estimate_crank_angle(pedal_axles(feet, s), crank_centre()),
+                               lambda a: active_leg(a, DELTA_C), SWITCH_HYSTERESIS)
+
+
+def handle_diagnostic(hands: dict) -> SwitchingDiagnostic:
+    """Fig. 3.14 for the arms: θ_h by method (a) from both hands about the nominal steering axis."""
+    return SwitchingDiagnostic(lambda s: estimate_handle_angle({k: h.point(s) for k, h in hands.items()}),
+                               active_arm, SWITCH_HYSTERESIS)
+
+
+# --- running ---------------------------------------------------------------------------------------
+
+
+def drive(body, modules, seconds: float, log, progress=None) -> None:
+    """Run ``modules`` on the body for ``seconds``, calling ``log(snapshot)`` every control tick."""
+    loop = Loop(body, modules)
+    n = int(round(seconds / body.dt))
+    for k in range(n):
+        log(loop.step())
+        if progress is not None and k % 250 == 0:
+            progress(k / n)
+
+
+def video_of(ctx, body, **view):
+    """The scenario's video recorder (``None`` unless ``--video``): a three-quarter view of the rider."""
+    if not ctx.video:
+        return None
+    return VideoRecorder(body, ctx.video_path, fps=15, width=480, height=360, track="waist",
+                         **{"distance": 2.6, "azimuth": 140.0, "elevation": -15.0, **view})
+
+
+def crank_schedule(revolutions: float, dt_transition: float) -> OperationSchedule:
+    """Fig. 3.16 samples turning the crank forward from θ_c = 0 by ``revolutions`` (handle straight)."""
+    return OperationSchedule(0.0, 0.0, [(0.0, 2 * np.pi * revolutions)], dt_transition, D_THETA_H, D_THETA_C)
+
+
+def pedal_run(rec, prefix: str, body, module, feet, schedule, active_of, diag=None, progress=None) -> None:
+    """Pedal through ``schedule`` (plus one sample to settle), logging under ``prefix``: crank angle
+    (true and estimated), each foot's f_z and whether it is active (``active_of(side)``)."""
+    start = body.body_pos("tricycle")
+
+    def log(snap):
+        est = diag.angle if diag is not None and diag.angle is not None else estimate_crank_angle(
+            pedal_axles(feet, snap), crank_centre())
+        signals = {"crank_true": snap["q:crank"], "crank_est": est,
+                   "travel": np.linalg.norm((body.body_pos("tricycle") - start)[:2])}
+        for side, limb in feet.items():
+            signals[f"fz_{side}"] = limb.force(snap)[2]
+            signals[f"active_{side}"] = float(active_of(side))
+        rec.record(snap["t"], **{f"{prefix}{k}": v for k, v in signals.items()})
+
+    drive(body, [module], schedule.duration + 2 * schedule.phase, log, progress)
+
+
+def settled(t: np.ndarray, active: np.ndarray, wait: float) -> np.ndarray:
+    """Ticks at least ``wait`` after the start and after the limb's last role change (transients)."""
+    change = np.concatenate([[t[0]], t[1:][np.diff(active) != 0]])
+    last = change[np.searchsorted(change, t, side="right") - 1]
+    return (t - t[0] >= wait) & (t - last >= wait)
+
+
+def force_errors(rec, prefix: str, wait: float, role: float) -> np.ndarray:
+    """f_z of every foot while its role flag equals ``role`` (1 active, 0 passive), after transients."""
+    t = rec.times(f"{prefix}fz_left")
+    parts = []
+    for side in SIDES:
+        active = rec.values(f"{prefix}active_{side}")
+        parts.append(rec.values(f"{prefix}fz_{side}")[settled(t, active, wait) & (active == role)])
+    return np.concatenate(parts)
+
+
+def unwrap_from(angle: np.ndarray, start: float) -> np.ndarray:
+    return np.unwrap(angle) - np.unwrap(angle)[0] + start
+
+
+# --- E2 + E4: pedalling ----------------------------------------------------------------------------
+
+
+@scenario(
+    "humanoid.tricycle-pedaling",
+    source="seed 000 §3.5.2–3.5.3, Eqs. 3.7, 3.13–3.14, 3.19–3.20, Fig. 3.18, Fig. 3.22",
+    summary="E2/E4: HRP2 pedals one crank revolution with active/passive legs (150 N), vs. two active legs",
+    params=[
+        Param("time_scale", 1.0, "Δt = 0.8 s × time_scale (1 = the thesis's lab setting)", lo=0.1, hi=1.0),
+        Param("revolutions", 1.0, "crank revolutions of the active/passive run", lo=0.1, hi=2.0),
+        Param("both_active_revolutions", 1.0, "crank revolutions of the both-active comparison run", lo=0.0, hi=2.0),
+        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm] (spec §5.4 check 8)",
+              lo=0.0, hi=30.0),
+    ],
+    checks=[
+        Check("passive_force_mean_n", ">=", 0.9 * F_TRG, "spec §5.4 check 8 [PROPOSAL]: mean within −10 % of f^trg"),
+        Check("passive_force_mean_n", "<=", 1.1 * F_TRG, "spec §5.4 check 8: within +10 %", name="passive_force_upper"),
+        Check("both_active_force_rms_error_n", ">", "passive_force_rms_error_n",
+              "thesis claim §3.5.3 / Fig. 3.22: two active legs track 150 N worse than the passive leg"),
+        Check("active_force_cos_corr", ">=", 0.5,
+              "thesis claim §3.5.3: the active leg's f_z grows roughly as 1/|cos θ_c| (threshold: ours, 'strong')"),
+        Check("role_swaps", "==", "revolutions_x2", "thesis §3.5.2 / Eq. 3.19: two swaps per revolution"),
+        Check("swap_angle_error_deg", "<=", 1.0,
+              "Eq. 3.19 at 110°/290°; derived: hysteresis 0.5° plus method (a) error"),
+        Check("revolution_time_ratio", ">=", 0.97, "thesis Eq. 3.20: T_2π = 2π · 2Δt / Δθ_c (−3 %)"),
+        Check("revolution_time_ratio", "<=", 1.03, "Eq. 3.20 (+3 %); derived: the crank reaches its last target "
+              "(within 1°) as the last sample's passive phase ends, up to a servo lag", name="revolution_time_upper"),
+        Check("travel_per_rev_m", ">=", 0.98 * TRICYCLE.travel_per_rev, "thesis App. A.1.1: D_c = 2.45 m (−2 %)"),
+        Check("travel_per_rev_m", "<=", 1.02 * TRICYCLE.travel_per_rev, "App. A.1.1 (+2 %)", name="travel_upper"),
+    ],
+    thesis={
+        "revolution_time_s": ThesisValue(57.6, "seed 000 Eq. 3.20 (Δt = 0.8 s, Δθ_c = 10°)", "revolution_time_s"),
+        "travel_per_rev_m": ThesisValue(2.45, "seed 000 App. A.1.1", "travel_per_rev_m"),
+        "both_active_force_centre_n": ThesisValue(160.0, "seed 000 §3.5.3 (Fig. 3.22-(I), ≈160 N)",
+                                                  "both_active_force_mean_n"),
+        "passive_force_target_n": ThesisValue(150.0, "seed 000 Table 3.4, Fig. 3.22-(II)", "passive_force_mean_n"),
+        "swap_angles_deg": ThesisValue([110.0, 290.0], "seed 000 Eq. 3.19, §3.5.2", "swap_angles_deg"),
+    },
+    demo=True,
+    video=True,
+)
+def tricycle_pedaling(ctx):
+    """E2 (one revolution, Fig. 3.18) and E4 (contact force, Fig. 3.22).
+
+    Active/passive: the left leg starts active at θ_c = 0 and the roles swap at 110° and 290°
+    (§3.5.2). Both-active comparison: the same samples with both feet on the nominal circle under
+    the active impedance and no switching. Forces are compared after transients: from one command
+    sample (2Δt) after the start and after each role swap.
+
+    What happens (state at hand-over, not yet reproducing): the first 200° work — the swap at
+    110.5°, the passive foot near 150 N (0.4-rev run: mean 151 N, RMS error 5.9 N; both-active
+    12.8 N), 2.44 m per revolution. At θ_c ≈ 200° (t ≈ 33 s) the passive left foot, its pedal
+    rising behind at φ ≈ 290°, loses the pedal (f_z → 0) although Eq. 3.14 should keep it on —
+    the 280–300° contact loss known from pure position control. Method (a) then reads a foot off
+    its pedal, the estimate leaves the true crank by > 100°, the roles chatter around 110°
+    (24 swaps), the IK targets become unreachable (8396 ticks) and the means collapse (passive
+    96 N). The crank still turns 373° in 56.7 s (Eq. 3.20: 57.6 s). The active f_z shows no
+    1/|cos θ_c| trend (correlation ≈ 0): its variation is the per-sample impedance transient.
+    Checks not tuned.
+    """
+    p = ctx.params
+    dt = DELTA_T * p["time_scale"]
+    error = (p["crank_error_mm"] / 1000, 0.0)
+    schedule = crank_schedule(p["revolutions"], dt)
+    body = riding.build_riding(crank_error=error)
+    feet = riding_limbs(body, "foot")
+    diag = crank_diagnostic(feet)
+    legs = role_switcher("legs", "crank", feet, {leg: foot_plan(leg) for leg in SIDES}, diag,
+                         active_leg(0.0, DELTA_C), schedule, LEG_GAINS, CONTROL_PERIOD,
+                         {leg: limb.reachable for leg, limb in feet.items()})
+    video = video_of(ctx, body)
+    try:
+        pedal_run(ctx.recorder, "", body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag,
+                  lambda f: ctx.progress(0.6 * f, "active/passive"))
+    finally:
+        if video is not None:
+            video.close()
+    metrics = pedal_metrics(ctx.recorder, "", body, schedule, diag, dt)
+    metrics["unreachable_ticks"] = sum(limb.unreachable for limb in feet.values())
+    if p["both_active_revolutions"] > 0:
+        metrics.update(both_active_run(ctx, p["both_active_revolutions"], dt, error))
+    ctx.sim_time_s = float(ctx.recorder.times("crank_true")[-1] + ctx.recorder.times("both_crank_true")[-1]
+                           if "both_crank_true" in ctx.recorder else ctx.recorder.times("crank_true")[-1])
+    _plot_pedaling(ctx, diag)
+    return metrics
+
+
+def both_active_run(ctx, revolutions: float, dt: float, error) -> dict:
+    """E4's only-active configuration: both feet follow Eq. 3.7 on the nominal crank, active impedance."""
+    schedule = crank_schedule(revolutions, dt)
+    body = riding.build_riding(crank_error=error)
+    feet = riding_limbs(body, "foot")
+    both = LimbPair("legs:both-active", "crank", feet, {leg: "active" for leg in SIDES},
+                    {leg: foot_plan(leg) for leg in SIDES}, schedule, LEG_GAINS, CONTROL_PERIOD)
+    pedal_run(ctx.recorder, "both_", body, both, feet, schedule, lambda s: True, None,
+              lambda f: ctx.progress(0.6 + 0.35 * f, "both active"))
+    fz = force_errors(ctx.recorder, "both_", 2 * dt, 1.0)
+    return {"both_active_force_mean_n": float(fz.mean()),
+            "both_active_force_rms_error_n": float(np.sqrt(np.mean((fz - F_TRG) ** 2))),
+            "both_active_force_std_n": float(fz.std())}
+
+
+def pedal_metrics(rec, prefix: str, body, schedule: OperationSchedule, diag, dt: float) -> dict:
+    t = rec.times(f"{prefix}crank_true")
+    true = rec.values(f"{prefix}crank_true")
+    advance = true - true[0]
+    goal = schedule.samples[-1].theta_c - schedule.theta_c0
+    done = np.flatnonzero(advance >= goal - 1 * DEG)
+    passive = force_errors(rec, prefix, 2 * dt, 0.0)
+    active_fz, cos_term = active_samples(rec, prefix, 2 * dt)
+    swaps = np.mod([a for _, a, _ in diag.log], 2 * np.pi) / DEG
+    expected = np.where(np.abs(swaps - 110) < np.abs(swaps - 290), 110.0, 290.0)
+    travel = rec.values(f"{prefix}travel")[-1]
+    return {
+        "passive_force_mean_n": float(passive.mean()),
+        "passive_force_rms_error_n": float(np.sqrt(np.mean((passive - F_TRG) ** 2))),
+        "passive_force_min_n": float(passive.min()),
+        "active_force_mean_n": float(active_fz.mean()),
+        "active_force_cos_corr": float(np.corrcoef(active_fz, cos_term)[0, 1]),
+        "role_swaps": len(diag.log),
+        "revolutions_x2": int(round(2 * goal / (2 * np.pi))),
+        "swap_angles_deg": swaps.tolist(),
+        "swap_angle_error_deg": float(np.abs(swaps - expected).max()) if len(swaps) else float("nan"),
+        "crank_advance_deg": float(advance[-1] / DEG),
+        "crank_estimate_error_deg": float(np.abs(unwrap_from(rec.values(f"{prefix}crank_est"), true[0])
+                                                 - true).max() / DEG),
+        "revolution_time_s": float(t[done[0]]) if done.size else float("nan"),
+        "eq_3_20_time_s": goal / D_THETA_C * 2 * dt,
+        "revolution_time_ratio": float(t[done[0]] / (goal / D_THETA_C * 2 * dt)) if done.size else float("nan"),
+        "travel_m": float(travel),
+        "travel_per_rev_m": float(travel / advance[-1] * 2 * np.pi),
+        "travel_nominal_m": travel_distance(advance[-1], TRICYCLE.travel_per_rev),
+    }
+
+
+def active_samples(rec, prefix: str, wait: float) -> tuple[np.ndarray, np.ndarray]:
+    """The active foot's f_z after transients and 1/|cos θ_c| at the same ticks (true θ_c, §3.5.3)."""
+    t = rec.times(f"{prefix}crank_true")
+    inv_cos = 1 / np.maximum(np.abs(np.cos(rec.values(f"{prefix}crank_true"))), 1e-3)
+    fz, term = [], []
+    for side in SIDES:
+        active = rec.values(f"{prefix}active_{side}")
+        keep = settled(t, active, wait) & (active == 1.0)
+        fz.append(rec.values(f"{prefix}fz_{side}")[keep])
+        term.append(inv_cos[keep])
+    return np.concatenate(fz), np.concatenate(term)
+
+
+def _plot_pedaling(ctx, diag) -> None:
+    """Fig. 3.22 (foot f_z against the 150 N target, active phases shaded) and the crank angle."""
+    rec = ctx.recorder
+    runs = [("", "active/passive (Fig. 3.22-(II))")]
+    if "both_crank_true" in rec:
+        runs.append(("both_", "both active, crank model off (Fig. 3.22-(I))"))
+    with ctx.figure("foot_forces", len(runs) + 1, 1, figsize=(10, 3.2 * (len(runs) + 1)), sharex=True) as (fig, ax):
+        for axis, (prefix, title) in zip(ax, runs):
+            t = rec.times(f"{prefix}crank_true")
+            for side, color in (("left", "C0"), ("right", "C3")):
+                axis.plot(t, rec.values(f"{prefix}fz_{side}"), color=color, lw=0.8, label=f"{side} foot f_z")
+                if prefix == "":
+                    axis.fill_between(t, 0, 1, where=rec.values(f"active_{side}") > 0.5, color=color, alpha=0.08,
+                                      transform=axis.get_xaxis_transform(), label=f"{side} leg active")
+            axis.axhline(F_TRG, color="k", ls="--", lw=1, label="f^trg_z = 150 N")
+            axis.set_ylabel("f_z from pedal [N]")
+            axis.set_title(title, fontsize=9)
+            axis.legend(fontsize=7, loc="upper right", ncol=3)
+        t = rec.times("crank_true")
+        true = rec.values("crank_true")
+        ax[-1].plot(t, true / DEG, label="true crank joint (evaluation only)")
+        ax[-1].plot(t, unwrap_from(rec.values("crank_est"), true[0]) / DEG, "--", label="estimated from the feet (method (a))")
+        for ts, _, _ in diag.log:
+            for axis in ax:
+                axis.axvline(ts, color="k", lw=0.8, ls=":")
+        ax[-1].set_ylabel("θ_c [deg]")
+        ax[-1].set_xlabel("time [s] (dotted: role swaps, Eq. 3.19)")
+        ax[-1].legend(fontsize=8)
+
+
+# --- E1: steering ----------------------------------------------------------------------------------
+
+
+def hand_forces(hands: dict, snapshot) -> dict:
+    """The two-hand grasp's forces (vehicle frame, N): ``internal`` ‖(f_L − f_R)/2‖, the classic
+    internal force of a two-hand grasp; ``squeeze``, its part along the hand-to-hand line, positive
+    when the hands press the handle together (the environment pushes each hand outward); ``net``
+    ‖f_L + f_R‖, the force the hands put on the handle, which its bearing takes except for the part
+    that turns it. f are the environment's forces on the hands (f^trg = 0 for both arms, Table 3.4)."""
+    f_l, f_r = hands["left"].force(snapshot), hands["right"].force(snapshot)
+    u = hands["left"].point(snapshot) - hands["right"].point(snapshot)
+    half = (f_l - f_r) / 2
+    return {"internal": float(np.linalg.norm(half)), "squeeze": float(half @ u / np.linalg.norm(u)),
+            "net": float(np.linalg.norm(f_l + f_r))}
+
+
+def steer_schedule(dt_transition: float, limit: float) -> OperationSchedule:
+    """E1's command: θ_h from 0 to −limit, then to +limit, by Δθ_h (§3.5.2)."""
+    return OperationSchedule(0.0, 0.0, [(-limit, 0.0), (limit, 0.0)], dt_transition, D_THETA_H, D_THETA_C)
+
+
+def steer_run(rec, prefix: str, body, module, hands, schedule, active_of, diag=None, progress=None) -> None:
+    """Steer through ``schedule`` (plus one sample to settle), logging under ``prefix``: handle angle
+    (true and estimated), the squeeze between the hands, and which arm is active."""
+
+    def log(snap):
+        est = diag.angle if diag is not None and diag.angle is not None else estimate_handle_angle(
+            {k: h.point(snap) for k, h in hands.items()})
+        signals = {"handle_true": snap["q:handle"], "handle_est": est, **hand_forces(hands, snap)}
+        signals.update({f"active_{side}": float(active_of(side)) for side in SIDES})
+        rec.record(snap["t"], **{f"{prefix}{k}": v for k, v in signals.items()})
+
+    drive(body, [module], schedule.duration + 2 * schedule.phase, log, progress)
+
+
+def sample_end_errors(rec, prefix: str, schedule: OperationSchedule) -> np.ndarray:
+    """True θ_h minus the commanded θ_h at the end of each sample (after its passive phase)."""
+    t, true = rec.times(f"{prefix}handle_true"), rec.values(f"{prefix}handle_true")
+    ends = np.searchsorted(t, [s.t0 + 2 * schedule.phase - 1e-9 for s in schedule.samples])
+    return true[np.minimum(ends, len(t) - 1)] - np.array([s.theta_h for s in schedule.samples])
+
+
+@scenario(
+    "humanoid.tricycle-steering",
+    source="seed 000 §3.5.2, Eqs. 3.2, 3.13–3.14, 3.19, Fig. 3.17",
+    summary="E1: HRP2 steers −25° → +25° with active/passive arms (swap at 0°), vs. two active arms",
+    params=[
+        Param("time_scale", 1.0, "Δt = 0.8 s × time_scale (1 = the thesis's lab setting)", lo=0.1, hi=1.0),
+        Param("limit_deg", 25.0, "steering amplitude Θ_H [deg] (Table 3.4: 25°)", lo=5.0, hi=25.0),
+        Param("handle_error_mm", 10.0, "true steering axis ahead of the nominal model [mm] (spec §5.4 check 9)",
+              lo=0.0, hi=30.0),
+        Param("both_active", 1, "also run the both-active comparison (1) or not (0)", choices=(0, 1)),
+    ],
+    checks=[
+        Check("max_handle_error_deg", "<=", D_THETA_H / DEG,
+              "spec §5.4 check 7: each commanded θ_h reached within one Δθ_h step (5°)"),
+        Check("role_swaps", "==", 1, "thesis §3.5.2 / Eq. 3.19: one swap, at θ_h^init = 0"),
+        Check("swap_angle_deg", "<=", 1.0, "Eq. 3.19 at 0°; derived: hysteresis 0.5° plus method (a) error"),
+        Check("internal_force_rms_n", "<", "internal_force_both_active_rms_n",
+              "thesis claim §3.3.2 (spec §5.4 check 9): the passive arm relieves the squeeze two active arms build"),
+    ],
+    thesis={
+        "steering_range_deg": ThesisValue([-25.0, 25.0], "seed 000 §3.5.2, Table 3.4", "handle_range_deg"),
+        "switch_angle_deg": ThesisValue(0.0, "seed 000 Eq. 3.19 (θ_h^init = 0)", "swap_angle_deg"),
+    },
+    video=True,
+)
+def tricycle_steering(ctx):
+    """E1 (Fig. 3.17): the left arm active from 0 to −25° and back, the right arm active after the
+    measured handle passes 0°, up to +25° (§3.5.2). The comparison runs the same command with both
+    arms active on the nominal grip plans. Forces are counted after the first sample (2Δt).
+
+    What happens (default run, handle axis 10 mm off): the handle follows every 5° command within
+    2° (±24.7° reached), the roles swap once at +0.5° — E1 reproduces. The thesis's argument for the
+    passive arm (§3.3.2; spec §5.4 check 9 is a [PROPOSAL]) does **not** show here: the internal
+    force ‖(f_L − f_R)/2‖ is 23.4 N RMS with active/passive against 23.6 N with both arms active,
+    both growing to ≈40 N at ±25°. Why, as far as we can tell: a rigid handle turned about a
+    shifted axis keeps the grips' distance, so an axis error does not make the hands squeeze (the
+    squeeze along the hand line stays below 6 N in both runs); it makes them push the handle
+    against its bearing and twist it, and Table 3.4's impedance — ours too — is position-only,
+    while the 6-DoF weld grasp (Table 3.1) transmits the orientation error of the hand targets
+    (taken from the nominal handle) as wrist forces in both configurations. The check passes by
+    1 %, which we do not count as a reproduction.
+    """
+    p = ctx.params
+    dt, limit = DELTA_T * p["time_scale"], p["limit_deg"] * DEG
+    error = (p["handle_error_mm"] / 1000, 0.0, 0.0)
+    schedule = steer_schedule(dt, limit)
+    body = riding.build_riding(handle_error=error)
+    hands = riding_limbs(body, "hand")
+    diag = handle_diagnostic(hands)
+    arms = role_switcher("arms", "handle", hands, {arm: hand_plan(arm) for arm in SIDES}, diag,
+                         active_arm(0.0, heading=-1.0), schedule, ARM_GAINS, CONTROL_PERIOD,
+                         {arm: limb.reachable for arm, limb in hands.items()})
+    video = video_of(ctx, body, azimuth=160.0, elevation=-30.0, distance=2.0)
+    try:
+        steer_run(ctx.recorder, "", body, arms, hands, schedule, lambda s: arms.active == f"arms:{s}-active", diag,
+                  lambda f: ctx.progress(0.6 * f, "active/passive"))
+    finally:
+        if video is not None:
+            video.close()
+    metrics = steer_metrics(ctx.recorder, "", schedule, dt)
+    swaps = [a for _, a, _ in diag.log]
+    metrics.update(role_swaps=len(swaps), swap_angle_deg=float(np.abs(swaps).max() / DEG) if swaps else float("nan"),
+                   unreachable_ticks=sum(limb.unreachable for limb in hands.values()))
+    if p["both_active"]:
+        body = riding.build_riding(handle_error=error)
+        hands = riding_limbs(body, "hand")
+        both = LimbPair("arms:both-active", "handle", hands, {arm: "active" for arm in SIDES},
+                        {arm: hand_plan(arm) for arm in SIDES}, schedule, ARM_GAINS, CONTROL_PERIOD)
+        steer_run(ctx.recorder, "both_", body, both, hands, schedule, lambda s: True, None,
+                  lambda f: ctx.progress(0.6 + 0.35 * f, "both active"))
+        both_metrics = steer_metrics(ctx.recorder, "both_", schedule, dt)
+        metrics.update(internal_force_both_active_rms_n=both_metrics["internal_force_rms_n"],
+                       squeeze_both_active_rms_n=both_metrics["squeeze_rms_n"],
+                       net_force_both_active_rms_n=both_metrics["net_force_rms_n"],
+                       max_handle_error_both_active_deg=both_metrics["max_handle_error_deg"])
+    ctx.sim_time_s = float(sum(ctx.recorder.times(f"{pre}handle_true")[-1] for pre in ("", "both_")
+                               if f"{pre}handle_true" in ctx.recorder))
+    _plot_steering(ctx, schedule, diag)
+    return metrics
+
+
+def steer_metrics(rec, prefix: str, schedule: OperationSchedule, dt: float) -> dict:
+    t = rec.times(f"{prefix}handle_true")
+    late = t >= 2 * dt
+    true = rec.values(f"{prefix}handle_true")
+
+    def rms(name):
+        return float(np.sqrt(np.mean(rec.values(f"{prefix}{name}")[late] ** 2)))
+
+    return {"max_handle_error_deg": float(np.abs(sample_end_errors(rec, prefix, schedule)).max() / DEG),
+            "handle_range_deg": [float(true.min() / DEG), float(true.max() / DEG)],
+            "internal_force_rms_n": rms("internal"), "squeeze_rms_n": rms("squeeze"), "net_force_rms_n": rms("net")}
+
+
+def _plot_steering(ctx, schedule: OperationSchedule, diag) -> None:
+    """Handle angle (commanded, true, estimated) and the squeeze between the hands, both configurations."""
+    rec = ctx.recorder
+    with ctx.figure("steering", 2, 1, figsize=(10, 6.4), sharex=True) as (fig, ax):
+        t = rec.times("handle_true")
+        ax[0].step([s.t0 for s in schedule.samples], [s.theta_h / DEG for s in schedule.samples], where="post",
+                   color="0.5", label="commanded θ_h (Δθ_h = 5°)")
+        ax[0].plot(t, rec.values("handle_true") / DEG, label="true handle joint (evaluation only)")
+        ax[0].plot(t, rec.values("handle_est") / DEG, "--", label="estimated from the hands (method (a))")
+        if "both_handle_true" in rec:
+            ax[0].plot(rec.times("both_handle_true"), rec.values("both_handle_true") / DEG, ":",
+                       label="true, both arms active")
+        ax[0].set_ylabel("θ_h [deg]")
+        ax[1].plot(t, rec.values("internal"), color="C0", label="internal ‖(f_L − f_R)/2‖, active/passive")
+        ax[1].plot(t, rec.values("squeeze"), color="C0", lw=0.7, ls="--", label="squeeze, active/passive")
+        if "both_internal" in rec:
+            tb = rec.times("both_internal")
+            ax[1].plot(tb, rec.values("both_internal"), color="C1", label="internal, both active")
+            ax[1].plot(tb, rec.values("both_squeeze"), color="C1", lw=0.7, ls="--", label="squeeze, both active")
+        ax[1].axhline(0.0, color="k", lw=0.8, ls=":")
+        ax[1].set_ylabel("force between the hands [N]")
+        for axis in ax:
+            axis.fill_between(t, 0, 1, where=rec.values("active_right") > 0.5, color="C3", alpha=0.08,
+                              transform=axis.get_xaxis_transform(), label="right arm active")
+            for ts, _, _ in diag.log:
+                axis.axvline(ts, color="k", lw=0.8, ls=":")
+            axis.legend(fontsize=7, loc="upper left")
+        ax[1].set_xlabel("time [s] (dotted: role swap, Eq. 3.19)")

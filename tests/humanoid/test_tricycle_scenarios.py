@@ -1,0 +1,85 @@
+"""HRP2 on the tricycle through the operation algorithm (seed 000 §3.5.1–3.5.3): the HRP2 Limb
+adapter (FK point, F/T force, IK command with the reachability gate) and shortened runs of the
+E1/E2/E4 scenarios (Δt scaled down, fewer samples)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from shintai.humanoid import riding
+from shintai.humanoid.constants import DEG, THETA_C_INIT
+from shintai.humanoid.hrp2_limbs import riding_limbs
+from shintai.humanoid.vehicles.tricycle import grip_position, pedal_position
+from shintai.scenarios.runner import run_scenario
+
+
+@pytest.fixture(scope="module")
+def seated():
+    body = riding.build_riding(theta_c=THETA_C_INIT)
+    return body, riding_limbs(body, "foot"), riding_limbs(body, "hand")
+
+
+def test_points_are_the_nominal_pedals_and_grips_in_the_vehicle_frame(seated):
+    body, feet, hands = seated
+    snap = body.snapshot()
+    for side in ("left", "right"):
+        assert feet[side].point(snap) == pytest.approx(pedal_position(THETA_C_INIT, side[0]), abs=1e-3)
+        assert hands[side].point(snap) == pytest.approx(grip_position(0.0, side[0]), abs=1e-3)
+
+
+def test_ik_reaches_the_next_pedal_point_and_gates_an_unreachable_one(seated):
+    body, feet, _ = seated
+    right = feet["right"]
+    target = pedal_position(THETA_C_INIT + 10 * DEG, "r")
+    result = right.solve(target)
+    assert result.ok and result.residual[0] < 1e-4
+    assert right.reachable(target)
+    far = target + [0.0, 0.0, 1.0]  # a metre above the pedal: out of the leg's reach
+    assert not right.reachable(far)
+    before = right.q.copy()
+    command = right.command(far, body.snapshot())
+    assert right.unreachable == 1 and list(command.values()) == pytest.approx(before)  # Eq. 3.14: hold
+
+
+def test_pressing_into_the_pedal_reads_a_plausible_downward_force():
+    """Commanding the sole 5 mm into the right pedal (crank held by the other foot and the crank
+    friction) raises the measured f_z: pressing down gives +z, of the order of the servo stiffness."""
+    body = riding.build_riding(theta_c=THETA_C_INIT)
+    feet = riding_limbs(body, "foot")
+    right = feet["right"]
+    hold = {j: q for limb in feet.values() for j, q in zip(limb.joints, limb.q)}
+    for _ in range(125):  # 0.5 s holding the seated posture: the legs' weight rests on the pedals
+        body.apply(hold)
+        body.step()
+    before = right.force(body.snapshot())
+    goal = right.point(body.snapshot()) - [0.0, 0.0, 0.005]
+    for _ in range(125):
+        body.apply({**hold, **right.command(goal, body.snapshot())})
+        body.step()
+    after = right.force(body.snapshot())
+    assert 20.0 < before[2] < after[2] - 20.0 < 1000.0
+    assert np.hypot(*after[:2]) < 0.5 * after[2]
+
+
+def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force():
+    """E2/E4 shortened: Δt = 0.2 s, a third of a revolution (one swap at 110°), a short both-active run."""
+    out = run_scenario("humanoid.tricycle-pedaling", overrides={
+        "time_scale": "0.25", "revolutions": "0.34", "both_active_revolutions": "0.1"}, quiet=True)
+    assert out.get("error") is None, out.get("error")
+    m = out["metrics"]
+    assert m["role_swaps"] == 1 and m["swap_angles_deg"][0] == pytest.approx(110.5, abs=1.0)
+    assert 0.9 * 150 <= m["passive_force_mean_n"] <= 1.1 * 150
+    assert m["travel_per_rev_m"] == pytest.approx(2.45, rel=0.02)
+    assert m["unreachable_ticks"] == 0 and math.isfinite(m["both_active_force_rms_error_n"])
+
+
+def test_steering_short_run_swaps_at_0_and_reaches_both_limits():
+    """E1 shortened: ±10° with Δt = 0.2 s; one swap at θ_h = 0, each command reached within Δθ_h."""
+    out = run_scenario("humanoid.tricycle-steering", overrides={
+        "time_scale": "0.25", "limit_deg": "10", "both_active": "0"}, quiet=True)
+    assert out.get("error") is None, out.get("error")
+    m = out["metrics"]
+    assert m["role_swaps"] == 1 and m["swap_angle_deg"] <= 1.0
+    assert m["max_handle_error_deg"] <= 5.0
+    assert m["handle_range_deg"] == pytest.approx([-10.0, 10.0], abs=1.5)
