@@ -78,5 +78,5 @@ def test_bad_parameters_are_rejected_before_running(tmp_path):
     with pytest.raises(ParameterError, match="duration_s"):
         run_scenario("snake.tracking", out=tmp_path, overrides={"duration_s": "500"})
     with pytest.raises(ParameterError, match="plant"):
-        run_scenario("snake.tracking", out=tmp_path, overrides={"plant": "mujoco"})
+        run_scenario("snake.tracking", out=tmp_path, overrides={"plant": "bullet"})
     assert get("snake.tracking").resolve({"candidates": "80"})["candidates"] == 80

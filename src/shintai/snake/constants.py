@@ -138,3 +138,274 @@ CH3_GAINS = TwoPointGains()
 TRACKING = TrackingExperiment()
 CAGING = CagingExperiment()
 PLANT = PlantSettings()
+
+
+@dataclass(frozen=True)
+class MujocoSnakeSettings:
+    """Physical build of the MuJoCo snake (mujoco_plant.py). The thesis gives none of these for the Ch. 3
+    robot (A12: masses, torques, tread, wheel radius and the lift are never given); each is *chosen*, reason
+    next to it. Link length and wheel layout come from :class:`SnakeGeometry`.
+    """
+
+    # r_w: the Ch. 4 robot of the same lab and servo family states r_w = 0.029 m (§4.5). It must exceed the
+    # link's half-height (link_radius) by more than lift_height, or a pitched link would scrape the floor.
+    wheel_radius: float = 0.029
+    wheel_half_width: float = 0.005  # m; a thin rubber tyre (thickness is ignored by the model, §2.6.1)
+    # d_tr, distance between the left and right wheels: not given (§2.6.1). XH430 body 28.5 mm wide plus a
+    # bracket and a tyre on each side; 0.08 m also keeps the body well inside the 0.5 m caging U.
+    tread: float = 0.08
+    # Link collision capsule radius: the XH430-V350-R case is 28.5 × 34 mm, so about 17 mm half-size; the
+    # 12 mm floor clearance (r_w − 0.017) exceeds lift_height, so only wheels touch the floor.
+    link_radius: float = 0.017
+    link_mass: float = 0.1  # kg; one XH430-V350-R (82 g) plus bracket per link
+    wheel_mass: float = 0.01  # kg; one wheel with hub
+    # Lift of a lifted wheel (§2.3: "slightly", no value, A14). 8 mm: clear of the floor with the servo sag
+    # under the lifted part's weight (≈ 0.3 N·m / kp ≈ 15 mrad ≈ 2 mm at 2l), yet the largest pitch angle
+    # (2·asin(8 mm / 2l) ≈ 0.12 rad) keeps the 2D model's zero-pitch approximation (§2.3).
+    lift_height: float = 0.008
+    # Least-squares weight of a grounded wheel's height and axle-tilt rows in mujoco_plant.lift_profile
+    # (a lifted wheel's: 1). Chosen 10: with equal weights the support kept ~2 mm residuals, the rigid
+    # body rocked onto other wheels and its long lifted tail touched down 30 % of the time; with 10, < 5 %.
+    lift_ground_weight: float = 10.0
+    # Position servo (XH430-V350-R, commanded by angle and angular velocity, §3.3): PD with velocity
+    # feed-forward, torque = kp (ψ_cmd − ψ) + kv (ψ̇_cmd − ψ̇), clamped at the stall torque. At the factory
+    # P gain the XH430 reaches its stall torque at about 0.2 rad of error (kp ≈ 20 N·m/rad); its P gain goes
+    # 20× higher. kp 60 N·m/rad: the lifted tail (4 links, ≈ 0.6 N·m about the last grounded wheel's pitch
+    # joint) then sags 10 mrad ≈ 3 mm at its tip, well inside lift_height; at 20 N·m/rad it sagged onto
+    # the floor. kv 1 N·m·s/rad: ζ = kv / (2 √(kp J)) ≈ 0.65 with J ≈ the armature.
+    servo_kp: float = 60.0
+    servo_kv: float = 1.0
+    servo_torque: float = 4.1  # N·m; XH430-V350-R stall torque at 12 V (datasheet)
+    # Reflected rotor inertia of a 353.5:1 gear head, about 1e−7 kg·m² × 353.5² ≈ 0.01 kg·m².
+    servo_armature: float = 0.01
+    wheel_damping: float = 1e-5  # N·m·s/rad; ball-bearing hub, "rolls almost freely" (§2.1)
+    # Tyre friction (slide, torsion, roll). §2.1 assumes no slip along the axle: rubber μ = 1 on the floor.
+    wheel_friction: tuple[float, float, float] = (1.0, 0.005, 0.0001)
+    body_friction: float = 0.3  # μ of links, box, door and cart (plastic / cardboard on the floor)
+    # Contact model for the passive wheels (STACK.md): condim 6 with elliptic cones and impratio ≈ 10
+    # made side slip about 0.1 % of the forward speed. MuJoCo uses the larger condim of a pair.
+    wheel_condim: int = 6
+    impratio: float = 10.0
+    timestep: float = 0.002  # s, physics step
+    servo_period: float = 0.01  # s; servo targets are ramped in these steps within one control period δt
+    # Mocap (OptiTrack V120:Trio, §3.3): markers on a rigid body about 5 cm across, so a position noise σ
+    # gives a heading noise of about σ / 0.05 m.
+    marker_span: float = 0.05
+
+    def __post_init__(self) -> None:
+        if not self.wheel_radius > self.link_radius + self.lift_height:
+            raise ValueError(f"wheel_radius {self.wheel_radius} must exceed link_radius + lift_height = "
+                             f"{self.link_radius + self.lift_height} m (links would touch the floor)")
+        ratio = self.servo_period / self.timestep
+        if round(ratio) < 1 or abs(ratio - round(ratio)) > 1e-9:
+            raise ValueError(f"servo_period {self.servo_period} s must be a whole multiple of timestep {self.timestep} s")
+
+
+MUJOCO_SNAKE = MujocoSnakeSettings()
+
+
+# ------------------------------------------------------------------------------- Ch. 4: two planes (§4.5)
+
+CH4_ROBOT = SnakeGeometry(n=9, l=0.0905, joint_limit=PI / 2)  # §4.5: n = 9, l = 0.0905 m, ψ_lim = π/2 rad
+
+
+@dataclass(frozen=True)
+class TwoPlaneSettings:
+    """Two-plane locomotion, §4.5: values common to both conditions, then the ones the text leaves open (A19)."""
+
+    r_w: float = 0.029  # m, wheel radius; §4.5
+    dt: float = 0.2  # s, control period; §4.5
+    n_h: int = 3  # head part of the head adaptation (= head transition); §4.5
+    n_c_max: int = 2  # rear-end condition n_c < n_{c_max}; §4.5
+    eps_d: float = 0.029  # m, front-end condition d_e < ε_d; §4.5 (trial and error, §4.2.4)
+    # K_h of (4.14): not given (A19). Chosen k_h·I_3 with k_h = 1, the value of k_c and k_p in Table 4.1.
+    k_h: float = 1.0
+    # ε_1 of §4.4.1 (head transition done when r_{1,d} − r_1 < ε_1): not given (A19). Chosen as a bound on
+    # max|r_{1,d} − r_1| (m and rad) small enough that laying the front part exactly on the front plane at
+    # the switch (the plane-part model assumes it, §4.3.2) moves the tail, 1.5 m away, by ≤ 0.15 mm.
+    eps_1: float = 1e-4
+    # "Front shift complete": no test in the text (A19). Chosen |ψ_{c,1}| < 1e−4 rad. The landed pitch joint
+    # keeps that residual (it is no input in the front part), and the residuals of the 8 landings add up
+    # along the body: 1e−3 rad left 2 mm at the tail; 1e−4 rad keeps it near 0.2 mm, for ~2.3 s more per
+    # landing at K'_c = 1. K'_c of (4.28) is not given: chosen K_c, padded to 4×4.
+    front_shift_tol: float = 1e-4
+    # Plant: RK4 steps per control period (0.05 s); tests/snake/test_two_plane.py checks them against 40.
+    rk4_steps: int = 4
+
+
+@dataclass(frozen=True)
+class TwoPlaneCondition:
+    """One condition of §4.5: the front-plane pose and its row of Table 4.1 (K_c = k_c I_3, K_p = k_p I_3)."""
+
+    name: str
+    p_f: tuple[float, float, float]  # m, origin of Σ_f (mocap marker on the front plane); §4.5
+    theta_f: tuple[float, float, float]  # rad, [roll, pitch, yaw] of Σ_f; §4.5
+    d_d: float  # m, desired height of the lifted connection wheels in V_2 (4.35); Table 4.1
+    d_r: float  # m, normalising range of V_2 (4.35); Table 4.1
+    k_c: float  # K_c = k_c I_3 (4.18); Table 4.1 (lower-case: read as a scalar gain, spec §3.2)
+    k_p: float  # K_p = k_p I_3 (4.16); Table 4.1
+    k_v: float  # redundancy gain (4.19); Table 4.1
+    k_u1: float  # weight of V_1 (joint limits) (4.33); Table 4.1
+    k_u2: float  # weight of V_2 (plane edges) (4.33); Table 4.1
+    v_p: float  # m/s, head speed of (4.36); Table 4.1
+    A: float  # m, amplitude of (4.36); Table 4.1
+    T: float  # s, period of (4.36); Table 4.1
+
+
+CONDITION_1 = TwoPlaneCondition("condition 1 (front plane rolled)", (0.595, 0.146, 0.0970), (-0.107, 0.0, 0.0),
+                                0.272, 0.272, 1.0, 1.0, 3.0, 0.7, 0.3, 0.01, 0.25, 90.0)
+CONDITION_2 = TwoPlaneCondition("condition 2 (front plane pitched)", (0.593, 0.140, 0.0673), (0.0, -0.0609, 0.0),
+                                0.181, 0.181, 1.0, 1.0, 2.0, 0.7, 0.3, 0.01, 0.3, 90.0)
+TWO_PLANE = TwoPlaneSettings()
+
+
+@dataclass(frozen=True)
+class TwoPlaneScene:
+    """What §4.5 leaves open but a simulation needs (A19, A21): plane edges, body thickness, initial posture.
+
+    All chosen. The front plane is the rectangle ^f x ∈ [edge_x, edge_x + length], |^f y| ≤ half_width of Σ_f.
+    """
+
+    # Near edge of the front plane, in Σ_f. p_f is the mocap marker *on* the plane (§4.5): taken 10 cm in.
+    edge_x: float = -0.10
+    gap: float = 0.05  # m, horizontal gap from the rear plane's end to the front edge ("a gap", §4.1)
+    length: float = 4.0  # m; with half_width, larger than anything the run reaches
+    half_width: float = 1.0
+    # Body thickness for the edge clearance: the wheels are discs of radius r_w at the axles (§2.6.1); the
+    # links between them are capsules of radius 0.017 m, half the 34 mm of an XH430 servo case (the Ch. 3
+    # robot's servo, §3.3; Ch. 4 names none).
+    link_radius: float = 0.017
+    # Initial posture: §4.5 reads ψ_0 from the robot, the text gives none. Built as the posture just after
+    # the head transition (n_f = 1, rear end n_h), then the head part is turned away from it with wheel n_h
+    # fixed, so that the head transition has work to do:
+    wheel1_past_edge: float = 0.10  # m; wheel 1 lands 10 cm inside the front plane, at ^f y = 0, heading π
+    # Start of the Newton settle of joints 2..2n_h (an arch over the edge, ψ > 0 turns the tail-ward link down).
+    connection_guess: tuple[float, ...] = (-0.15, 0.0, 0.8, 0.0, -0.5)
+    # Yaw joints 2n_h+1, …, 2n−1 on the rear plane: a gentle S, so that no plane part starts at singular
+    # configuration I (parallel or concurrent axles, §2.3.4).
+    rear_yaw: tuple[float, ...] = (0.3, 0.3, 0.0, -0.3, -0.3, 0.0)
+    # Added to joints 1..2n_h (wheel n_h fixed): wheel 1 starts 7 mm high, tilted κ ≈ 0.04, λ' ≈ −0.13 rad.
+    head_offset: tuple[float, ...] = (0.1, -0.12, 0.05, 0.05, -0.05, -0.05)
+
+
+TWO_PLANE_SCENE = TwoPlaneScene()
+
+
+@dataclass(frozen=True)
+class CagingBox:
+    """The object of the caging transport, §3.4.1 ("the white box in the middle of Fig. 3.9"); the thesis
+    gives no size, mass or friction (A12), all chosen."""
+
+    # Half sizes (m): a 12 × 12 × 10 cm cardboard box. The U of φ(0) leaves about 0.44 × 0.49 m clear
+    # inside (body width 2·(tread/2 + tyre) ≈ 0.09 m), so the box fits with several cm all round.
+    half: tuple[float, float, float] = (0.06, 0.06, 0.05)
+    mass: float = 0.15  # kg; an empty cardboard box (μ = body_friction = 0.3: 0.44 N to push it)
+    # Initial centre (m): inside the U of φ(0) at w̃_h(0) (spec §4.2), 5 cm clear of the U's bottom
+    # (its inner wheels at x ≈ −0.44), midway between the sides (y ≈ 0 and −0.59).
+    xy: tuple[float, float] = (-0.33, -0.30)
+
+
+CAGING_BOX = CagingBox()
+
+
+@dataclass(frozen=True)
+class DoorSetup:
+    """The spring-hinged door of §3.4.3 and the motion designed for it. The thesis gives no door geometry,
+    spring, hook or trajectory numbers (A18: an operator chose targets and phases with a gamepad); every
+    value here is chosen, reason next to it. Frame: the wall is x ∈ [0, thickness], the robot starts
+    outside (x < 0); the hinge is at the origin and the leaf, closed, spans y ∈ [0, width]; it opens
+    toward the robot (the knob is pulled, §3.4.3), turning counter-clockwise seen from above.
+    """
+
+    n: int = 15  # wheels: "30 links" (§3.4.3); link length etc. "as the tracking robot" (CH3_ROBOT)
+    # Rule (iii) of §3.2.4 for this robot: at most n_c adjacent wheels lifted. The door simulation's mode
+    # parameters are not given; the §3.3 value n_c = 2 let the 30-link body lift 10 of 15 wheels, and
+    # its 6l unsupported spans sagged onto the floor (wheels lifted by the model touched, grounded ones
+    # hung), so the head went backwards while the model said forwards. n_c = 1 (the torque reason of
+    # Fig. 3.4 is stronger for the longer body); the other §3.3 gains are kept.
+    n_c: int = 1
+    width: float = 0.40  # m; a small door: twice the ≈ 0.2 m the body needs to pass (U-turn of two arms)
+    thickness: float = 0.02  # m; leaf and wall
+    height: float = 0.25  # m
+    floor_gap: float = 0.005  # m; the leaf clears the floor but not the snake's 58 mm tall wheels
+    leaf_mass: float = 0.3  # kg; a light panel (foam board)
+    # Hinge spring (N·m/rad) and damping (N·m·s/rad). Held open at 90° the spring pulls the knob with
+    # k·(π/2)/0.37 m ≈ 1 N, well below the lateral grip of the hooked body's grounded wheels (μN ≈ 1 N per
+    # wheel pair on 4–5 pairs); damping 0.05 gives ζ ≈ 0.4 with the leaf's 0.016 kg·m² (no slamming).
+    spring: float = 0.25
+    damping: float = 0.05
+    open_limit: float = 1.75  # rad; door stop at 100°; the frame stops it at 0 (closed)
+    # Knob: on the outside face, knob_from_edge from the free edge, standing knob_offset off the face: the
+    # hooked head then lies 7 cm off the leaf, so the body (±0.045 m) clears it when the door is open.
+    knob_from_edge: float = 0.03
+    knob_offset: float = 0.07
+    hook_capture: float = 0.006  # m; the hook engages when the head tip is this close to the knob
+    # Motion (operator's targets, A18). Initial U around where the leaf will swing (head arm along the
+    # closed knob's line, U-turn of 4 × −π/4, tail arm at y ≈ 0.7, outside the leaf's 0.4 m sweep); small
+    # alternating angles keep the arms off singular configuration I (parallel axles, §2.3.4).
+    approach_gap: float = 0.03  # m; the head starts this far short of the knob
+    phi0: tuple[float, ...] = (0.1, -0.1, 0.1, -0.1, 0.1, 0.05, -PI / 4, -PI / 4, -PI / 4, -PI / 4,
+                               0.05, -0.1, 0.1, -0.1, 0.0)
+    open_angle: float = PI / 2  # rad; phase 1 pulls the door to 90°
+    t_approach: float = 5.0  # s; phase 1a, head to the knob
+    # Target durations (s, on the operator's clock). Speeds as in §3.3 (0.57 m in 120 s ≈ 5 mm/s): the
+    # knob's 0.58 m arc in 120 s; the tail's 0.62 m to the doorway in 120 s and 0.38 m inside in 80 s.
+    t_pull: float = 120.0
+    t_tail: tuple[float, float] = (120.0, 80.0)
+    # Phase 2 tail waypoints (m): in front of the doorway, then inside; close to the leaf (§3.4.3: "as close
+    # to the door as possible" so that the released door lands softly on the body).
+    tail_doorway: tuple[float, float] = (-0.08, 0.17)
+    tail_inside: tuple[float, float] = (0.30, 0.15)
+    t_settle: float = 3.0  # s; after the hook is released, the door closes onto the body
+    # Phase 3, shift control [8]: the shape moves one yaw-joint spacing (2l) toward the head every
+    # shift_period s, so the body crawls tail-first at 2l / 2 s ≈ 7 cm/s; beyond the tail the curve is
+    # continued by a serpenoid of amplitude shift_amplitude and shift_wave joints per wave (the thesis's
+    # tail "snakes" through, Fig. 3.14c).
+    shift_period: float = 2.0
+    shift_amplitude: float = PI / 6
+    shift_wave: int = 8
+    t_shift: float = 60.0  # s; time allowed for phase 3
+    # Simulated time allowed for a whole run (the operator's clock stops while the robot is stopped).
+    t_budget: float = 480.0
+    # The operator gives up when the robot has not followed for this long (10 mode selections of t_σ).
+    give_up: float = 20.0
+    pass_margin: float = 0.03  # m; passed = every link origin this far beyond the wall's inner face
+
+
+DOOR = DoorSetup()
+
+
+@dataclass(frozen=True)
+class HandcartSetup:
+    """Handcart steering, §3.4.2: the double-arm model (2.35) with n = 15, head and tail raised, pushing a
+    cart's handle. n_h, n_t, the modes, gains, t_end and the cart are not given (A17); all chosen here."""
+
+    n: int = 15  # §3.4.2 "n = 15"
+    # Base wheels n_h..n_t on the floor. n_h = 3 and n_t = 12 give two equal arms of 6 links (0.41 m):
+    # the head part (joints 1–6, wheels 1–2 raised) and the tail part (joints 24–29, wheels 13–15 raised;
+    # wheel n is the tail tip); B_d then has 2n − n'_b + 1 = 21 columns for 19 rows with all 10 base wheels
+    # grounded (n_h >= 2 and the 6 tail rows need it, §2.5).
+    n_h: int = 3
+    n_t: int = 12
+    # Initial base: a U of 10 wheels (yaw joints 7–23) with arms 0.42 m apart, opening toward +x; the arms
+    # rise at γ from wheels n_h and n_t (pitch joints 2n_h and 2n_t) and level off two wheels on (joints 2 and
+    # 28), so both tips point +x, level, 0.11 m up, side by side (FK: head (0.40, 0), tail (0.40, 0.42)).
+    base_yaw: tuple[float, ...] = (0.1, -0.1, -PI / 5, -PI / 5, -PI / 5, -PI / 5, -PI / 5, 0.1, -0.1)
+    arm_pitch: float = 0.3
+    advance: float = 0.5  # m; c_{d,e}: both ends +0.5 m in x, the rest held (§3.4.2, read as in A17)
+    t_end: float = 120.0  # s; as §3.3
+    # Base modes: wheels n_h and n_t always grounded (the model assumes them on the plane, (2.16), (2.29)),
+    # at most n_c = 1 lifted in a row (the reason of DoorSetup.n_c), at least n_g grounded.
+    n_c: int = 1
+    n_g: int = 4
+    # Cart: a 0.40 × 0.62 m board on four fixed-axle wheels (it rolls along x only, like a cart pushed
+    # straight) with a handle bar across its rear at the tips' height. Light (0.5 kg) so that the pushing
+    # force (rolling resistance and acceleration) stays far below the tips' servo torques.
+    cart_half: tuple[float, float, float] = (0.20, 0.31, 0.01)
+    cart_mass: float = 0.5
+    cart_wheel_radius: float = 0.03
+    bar_radius: float = 0.008
+    bar_gap: float = 0.01  # m between the head tip's capsule end and the bar at the start
+
+
+HANDCART = HandcartSetup()

@@ -16,9 +16,8 @@ Frames and conventions (§2.1, spec §1.1, §2.1, errata A1–A3):
 Code indices are 0-based: thesis wheel i is index i−1 and φ[k] is thesis φ_{k+1}. A :class:`Configuration`
 holds the trigonometry of one state, computed once and shared by every matrix of that state.
 
-The 3D models of §2.5 (head raised, double arm) and the wheel–plane relation of §2.6 are not here yet;
-they extend this chain with the pitch joints (ψ ∈ R^{2n−1}) and reuse the planar matrices for the
-grounded base part, which have the same form anchored at a wheel (spec §2.3).
+The 3D models of §2.5 (head raised, double arm) and the wheel–plane relation of §2.6 are in
+:mod:`shintai.snake.model3d`; they extend this chain with the pitch joints (ψ ∈ R^{2n−1}).
 """
 
 from __future__ import annotations

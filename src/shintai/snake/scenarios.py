@@ -3,6 +3,12 @@
 Both run the two-point controller (two_point.py) on the kinematic plant (plant.py) in the shared Loop,
 with the §3.3 constants, K_p = 4·I_6 (A5), unwrapped angle targets (A6) and the candidate set chosen in
 constants.TwoPointGains (66 by default; ``candidates=80`` runs the literal reading).
+``plant=mujoco`` runs the same controller on the physical snake of mujoco_plant.py (mocap head pose,
+joint encoders, wheels lifted by the pitch joints; ``--video`` films it) and adds the physical checks of
+the kinematic model: ``lateral_slip_fraction`` (sideways slide / rolled distance of the floor-touching
+wheels), ``head_path_diff_vs_kinematic_m`` (head paths of the MuJoCo and the kinematic run of the same
+scenario), ``head_replay_error_m`` (the kinematic model replayed on the measured joint motion over each
+t_σ window) and ``contact_mismatch_fraction``.
 
 Error metrics: e = c_{c,d} − c_c (Fig. 3.6c). A point's position error is the Euclidean norm of its
 (x, y) error; ``*_pos_error_m`` takes the larger of head and tail. The final sample is the state after
@@ -11,7 +17,8 @@ the last step.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from contextlib import nullcontext
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -19,11 +26,12 @@ from shintai.core import Loop, Recorder
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, TRACKING, TrackingExperiment
 from shintai.snake.model import body_points, configuration, wheel_poses
+from shintai.snake.mujoco_plant import MujocoSnake, head_path_difference, replay_error
 from shintai.snake.plant import KinematicSnake
 from shintai.snake.targets import Ramp, unwrap_targets
 from shintai.snake.two_point import TwoPointController, TwoPointLaw
 
-PLANTS = {"kinematic": KinematicSnake}  # plant name -> Body class (w_h0, phi0, geometry, dt); MuJoCo later
+PLANTS = {"kinematic": KinematicSnake, "mujoco": MujocoSnake}  # plant name -> Body class (w_h0, phi0, geometry, dt)
 
 
 @dataclass
@@ -44,6 +52,7 @@ class TrackingRun:
     slip: np.ndarray
     candidates: int
     selections: int
+    physics: dict = field(default_factory=dict)  # MujocoSnake.slip_summary() on the MuJoCo plant
 
     @property
     def error(self) -> np.ndarray:
@@ -77,21 +86,34 @@ class TrackingRun:
 
 def simulate_tracking(duration: float, experiment: TrackingExperiment = TRACKING, candidates: int = 66,
                       switching: bool = True, plant: str = "kinematic", recorder: Recorder | None = None,
-                      name: str = "two_point", progress=None) -> TrackingRun:
-    """Run the §3.3 experiment for ``duration`` s (ramp (3.21) over t_end); mode frozen after t = 0 unless ``switching``."""
+                      name: str = "two_point", progress=None, video_path=None) -> TrackingRun:
+    """Run the §3.3 experiment for ``duration`` s (ramp (3.21) over t_end); mode frozen after t = 0 unless
+    ``switching``. ``video_path``: film the run (MuJoCo plant only)."""
     if candidates not in (66, 80):
         raise ValueError(f"candidates must be 66 or 80, got {candidates!r}")
     if plant not in PLANTS:
         raise ValueError(f"plant must be one of {sorted(PLANTS)}, got {plant!r}")
+    if video_path is not None and plant != "mujoco":
+        raise ValueError("--video needs --set plant=mujoco (the kinematic plant has nothing to render)")
     law = TwoPointLaw(CH3_ROBOT, CH3_GAINS, head_end_lifted=(candidates == 66))
     body = PLANTS[plant](experiment.w_h0, experiment.phi0, CH3_ROBOT, CH3_GAINS.dt)
     c0 = law.controlled(configuration(experiment.w_h0, experiment.phi0, CH3_ROBOT.l))
     target = Ramp(c0, unwrap_targets(c0, experiment.c_e), experiment.t_end)
-    controller = TwoPointController(law, target, CH3_GAINS.t_sigma if switching else None, name=name)
+    return run_two_point(body, law, target, duration, CH3_GAINS.t_sigma if switching else None, recorder, name,
+                         progress, video_path)
+
+
+def run_two_point(body, law: TwoPointLaw, target, duration: float, select_period: float | None,
+                  recorder: Recorder | None = None, name: str = "two_point", progress=None, video_path=None,
+                  modules=()) -> TrackingRun:
+    """Run the two-point controller (period δt, mode selection every ``select_period``) on ``body`` toward
+    ``target`` for ``duration`` s, with extra ``modules`` (probes) in the loop; film it to ``video_path``."""
+    controller = TwoPointController(law, target, select_period, name=name)
     recorder = recorder if recorder is not None else Recorder()
-    Loop(body, [controller], recorder).run(duration, progress=progress)
+    with body.video(video_path) if video_path is not None else nullcontext():
+        Loop(body, [controller, *modules], recorder).run(duration, progress=progress)
     final = body.snapshot()
-    c_final = law.controlled(configuration(final["w_h"], final["phi"], CH3_ROBOT.l))
+    c_final = law.controlled(configuration(final["w_h"], final["phi"], law.geometry.l))
     get = lambda key: recorder.values(f"{name}.{key}")  # noqa: E731
     return TrackingRun(
         name=name,
@@ -102,12 +124,23 @@ def simulate_tracking(duration: float, experiment: TrackingExperiment = TRACKING
         grounded=get("grounded").astype(bool), mode=get("mode").astype(int), stopped=get("stopped").astype(bool),
         sigma_a=get("sigma_a"), sigma_b=get("sigma_b"), V_m=get("V_m"), slip=get("slip"),
         candidates=len(law.candidates), selections=controller.selections,
+        physics=body.slip_summary() if isinstance(body, MujocoSnake) else {},
     )
+
+
+def kinematic_comparison(run: TrackingRun, duration: float, candidates: int, switching: bool) -> dict:
+    """A MuJoCo run against the kinematic model: its slip summary, the head-path difference to the kinematic
+    plant's run of the same scenario, and the kinematic model replayed on its measured joints per t_σ."""
+    reference = simulate_tracking(duration, candidates=candidates, switching=switching, name="kinematic")
+    window = int(round(CH3_GAINS.t_sigma / CH3_GAINS.dt))
+    return {**run.physics,
+            "head_path_diff_vs_kinematic_m": head_path_difference(run.c, reference.c),
+            "head_replay_error_m": replay_error(run.c[:, :3], run.phi, run.grounded, CH3_ROBOT.l, CH3_GAINS.dt, window)}
 
 
 # ----------------------------------------------------------------------------------------------- plots
 
-def _draw_body(ax, w_h, phi, grounded, alpha=1.0, label=None):
+def draw_body(ax, w_h, phi, grounded, alpha=1.0, label=None):
     cfg = configuration(w_h, phi, CH3_ROBOT.l)
     pts = body_points(cfg)
     wheels = wheel_poses(cfg)
@@ -128,7 +161,7 @@ def plot_top_view(ctx, run: TrackingRun, name: str = "top_view") -> None:
         picks = np.unique(np.linspace(0, len(run.mode) - 1, 5).astype(int))
         labelled = []
         for j, k in enumerate(picks):
-            _draw_body(ax, run.c[k, :3], run.phi[k], run.grounded[k], alpha=0.3 + 0.7 * j / max(len(picks) - 1, 1))
+            draw_body(ax, run.c[k, :3], run.phi[k], run.grounded[k], alpha=0.3 + 0.7 * j / max(len(picks) - 1, 1))
             if all(np.hypot(*(run.c[k, :2] - p)) > 0.02 for p in labelled):  # no overlapping labels at a stall
                 ax.annotate(f"{run.t[k]:.0f} s", run.c[k, :2], fontsize=7, xytext=(3, 3), textcoords="offset points")
                 labelled.append(run.c[k, :2])
@@ -187,7 +220,8 @@ def plot_modes(ctx, run: TrackingRun, name: str = "modes") -> None:
 # ------------------------------------------------------------------------------------------- scenarios
 
 COMMON_PARAMS = (
-    Param("plant", "kinematic", "body to run: the thesis's kinematic model (MuJoCo later)", choices=tuple(PLANTS)),
+    Param("plant", "kinematic", "body to run: the thesis's kinematic model, or the physical snake in MuJoCo",
+          choices=tuple(PLANTS)),
     Param("duration_s", TRACKING.t_end, "simulated time; the ramp (3.21) keeps t_end = 120 s", lo=0.05, hi=TRACKING.t_end),
     Param("candidates", 66, "candidate modes: 66 (head end counts as lifted) or 80 (literal rules), A8",
           choices=(66, 80)),
@@ -226,16 +260,25 @@ COMMON_PARAMS = (
         "joint_limits": ThesisValue("not exceeded (Fig. 3.7)", "seed 001 §3.3", "max_abs_joint_rad"),
     },
     demo=True,
+    video=True,
 )
 def tracking(ctx) -> dict:
     p = ctx.params
     run = simulate_tracking(p["duration_s"], candidates=p["candidates"], plant=p["plant"], recorder=ctx.recorder,
-                            progress=ctx.progress)
+                            progress=ctx.progress, video_path=ctx.video_path if ctx.video else None)
     ctx.sim_time_s = float(run.t[-1])
     plot_top_view(ctx, run)
     plot_time_series(ctx, run)
     plot_modes(ctx, run)
-    return run.metrics()
+    metrics = run.metrics()
+    if p["plant"] == "mujoco":
+        metrics.update(kinematic_comparison(run, p["duration_s"], p["candidates"], switching=True))
+    return metrics
+
+
+def labelled(metric: str, label: str) -> str:
+    """``metric`` with the run's label before its unit: head_replay_error_m → head_replay_error_fixed_m."""
+    return f"{metric[:-2]}_{label}_m" if metric.endswith("_m") else f"{metric}_{label}"
 
 
 @scenario(
@@ -253,14 +296,16 @@ def tracking(ctx) -> dict:
     ),
     thesis={"claim": ThesisValue("fixed constraints stall at singular configuration II; switching continues",
                                  "seed 001 §3.1, §3.2.5")},
+    video=True,
 )
 def switching_ablation(ctx) -> dict:
     p = ctx.params
     runs = {}
     for i, (label, switching) in enumerate((("switching", True), ("fixed", False))):
+        video = (ctx.video_path if label == "switching" else ctx.out / "video_fixed.mp4") if ctx.video else None
         runs[label] = simulate_tracking(p["duration_s"], candidates=p["candidates"], switching=switching,
                                         plant=p["plant"], recorder=ctx.recorder, name=label,
-                                        progress=lambda f, i=i: ctx.progress((i + f) / 2))
+                                        progress=lambda f, i=i: ctx.progress((i + f) / 2), video_path=video)
     ctx.sim_time_s = float(sum(r.t[-1] for r in runs.values()))
     with ctx.figure("ablation", nrows=2, ncols=1, figsize=(7.5, 6.0), sharex=True) as (fig, ax):
         for label, run in runs.items():
@@ -280,4 +325,11 @@ def switching_ablation(ctx) -> dict:
         m[f"max_pos_error_{label}_m"] = rm["max_pos_error_m"]
         m[f"stopped_fraction_{label}"] = rm["stopped_fraction"]
         m[f"min_sigma_b_{label}"] = rm["min_sigma_b"]
+        if p["plant"] == "mujoco":
+            physical = kinematic_comparison(run, p["duration_s"], p["candidates"], switching=label == "switching")
+            m.update({labelled(key, label): value for key, value in physical.items()})
     return m
+
+
+from shintai.snake import scenarios_physical  # noqa: F401,E402
+from shintai.snake import scenarios_two_plane  # noqa: F401,E402
