@@ -62,12 +62,15 @@ def test_empty_input_gives_empty_output(executor):
 
 
 def test_pool_stays_alive_across_maps():
+    # Which worker takes which chunk depends on the machine's load; what must hold is that both maps
+    # ran in the same two worker processes of one pool, started once.
     with ProcessExecutor(workers=2) as pool:
         first = set(pool.map(worker_pid, range(12)))
+        workers = set(pool.pool._processes)
         second = set(pool.map(worker_pid, range(12)))
         assert os.getpid() not in first | second
-        assert second <= first
-        assert len(first) == 2
+        assert first | second <= workers and len(workers) == 2
+        assert set(pool.pool._processes) == workers
 
 
 def test_lambdas_and_local_functions_are_refused():
