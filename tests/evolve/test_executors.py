@@ -66,11 +66,11 @@ def test_pool_stays_alive_across_maps():
     # ran in the same two worker processes of one pool, started once.
     with ProcessExecutor(workers=2) as pool:
         first = set(pool.map(worker_pid, range(12)))
-        workers = set(pool.pool._processes)
+        workers = set(pool.pool()._processes)
         second = set(pool.map(worker_pid, range(12)))
         assert os.getpid() not in first | second
         assert first | second <= workers and len(workers) == 2
-        assert set(pool.pool._processes) == workers
+        assert set(pool.pool()._processes) == workers
 
 
 def test_lambdas_and_local_functions_are_refused():
