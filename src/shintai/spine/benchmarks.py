@@ -1,0 +1,69 @@
+"""Benchmark: one L/T/S/LL control tick for all 40 of Kenta's muscles against the ~1 ms period
+(§3.6.1, §4.7.3: "the control period is 1 ms"; §4.6.5: one routine per mode). Compared with the
+naive form of the same computation — a Python loop calling the per-mode law for each muscle."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from shintai.scenarios.registry import benchmark
+from shintai.spine.control import Gains, Mode, MuscleControl, law_L, law_LL, law_S, law_T
+from shintai.spine.robots import KENTA
+
+
+def _inputs(rng, m: int) -> tuple[np.ndarray, np.ndarray]:
+    return rng.normal(0.0, 1e-3, m), np.abs(rng.normal(10.0, 3.0, m))
+
+
+def naive_tick(control: MuscleControl, l, T, dt: float) -> np.ndarray:
+    """The same tick muscle by muscle, as a per-muscle firmware routine would run (reference)."""
+    g, s = control.gains, control.state
+    out = np.zeros(control.m)
+    for j in range(control.m):
+        dl = (l[j] - s.l_prev[j]) / dt
+        dT = (T[j] - s.T_prev[j]) / dt
+        mode = s.mode[j]
+        if mode == Mode.L or (mode == Mode.LL and T[j] < g.T_l):
+            s.integral[j] += (l[j] - control.l_r[j]) * dt
+        if mode == Mode.L:
+            out[j] = law_L(l[j], control.l_r[j], s.integral[j], dl, g)
+        elif mode == Mode.T:
+            out[j] = law_T(T[j], control.T_r[j], dT, g)
+        elif mode == Mode.S:
+            out[j] = law_S(T[j], l[j], control.l_0[j], dT, g)
+        else:
+            out[j] = law_LL(l[j], control.l_r[j], s.integral[j], dl, T[j], g)
+    s.l_prev, s.T_prev = l, T
+    return np.clip(out, -1.0, 1.0)
+
+
+@benchmark("spine.kenta-control-tick", "one L/T/S/LL tick for Kenta's 40 muscles vs the 1 ms control period")
+def kenta_control_tick(ticks: int = 20000) -> dict:
+    rng = np.random.default_rng(0)
+    m = KENTA.m
+    period = KENTA.control_period_s
+    results = {}
+    for name, tick in (("vectorised", lambda c, l, T: c.duty(l, T, period)),
+                       ("naive", lambda c, l, T: naive_tick(c, l, T, period))):
+        control = MuscleControl(m, Gains(k_s=3000.0), period=period)
+        control.set_modes(np.arange(m) % 4)  # 10 muscles in each of L, T, S, LL
+        l, T = _inputs(rng, m)
+        control.reset({"encoder": l, "tension": T})
+        samples = [_inputs(rng, m) for _ in range(64)]
+        n = ticks if name == "vectorised" else ticks // 10
+        for k in range(200):  # warm-up
+            tick(control, *samples[k % 64])
+        t0 = time.perf_counter()
+        for k in range(n):
+            tick(control, *samples[k % 64])
+        results[name] = (time.perf_counter() - t0) / n
+    return {
+        "muscles": m,
+        "us_per_tick": 1e6 * results["vectorised"],
+        "fraction_of_period": results["vectorised"] / period,
+        "naive_us_per_tick": 1e6 * results["naive"],
+        "speedup_vs_naive": results["naive"] / results["vectorised"],
+        "period_ms": 1e3 * period,
+    }

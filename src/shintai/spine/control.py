@@ -1,0 +1,222 @@
+"""Muscle control modes L, T, S, LL (seed 003 §4.6, eqs. 4.36–4.42, Table 4.6) and the
+interference policy of §4.7, as a :class:`shintai.core.Module` running at ~1 ms.
+
+Sign convention. The thesis's laws are self-consistent only if the duty o > 0 winds the wire in
+and ``l`` is the encoder value, which grows as the pulley winds in ("l: muscle length (the motor
+encoder value)", §4.6.1): then a muscle longer than its target (l < l_r) gets o > 0 in (4.37), a
+tension above target gets o < 0 in (4.38), and the software spring pulls when stretched
+(l < l_0 ⇒ T_r > 0 in 4.36). Read as the path length instead, L and T mode would need opposite
+output signs. So here ``l`` is the encoder reading in metres of wire wound in since the encoder
+zero: l = λ(θ_zero) − λ, with λ the muscle's path length (eq. 4.25). :func:`encoder_targets`
+converts model lengths into it, and every equation is used exactly as printed:
+
+    L  (4.37): o = −K_Pl (l − l_r) − K_Il ∫(l − l_r) dt − K_Dl dl/dt
+    T  (4.38): o = −K_Pt (T − T_r) − K_Dt dT/dt   if |T − T_r| ≥ T_t, else 0
+    S  (4.39): (4.38) with T_r = k_s (l_0 − l)                                  (4.36)
+    LL (4.40): (4.37)  if T < T_l, else 0
+
+:func:`unified_duty` is eq. 4.41 (with 4.42) for checking; as the thesis advises (§4.6.5) the
+controller runs one routine per mode, selected per muscle. Chosen where the thesis is silent:
+the output saturates to [−1, 1] (spec §2.6); the length integral is clamped so that its term
+alone cannot exceed full duty, is frozen while LL's tension limit holds the output at 0, and is
+reset when a muscle enters L or LL; dl/dt and dT/dt are backward differences of the readings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from enum import IntEnum
+
+import numpy as np
+
+from shintai.core.runtime import Module, Snapshot
+from shintai.spine.actuators import pwm_duty
+from shintai.spine.robots import KGF
+
+
+class Mode(IntEnum):
+    """§4.6: L length, T tension, S software spring, LL length with tension limit."""
+
+    L = 0
+    T = 1
+    S = 2
+    LL = 3
+
+
+_L, _T, _S, _LL = (int(m) for m in Mode)  # plain ints for the 1 ms loop (enum lookups are slow)
+
+
+@dataclass(frozen=True)
+class Gains:
+    """Table 4.6's parameters (values per muscle or shared). Units: o is a duty in [−1, 1];
+    l in m, T in N. The thesis prints no gain (spec §6.9): defaults are chosen for Cla's drive
+    (Table 3.2) at a 1 ms period — L: 0.5 mm of error is full duty; T: the tension loop closes in
+    ~10 ms through the 10 N/mm wire; dead band 0.05 kgf; LL limit 1 kgf ("small", §4.6.4);
+    teaching tension 1 kgf (§4.2.1)."""
+
+    K_Pl: float = 2000.0  # 1/m
+    K_Il: float = 2.0e4  # 1/(m s)
+    K_Dl: float = 3.0  # s/m
+    K_Pt: float = 0.10  # 1/N
+    K_Dt: float = 1.0e-3  # s/N
+    T_t: float = 0.05 * KGF  # N, dead band
+    T_l: float = 1.0 * KGF  # N, LL limit tension
+    k_s: float = 1000.0  # N/m, software spring
+    T_r: float = 1.0 * KGF  # N, T-mode target tension
+
+
+def law_L(l, l_r, integral, dl, g: Gains) -> np.ndarray:
+    """Eq. 4.37: PID on the encoder length, D on the measurement."""
+    return -g.K_Pl * (l - l_r) - g.K_Il * integral - g.K_Dl * dl
+
+
+def law_T(T, T_r, dT, g: Gains) -> np.ndarray:
+    """Eq. 4.38: PD on the tension with a dead band ±T_t."""
+    err = T - T_r
+    return np.where(np.abs(err) >= g.T_t, -g.K_Pt * err - g.K_Dt * dT, 0.0)
+
+
+def software_spring(l, l_0, k_s) -> np.ndarray:
+    """Eq. 4.36: T_r = k_s (l_0 − l), the reference tension of the software spring."""
+    return k_s * (l_0 - l)
+
+
+def law_S(T, l, l_0, dT, g: Gains) -> np.ndarray:
+    """Eq. 4.39: the tension law (4.38) tracking the software spring (4.36)."""
+    return law_T(T, software_spring(l, l_0, g.k_s), dT, g)
+
+
+def law_LL(l, l_r, integral, dl, T, g: Gains) -> np.ndarray:
+    """Eq. 4.40: length PID while T < T_l, output 0 once the tension reaches the limit."""
+    return np.where(T < g.T_l, law_L(l, l_r, integral, dl, g), 0.0)
+
+
+def step_function(x) -> np.ndarray:
+    """Eq. 4.42: f(x) = 1 for x > 0, else 0."""
+    return (np.asarray(x) > 0).astype(float)
+
+
+def unified_duty(l, l_r, integral, dl, T, T_r, dT, l_0, g: Gains) -> np.ndarray:
+    """Eq. 4.41, all modes in one expression; the mode is chosen by the parameters (Table 4.6):
+    L: K_Pt = K_Dt = 0, k_s = 0, T_l = ∞; T: length gains 0, k_s = 0; S: length gains 0, T_r = 0;
+    LL: tension gains 0."""
+    spring_ref = T_r + g.k_s * (l_0 - l)
+    length_part = step_function(g.T_l - T) * (g.K_Pl * (l - l_r) + g.K_Il * integral + g.K_Dl * dl)
+    tension_part = step_function(np.abs(T - spring_ref) - g.T_t) * (g.K_Pt * (T - spring_ref) + g.K_Dt * dT)
+    return -length_part - tension_part
+
+
+def table_4_6_gains(mode: Mode, g: Gains) -> Gains:
+    """The parameter set that makes :func:`unified_duty` one mode (Table 4.6; "—" entries set to
+    values that make them inactive, e.g. T_l = ∞ for L mode, spec §6.11)."""
+    zero_len = dict(K_Pl=0.0, K_Il=0.0, K_Dl=0.0)
+    zero_ten = dict(K_Pt=0.0, K_Dt=0.0)
+    if mode == Mode.L:
+        return replace(g, **zero_ten, k_s=0.0, T_l=np.inf)
+    if mode == Mode.T:
+        return replace(g, **zero_len, k_s=0.0)
+    if mode == Mode.S:
+        return replace(g, **zero_len, T_r=0.0)
+    return replace(g, **zero_ten, k_s=0.0)
+
+
+def encoder_targets(model_lengths, zero_lengths) -> np.ndarray:
+    """Model muscle lengths λ (eq. 4.25) → encoder targets l_r = λ(θ_zero) − λ (see the module
+    docstring); ``zero_lengths`` are the model lengths at the posture the encoders were zeroed in."""
+    return np.asarray(zero_lengths, dtype=float) - np.asarray(model_lengths, dtype=float)
+
+
+def interference_modes(lengths_from, lengths_to, lengthening: Mode) -> np.ndarray:
+    """§4.7.2: going from posture θ0 (model lengths l_r0) to θ1 (l_r1), *shortening* muscles
+    (l_r1 < l_r0) generate the change and are length controlled (L); *lengthening* ones get the
+    tension-limited ``lengthening`` mode (LL, T or S) so their interference can escape. A muscle
+    whose model length does not change is treated as shortening (chosen)."""
+    shortening = np.asarray(lengths_to) <= np.asarray(lengths_from)
+    return np.where(shortening, Mode.L, lengthening).astype(int)
+
+
+# §4.7.3's recommendations (and the §4.9.1 summary): which (shortening, lengthening) modes to use
+RECOMMENDED = {
+    "normal": (Mode.L, Mode.LL),  # normal motion; also the lowest current
+    "stiff": (Mode.L, Mode.L),  # stiffness or large force; roll-only motion or near the basic posture
+    "light_load": (Mode.LL, Mode.LL),  # arms down, small deformation: smallest model error
+    "flexible": (Mode.S, Mode.S),  # flexibility needed, k_s tuned via eq. 4.35
+}
+
+
+@dataclass
+class MuscleState:
+    """Per-muscle controller memory: the length integral and the previous readings."""
+
+    integral: np.ndarray
+    l_prev: np.ndarray | None = None
+    T_prev: np.ndarray | None = None
+    mode: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+
+
+class MuscleControl(Module):
+    """All muscles' L/T/S/LL laws at the control period, as a runtime module.
+
+    Reads ``snapshot["encoder"]`` (l, m) and ``snapshot["tension"]`` (T, N) and contributes
+    ``{"duty": o}``. Modes, targets and gains are per muscle and may change between ticks
+    (:meth:`set_modes`, :meth:`set_targets`); gains are a :class:`Gains` whose fields may be
+    scalars or (m,) arrays. Each tick's duty, and the modes, are kept as ``last_duty``.
+    """
+
+    def __init__(self, m: int, gains: Gains | None = None, period: float = 1e-3, name: str = "muscles"):
+        super().__init__(name, period)
+        self.m = m
+        self.gains = gains or Gains()
+        self.l_r = np.zeros(m)
+        self.T_r = np.full(m, self.gains.T_r, dtype=float)
+        self.l_0 = np.zeros(m)
+        self.state = MuscleState(np.zeros(m), mode=np.full(m, int(Mode.L)))
+        self.last_duty = np.zeros(m)
+
+    @property
+    def modes(self) -> np.ndarray:
+        return self.state.mode
+
+    def set_modes(self, modes) -> None:
+        """Switch modes per muscle (§4.6.5: the upper layer selects the routine). The length
+        integral restarts for muscles entering L or LL."""
+        new = np.broadcast_to(np.asarray(modes, dtype=int), (self.m,)).copy()
+        entering = (new != self.state.mode) & np.isin(new, (Mode.L, Mode.LL))
+        self.state.integral[entering] = 0.0
+        self.state.mode = new
+
+    def set_targets(self, l_r=None, T_r=None, l_0=None) -> None:
+        """Target length (L, LL), target tension (T) and spring natural length (S), per muscle."""
+        for name, value in (("l_r", l_r), ("T_r", T_r), ("l_0", l_0)):
+            if value is not None:
+                setattr(self, name, np.broadcast_to(np.asarray(value, dtype=float), (self.m,)).copy())
+
+    def set_gains(self, **changes) -> None:
+        """Change gains at run time (Table 4.6: all are dynamically adjustable)."""
+        self.gains = replace(self.gains, **changes)
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.state.l_prev = np.asarray(snapshot["encoder"], dtype=float).copy()
+        self.state.T_prev = np.asarray(snapshot["tension"], dtype=float).copy()
+
+    def duty(self, l, T, dt: float) -> np.ndarray:
+        """One control tick for all muscles: the per-mode laws, saturated and PWM-quantised."""
+        g, s = self.gains, self.state
+        dl = (l - s.l_prev) / dt
+        dT = (T - s.T_prev) / dt
+        mode = s.mode
+        is_l, is_t, is_s = mode == _L, mode == _T, mode == _S
+        length_mode = is_l | ((mode == _LL) & (T < g.T_l))
+        limit = 1.0 / np.maximum(np.asarray(g.K_Il, dtype=float), 1e-12)
+        s.integral = np.where(length_mode, np.clip(s.integral + (l - self.l_r) * dt, -limit, limit), s.integral)
+        length_law = law_L(l, self.l_r, s.integral, dl, g)
+        tension_ref = np.where(is_s, software_spring(l, self.l_0, g.k_s), self.T_r)
+        o = np.where(length_mode, length_law, np.where(is_t | is_s, law_T(T, tension_ref, dT, g), 0.0))
+        s.l_prev, s.T_prev = l, T
+        self.last_duty = pwm_duty(o)
+        return self.last_duty
+
+    def update(self, snapshot: Snapshot):
+        l = np.asarray(snapshot["encoder"], dtype=float)
+        T = np.asarray(snapshot["tension"], dtype=float)
+        return {"duty": self.duty(l, T, self.period)}

@@ -1,0 +1,614 @@
+"""The six spine robots of seed 003 ch. 3–4 as parameter sets — one place, each value with its source.
+
+"§x.y" and "Table x.y" are the thesis's (seed 003, Mizuuchi 2001); "spec" is the English
+extraction ``spec/003-part1-ch1-4.md``. The thesis gives almost no geometry (no attachment
+points, vertebra heights, block widths, masses, disc or ligament constants; spec §6.1–6.2): every
+such value here is marked "chosen, because …". Units are SI (m, kg, N, rad) unless a name says
+otherwise (``_deg``, ``_kgf``, ``_mm``).
+
+* :data:`CLA` — 5 ball joints, 8 diagonal muscles, Table 3.2 drive, tension sensors (§3.6).
+* :data:`RABBIT` — 5 ball joints, 6 helical muscles through holes, pre-compressed silicone discs (§3.5).
+* :data:`KENTA` — 10 ball joints, 10° wedge vertebrae, 40 muscles per the routing list, Table 3.3
+  motors, ligament springs (§3.7).
+* :data:`SQ43` — memory-foam / rigid spine, 2 bending DOF, the §3.2.3 design search (§3.2).
+* :data:`HANZOUS` — leaf-spring trunk, cam-adjusted effective length (§3.3).
+* :data:`BEBE` — 24 vertebrae, 36 on/off McKibben muscles in 6 regions (§4.8.2).
+
+The chain robots (Cla, Rabbit, Kenta, BeBe) carry a :class:`~shintai.spine.geometry.SpineModel`
+(``robot.model``) for the geometric model of §4.4.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from shintai.spine.geometry import Chain, MuscleSet, SpineModel
+
+G = 9.80665  # m/s², standard gravity (kgf → N)
+KGF = G  # N per kgf
+
+
+@dataclass(frozen=True)
+class MotorSpec:
+    """A muscle drive: DC motor + planetary gear + pulley (Tables 3.2, 3.3).
+
+    ``no_load_rpm``, ``stall_torque_nm`` are the motor's; ``max_tension_n`` the table's "max muscle
+    tension", used as the stall force at the wire (see :mod:`shintai.spine.actuators`).
+    """
+
+    name: str
+    motor: str
+    voltage_v: float
+    no_load_rpm: float
+    stall_torque_nm: float
+    gear_ratio: float
+    encoder_cpr: int
+    pulley_diameter_m: float
+    max_tension_n: float
+    source: str
+    # chosen, because the thesis gives no rotor inertia: the order of a Ø13–16 mm coreless maxon rotor
+    rotor_inertia_kgm2: float = 0.4e-7
+    # chosen, because the thesis gives no gear friction: back-drive needs ~2 % of stall force
+    # ("the motors are back-drivable", §4.6.4)
+    backdrive_fraction: float = 0.02
+
+    @property
+    def radius_m(self) -> float:
+        return self.pulley_diameter_m / 2
+
+    @property
+    def no_load_speed_m_s(self) -> float:
+        """Wire speed at no load: no-load rpm / gear × π d / 60."""
+        return self.no_load_rpm / self.gear_ratio * math.pi * self.pulley_diameter_m / 60.0
+
+    @property
+    def torque_constant_nm_a(self) -> float:
+        """k_t = k_e from the no-load speed at the nominal voltage (ideal DC motor)."""
+        return self.voltage_v / (self.no_load_rpm * 2 * math.pi / 60.0)
+
+    @property
+    def stall_current_a(self) -> float:
+        return self.stall_torque_nm / self.torque_constant_nm_a
+
+    @property
+    def reflected_mass_kg(self) -> float:
+        """Rotor inertia seen at the wire: J N² / r²."""
+        return self.rotor_inertia_kgm2 * self.gear_ratio**2 / self.radius_m**2
+
+    @property
+    def backdrive_force_n(self) -> float:
+        return self.backdrive_fraction * self.max_tension_n
+
+    @property
+    def encoder_step_m(self) -> float:
+        """Wire length per encoder count (16 cpr on the motor shaft; no quadrature multiplication
+        is mentioned, spec §3.1)."""
+        return math.pi * self.pulley_diameter_m / (self.encoder_cpr * self.gear_ratio)
+
+
+# Table 3.2 (Cla) = Table 3.3 group C. Max tension 320 N (Table 3.2) — 0.958 N m / 3 mm.
+CLA_MOTOR = MotorSpec("cla", "maxon RE13 2.5 W precious-metal brushes", 24.0, 17800, 14.2e-3, 67.49, 16, 6e-3,
+                      320.0, "Table 3.2")
+# Table 3.3. Group A's no-load speed is printed 17088 rpm; 17800 / 16.58 = 1073.6 rpm (the printed
+# after-gear value) so 17800 is used (erratum, spec §6.15). Groups B and C list 532 N and 240 N,
+# which imply a 4 mm radius although the pulley is Ø6 mm (spec §6.15): the table's tensions are
+# used as the stall force and its Ø6 mm pulley for speed, so both table rows are reproduced.
+KENTA_MOTOR_A = MotorSpec("A", "maxon RE13 2.5 W precious-metal brushes", 24.0, 17800, 14.2e-3, 16.58, 16, 6e-3,
+                          65.2, "Table 3.3 group A")
+KENTA_MOTOR_B = MotorSpec("B", "maxon RE16 4.5 W graphite brushes", 24.0, 14000, 34.7e-3, 84.0, 16, 6e-3,
+                          532.0, "Table 3.3 group B", rotor_inertia_kgm2=0.9e-7)
+KENTA_MOTOR_C = MotorSpec("C", "maxon RE13 2.5 W precious-metal brushes", 24.0, 17800, 14.2e-3, 67.49, 16, 6e-3,
+                          240.0, "Table 3.3 group C")
+# Table 3.3 "pulling speed at 5 kgf", for tests of the linear torque–speed line.
+TABLE_3_3_SPEED_AT_5KGF_M_S = {"A": 83.5e-3, "B": 47.5e-3, "C": 65.9e-3}
+TABLE_3_3_MAX_SPEED_M_S = {"A": 337e-3, "B": 52.3e-3, "C": 82.8e-3}
+
+
+@dataclass(frozen=True)
+class TensionSensorSpec:
+    """Cla's tension sensor (§3.6.1, Fig. 3.32–3.34, eq. 3.3): the wire is deflected sideways by
+    d = b − f/k over a length l between parallel plates squeezing an elastic layer (stiffness k)
+    and an FSR; f² l² = (F² + f²)(b − f/k)². Fig. 3.33's l, b, k and Fig. 3.34's calibration
+    curves are not in the text: all values chosen, so that f saturates at k b = 30 N (the plates
+    close: "the wire's elongation is bounded") and the 10-bit ADC reads ~30 counts/N at low
+    tension and < 1 count/N near 300 N ("high resolution at low tension", §3.6.1)."""
+
+    l_m: float = 10e-3
+    b_m: float = 1.5e-3
+    k_n_m: float = 20e3
+    fsr_half_n: float = 5.0  # FSR in a voltage divider: ADC = 1023 f / (f + f_half) — chosen
+    adc_bits: int = 10  # §3.6.1: 10-bit, 5 V
+    # chosen: series stiffness of wire + sensor seen by the muscle (Kevlar string, §3.6.1) — sets
+    # how much tension a length mismatch makes; 10 N/mm puts 0.1 mm of interference at ~1 N
+    wire_stiffness_n_m: float = 50e3
+    wire_damping_n_s_m: float = 20.0  # chosen: light damping of the wire/sensor spring
+
+
+@dataclass(frozen=True)
+class DiscSpec:
+    """Intervertebral disc as a rotational spring per joint axis (linear: Cla, Kenta, BeBe)."""
+
+    k_bend_nm_rad: float  # roll and pitch
+    k_twist_nm_rad: float  # yaw
+    damping_nms_rad: float
+    source: str
+
+
+@dataclass(frozen=True)
+class RingDiscSpec:
+    """Rabbit's annular silicone disc as ``n_ring`` compression springs on a ring (§3.5.3).
+
+    Each ring spring pushes with f(c) = k1 c + k3 c³ for compression c = t_free − d > 0 (d the
+    distance between the two vertebra faces there) and nothing in tension — the disc is only
+    pressed, never bonded (§3.4.2). Silicone stiffening under compression (k3) is what makes
+    pre-compression stiffen the joint (§3.5.3). Yaw is held by a linear twist spring. The ball
+    seats when the joint gap closes by ``ball_clearance_m`` (a stiff contact).
+    """
+
+    ring_radius_m: float
+    n_ring: int
+    t_free_m: float  # free thickness of the disc
+    gap_m: float  # distance between the faces at the design posture (< t_free: pre-compressed)
+    k1_n_m: float  # per ring spring
+    k3_n_m3: float  # per ring spring
+    k_twist_nm_rad: float
+    ball_clearance_m: float
+    k_ball_n_m: float
+    source: str
+
+
+@dataclass(frozen=True)
+class Load:
+    """A rigid mass fixed to one link (upper body, raised arms, head): mass and COM in link frame."""
+
+    name: str
+    link: int
+    mass_kg: float
+    com_m: tuple[float, float, float]
+    size_m: tuple[float, float, float]  # box half-sizes, for inertia and pictures
+
+
+@dataclass(frozen=True)
+class SpineRobot:
+    """A muscle-driven vertebra chain: geometry (``model``), drives, discs, masses."""
+
+    name: str
+    source: str
+    model: SpineModel
+    motors: tuple[MotorSpec | ServoSpec, ...]  # one per muscle
+    pull_link: tuple[int, ...]  # the link each muscle's motor sits on (its pulling point, §3.7.2)
+    disc: DiscSpec | RingDiscSpec
+    link_mass_kg: tuple[float, ...]  # links 0..n (link 0 is fixed to the world)
+    loads: tuple[Load, ...] = ()
+    block_half_m: tuple[float, float] = (0.05, 0.05)  # x, y half-size of the end blocks (pictures)
+    vertebra_radius_m: float = 0.02
+    sensor: TensionSensorSpec = field(default_factory=TensionSensorSpec)
+    control_period_s: float = 1e-3  # ~1 ms (§3.6.1, §4.7.3)
+    notes: tuple[str, ...] = ()
+
+    @property
+    def n(self) -> int:
+        return self.model.n
+
+    @property
+    def m(self) -> int:
+        return self.model.m
+
+    @property
+    def muscle_names(self) -> tuple[str, ...]:
+        return self.model.muscles.names
+
+
+# ---------------------------------------------------------------------------------------------
+# Cla (§3.6)
+# ---------------------------------------------------------------------------------------------
+
+CLA_JOINTS = 5  # §3.6.1
+CLA_SEGMENT_M = 0.030  # chosen, because not in text: Rabbit's 120 mm / 5 joints, a little larger for a humanoid
+CLA_FIRST_BALL_M = 0.020  # chosen: pelvis top face to the first ball centre
+CLA_TOP_M = 0.020  # chosen: last ball centre to the clavicle's muscle points
+# Muscle points on the pelvis/clavicle corners: half-width and half-depth chosen, because not in
+# text, to match Table 4.2's division counts n = int|q − q0| [mm] (spec §2.3, derived): for uniform
+# bending of 1°/joint ‖Δq‖ ≈ 6 mm roll, 2–3 mm pitch, ~2 mm yaw; these give 5.9 / 3.2 / 2.0 mm
+# (and 60 / 35 / 19 mm at 10°/joint against the table's 56 / 16 / 20). Roll ≫ pitch agrees with
+# "the pitch muscles pass near the rotation centre" (§4.7.2).
+CLA_HALF_WIDTH_M = 0.035
+CLA_HALF_DEPTH_M = 0.020
+CLA_LIMIT_RAD = math.radians(18.0)  # §3.6.1: about ±18° per segment per axis
+
+
+def _cla_muscles() -> MuscleSet:
+    """Cla's 8 muscles (§3.6.1, Fig. 3.31 — not in text; Appendix A names them).
+
+    "Each muscle crosses the front, back or a side of the spine diagonally; a muscle pulled by a
+    shoulder motor is attached near the diagonally opposite end of the pelvis." Fig. 3.31 is not
+    in the text, so the routing is chosen: the four CLA-* muscles (shoulder motors) cross the front
+    (RF→pelvis LF, LF→RF) and the back (RB→LB, LB→RB); the four HIP-* muscles (hip motors) cross the
+    sides (HIP-RF → clavicle right-back, HIP-RB → right-front, and the same on the left). Each runs
+    straight from block to block (no via holes: spec §6.16, the text says "crossing diagonally");
+    x forward, y left, z up, so "R" is y < 0.
+    """
+    w, d = CLA_HALF_WIDTH_M, CLA_HALF_DEPTH_M
+    top = CLA_JOINTS  # the clavicle link
+    ztop = CLA_TOP_M
+
+    def corner(side, face):
+        return (d if face == "F" else -d, -w if side == "R" else w)
+
+    paths, names = [], []
+    for side, face in (("R", "F"), ("L", "F"), ("R", "B"), ("L", "B")):
+        x, y = corner(side, face)
+        ox, oy = corner("L" if side == "R" else "R", face)
+        names.append(f"CLA-{side}{face}")
+        paths.append([(top, (x, y, ztop)), (0, (ox, oy, 0.0))])
+    for side, face in (("R", "F"), ("L", "F"), ("R", "B"), ("L", "B")):
+        x, y = corner(side, face)
+        ox, oy = corner(side, "B" if face == "F" else "F")
+        names.append(f"HIP-{side}{face}")
+        paths.append([(0, (x, y, 0.0)), (top, (ox, oy, ztop))])
+    return MuscleSet.from_paths(names, paths)
+
+
+# Masses: Cla's are not in the text; chosen. The clavicle block carries 4 motors; the arms are 4-DOF
+# servo arms (§3.6.2), 0.25 kg each with the COM 0.12 m from the shoulder; the shoulders sit 25 mm
+# in front of the spine axis (chosen, as the spine runs at the back of a human trunk).
+CLA_TRUNK_LOADS = (
+    Load("clavicle", CLA_JOINTS, 0.30, (0.0, 0.0, 0.03), (0.03, 0.05, 0.02)),
+    Load("head", CLA_JOINTS, 0.15, (0.01, 0.0, 0.10), (0.035, 0.035, 0.04)),
+)
+# E11 is run "with both arms raised straight up" (§4.7.2)
+CLA_ARMS_RAISED = (
+    Load("arm_r", CLA_JOINTS, 0.25, (0.025, -0.065, 0.16), (0.015, 0.015, 0.12)),
+    Load("arm_l", CLA_JOINTS, 0.25, (0.025, 0.065, 0.16), (0.015, 0.015, 0.12)),
+)
+CLA_ARMS_DOWN = (
+    Load("arm_r", CLA_JOINTS, 0.25, (0.025, -0.065, -0.08), (0.015, 0.015, 0.12)),
+    Load("arm_l", CLA_JOINTS, 0.25, (0.025, 0.065, -0.08), (0.015, 0.015, 0.12)),
+)
+
+
+def _cla() -> SpineRobot:
+    heights = [CLA_FIRST_BALL_M] + [CLA_SEGMENT_M] * (CLA_JOINTS - 1)
+    chain = Chain.straight(heights, CLA_LIMIT_RAD)
+    model = SpineModel(chain, _cla_muscles())
+    top = CLA_JOINTS
+    loads = CLA_TRUNK_LOADS + CLA_ARMS_RAISED
+    return SpineRobot(
+        name="Cla", source="seed 003 §3.6, Table 3.2, §4.6–4.7", model=model,
+        motors=(CLA_MOTOR,) * 8, pull_link=(top,) * 4 + (0,) * 4,
+        # chosen, because no disc constants are given (KE-109, JIS-A 20, pre-compressed by the
+        # captured ball, §3.6.1): an annulus Ø24/Ø12 mm, 4 mm thick, E ≈ 0.6 MPa bends at
+        # E I / t ≈ 2 N m/rad, doubled for the confinement of the pre-compressed ball joint. The
+        # whole spine (5 in series) is then 0.8 N m/rad, below the raised arms' gravity stiffness
+        # (≈ 1.6 N m/rad): with arms raised the discs alone cannot hold the spine up, the muscles must
+        disc=DiscSpec(4.0, 4.0, 0.05, "chosen (KE-109 JIS-A 20 silicone, §3.6.1)"),
+        link_mass_kg=(1.0,) + (0.04,) * (CLA_JOINTS - 1) + (0.0,),  # vertebrae 40 g, chosen
+        loads=loads, block_half_m=(0.03, 0.05), vertebra_radius_m=0.012,
+        notes=(
+            "the 8 muscles run block to block, so their lengths depend only on the clavicle's pose "
+            "relative to the pelvis: rank J_m ≤ 6 < 8 (not 8 as spec §2.3 assumes) — eq. 4.24's Z has "
+            "a ≥ 2-dim range (co-contraction) and ≥ 9 of the 15 joint directions get no muscle "
+            "stiffness: the discs hold them (§3.4.1, Fig. 3.15)",
+        ),
+    )
+
+
+CLA = _cla()
+
+# ---------------------------------------------------------------------------------------------
+# Rabbit (§3.5)
+# ---------------------------------------------------------------------------------------------
+
+RABBIT_JOINTS = 5  # §3.5.1: five parts A, 15 posture DOF
+RABBIT_SEGMENT_M = 0.024  # §3.5.1: moving part 120 mm / 5
+RABBIT_HOLE_RADIUS_M = 0.020  # chosen: holes near the rim of the Ø50 mm parts (§3.5.1)
+RABBIT_PART_HALF_M = 0.007  # chosen: half-thickness of a part A (the rest of 24 mm is ball + disc)
+RABBIT_TWIST_RAD = math.radians(60.0)  # §3.5.1: 60° end to end, 12° per segment
+# §3.5.1, Fig. 3.22: muscles 1,6 back, 3,4 front, 1,2,3 right, 4,5,6 left; 1,3,5 clockwise,
+# 2,4,6 counter-clockwise, equally spaced → mid-height angles (from +x, counter-clockwise seen
+# from above; y left) 210°, 270°, 330°, 30°, 90°, 150°.
+RABBIT_MID_ANGLE_DEG = (210.0, 270.0, 330.0, 30.0, 90.0, 150.0)
+RABBIT_CLOCKWISE = (True, False, True, False, True, False)
+
+
+def _rabbit_muscles() -> MuscleSet:
+    """Six helical muscles from the base part to the top part through a hole at the bottom and top
+    face of each intermediate part A, twisting 12° per segment (§3.5.1)."""
+    n, r = RABBIT_JOINTS, RABBIT_HOLE_RADIUS_M
+    names, paths = [], []
+    for j, (mid, cw) in enumerate(zip(RABBIT_MID_ANGLE_DEG, RABBIT_CLOCKWISE)):
+        sense = -1.0 if cw else 1.0
+        path = []
+        for link in range(n + 1):
+            turn = math.radians(mid) + sense * RABBIT_TWIST_RAD * (link / n - 0.5)
+            xy = (r * math.cos(turn), r * math.sin(turn))
+            faces = (RABBIT_PART_HALF_M,) if link == 0 else (-RABBIT_PART_HALF_M,) if link == n else \
+                (-RABBIT_PART_HALF_M, RABBIT_PART_HALF_M)
+            path += [(link, (xy[0], xy[1], z)) for z in faces]
+        names.append(f"M{j + 1}")
+        paths.append(path)
+    return MuscleSet.from_paths(names, paths)
+
+
+@dataclass(frozen=True)
+class ServoSpec:
+    """An RC servo pulling a muscle on a pulley (Rabbit, §3.5.1): a stiff position servo."""
+
+    name: str
+    torque_kgf_cm: float
+    pulley_diameter_m: float
+    range_deg: float
+    stroke_m: float
+    source: str
+
+    @property
+    def max_tension_n(self) -> float:
+        return self.torque_kgf_cm * KGF * 0.01 / (self.pulley_diameter_m / 2)
+
+
+# Futaba S9204 with modified gear ratio: 12.6 kgf·cm on a Ø20 mm pulley; the thesis quotes 12.6 kgf
+# max tension, i.e. 12.6 kgf·cm / 1 cm (the radius) (§3.5.1).
+RABBIT_SERVO = ServoSpec("Futaba S9204 (gear-modified)", 12.6, 20e-3, 180.0, 0.060, "§3.5.1")
+
+
+def _rabbit() -> SpineRobot:
+    # "roll, pitch, yaw each 90° for the whole spine" (§3.5.1): ±45° / 5 joints
+    chain = Chain.straight([RABBIT_SEGMENT_M] * RABBIT_JOINTS, math.radians(45.0 / RABBIT_JOINTS))
+    model = SpineModel(chain, _rabbit_muscles())
+    return SpineRobot(
+        name="Rabbit", source="seed 003 §3.5", model=model,
+        motors=(RABBIT_SERVO,) * 6, pull_link=(0, RABBIT_JOINTS) * 3,  # servos at both ends (§3.5.1), chosen alternating
+        disc=RingDiscSpec(
+            # chosen, because the thesis gives none (KE-106, JIS-A 50, 120 %): an annulus of 16
+            # ring springs at 17 mm radius; k3 makes the tangent stiffness 4× k1 at 1 mm of
+            # compression — the stiffening with compression §3.5.3 relies on
+            ring_radius_m=0.017, n_ring=16, t_free_m=0.0105, gap_m=0.010, k1_n_m=6e3, k3_n_m3=1.0e10,
+            k_twist_nm_rad=2.0, ball_clearance_m=2.0e-3, k_ball_n_m=2e6,
+            source="chosen (KE-106 JIS-A 50 silicone, §3.5.1; behaviour 1/2 of §3.5.3)"),
+        link_mass_kg=(1.0,) + (0.08,) * RABBIT_JOINTS,  # spine 650 g incl. servos (§3.5.1); parts chosen
+        # chosen: the upper body above the spine (total 2.0 kg, spine 650 g, §3.5.2): forelimbs + head
+        loads=(Load("upper_body", RABBIT_JOINTS, 0.5, (0.0, 0.0, 0.04), (0.04, 0.05, 0.03)),),
+        block_half_m=(0.025, 0.025), vertebra_radius_m=0.025,
+        sensor=TensionSensorSpec(wire_stiffness_n_m=20e3),  # chosen: fishing line + servo horn compliance
+        notes=("stroke 60 mm vs a Ø20 mm pulley on a 180° servo (31.4 mm) is inconsistent (spec §6.15)"),
+    )
+
+
+RABBIT = _rabbit()
+
+# ---------------------------------------------------------------------------------------------
+# Kenta (§3.7)
+# ---------------------------------------------------------------------------------------------
+
+KENTA_JOINTS = 10  # §3.7.1: hip–v9, v9–v8, …, v2–v1, v1–shoulder
+KENTA_SEGMENT_M = 0.030  # chosen, because Fig. 3.43 is not in text
+KENTA_LIMIT_RAD = math.radians(10.0)  # §3.7.1: about ±10° per joint per axis
+# §3.7.1: 9 vertebrae of two types each inclined 10°, giving the S-curve; back-concave parts are
+# the lumbar and upper thoracic (§3.7.1 range note). Chosen: lumbar (3 lowest) −10°, thoracic (4)
+# +10°, upper (2) −10°, placed at the ball above each vertebra; vertebra 1's −10° is cancelled by
+# the shoulder block's mounting (chosen, so the shoulder block is level at the rest posture).
+KENTA_REST_PITCH_DEG = (0.0, -10.0, -10.0, -10.0, 10.0, 10.0, 10.0, 10.0, -10.0, 0.0)
+KENTA_RIB_VERTEBRAE = (2, 4, 6)  # spec §1.4 (inferred from the muscle list)
+KENTA_BLOCK_HALF_M = (0.050, 0.070)  # chosen: hip/shoulder block half-depth, half-width
+KENTA_MOTOR_Y_M = (0.070, 0.058, 0.046, 0.034, 0.022)  # chosen: motors 1 (outer) … 5 (inner) per side
+KENTA_TRANSVERSE_M = (-0.005, 0.030)  # chosen: transverse process (x, |y|) at mid-vertebra
+KENTA_RIB_FRONT_M = (0.045, 0.030)  # chosen: rib attachment (x, |y|) for the abdominal muscles
+
+
+def kenta_link_of_vertebra(k: int) -> int:
+    """Vertebra k counted from the top (1 … 9) → its link index (link 0 = hip block, 10 = shoulder)."""
+    if not 1 <= k <= 9:
+        raise ValueError(f"Kenta has vertebrae 1–9, got {k}")
+    return KENTA_JOINTS - k
+
+
+def _kenta_muscles() -> tuple[MuscleSet, tuple[str, ...]]:
+    """The 40 muscles of §3.7.2 (Figs. 3.47, 3.48 not in text) and their motor group (Table 3.3).
+
+    Per block and side, motors 1 (outermost) … 5 (innermost). Hip back: 1 → shoulder block, 2–5 →
+    transverse processes of vertebrae 2, 4, 6, 8 (inner → lower), same side. Hip front: 3–5 → ribs
+    1–3 (inner → lower), 2 → front end of the shoulder block, 1 → its outer back corner (along the
+    side); "all front muscles cross the trunk obliquely" (§3.7.2), so hip-front muscles attach on
+    the other side (the crossing side is not explicit for them: chosen). Shoulder back: to even
+    vertebrae, inner → higher (5 → v2, 4 → v4, 3 → v6, 2 → v8), crossing to the other side (as the
+    seed says, although it also says back muscles do not cross the spine); the outermost → the hip
+    block (chosen by symmetry with the hip back muscles). Shoulder front: 3–5 → ribs (inner →
+    higher, chosen), 2 → front end of the hip block, 1 → the hip block's outer back corner, all
+    crossing. Groups: A = motors 1–2 everywhere (16), B = hip back 3–5 (6), C = hip and shoulder
+    front 3–5 and shoulder back 3–5 (18) (Table 3.3).
+    """
+    top = KENTA_JOINTS
+    dx, _ = KENTA_BLOCK_HALF_M
+    names, paths, groups = [], [], []
+
+    def transverse(k, side):
+        x, y = KENTA_TRANSVERSE_M
+        return kenta_link_of_vertebra(k), (x, side * y, KENTA_SEGMENT_M / 2)
+
+    def rib(r, side):
+        x, y = KENTA_RIB_FRONT_M
+        return kenta_link_of_vertebra(KENTA_RIB_VERTEBRAE[r - 1]), (x, side * y, KENTA_SEGMENT_M / 2)
+
+    for block, other in ((0, top), (top, 0)):
+        tag = "HIP" if block == 0 else "SHO"
+        for side_name, side in (("L", 1.0), ("R", -1.0)):
+            for face in ("B", "F"):
+                for k in range(1, 6):
+                    y = side * KENTA_MOTOR_Y_M[k - 1]
+                    pull = (block, (dx if face == "F" else -dx, y, 0.0))
+                    cross = -side if (face == "F" or block == top) else side
+                    if face == "B" and k == 1:
+                        attach = (other, (-dx, cross * KENTA_MOTOR_Y_M[0], 0.0))
+                    elif face == "B":
+                        vertebra = 2 * (k - 1) if block == 0 else 2 * (6 - k)
+                        attach = transverse(vertebra, cross)
+                    elif k == 1:  # along the side: outer back corner of the other block, same side
+                        attach = (other, (-dx, side * KENTA_MOTOR_Y_M[0], 0.0))
+                    elif k == 2:
+                        attach = (other, (dx, cross * KENTA_MOTOR_Y_M[1], 0.0))
+                    else:
+                        attach = rib(k - 2 if block == 0 else 6 - k, cross)
+                    names.append(f"{tag}-{face}{side_name}{k}")
+                    paths.append([pull, attach])
+                    groups.append("A" if k <= 2 else "B" if (block == 0 and face == "B") else "C")
+    return MuscleSet.from_paths(names, paths), tuple(groups)
+
+
+@dataclass(frozen=True)
+class LigamentSpec:
+    """Kenta's ligaments: extension springs transverse–transverse and posterior–posterior between
+    neighbouring vertebrae, 6 per joint, 7 types (§3.7.1; constants not in text)."""
+
+    springs: MuscleSet  # 2-point paths, 6 per joint
+    stiffness_n_m: np.ndarray  # per spring
+    natural_length_m: np.ndarray  # per spring
+    types: tuple[int, ...]  # 0..6 per spring
+
+
+def _kenta_ligaments(model_chain: Chain) -> LigamentSpec:
+    """Chosen, because the thesis gives only the rules: lower joints stiffer (stiffness falls from
+    400 to 150 N/m going up), front-convex parts shorter natural lengths (pre-stretched 2 mm),
+    back-convex parts longer (1 mm) — 7 types from the combinations in use."""
+    names, paths, k, types, stretch = [], [], [], [], []
+    # (x, y) of the six spring anchors around a vertebra: transverse L/R (two tiers) and posterior L/R
+    anchors = ((-0.005, 0.030), (-0.005, -0.030), (0.005, 0.030), (0.005, -0.030), (-0.025, 0.006), (-0.025, -0.006))
+    for joint in range(1, KENTA_JOINTS + 1):
+        stiffness_level = 0 if joint <= 3 else 1 if joint <= 7 else 2
+        front_convex = KENTA_REST_PITCH_DEG[joint - 1] < 0
+        for a, (x, y) in enumerate(anchors):  # anchors 0.3 h below and above the ball
+            names.append(f"LIG{joint}-{a}")
+            paths.append([(joint - 1, (x, y, model_chain.offsets[joint - 1, 2] - 0.3 * KENTA_SEGMENT_M)),
+                          (joint, (x, y, 0.3 * KENTA_SEGMENT_M))])
+            k.append((400.0, 250.0, 150.0)[stiffness_level])
+            types.append(min(6, 2 * stiffness_level + (1 if front_convex else 0) + (1 if a >= 4 else 0)))
+            stretch.append(2e-3 if front_convex else 1e-3)
+    springs = MuscleSet.from_paths(names, paths)
+    rest = SpineModel(model_chain, springs).lengths(np.zeros(3 * KENTA_JOINTS))
+    return LigamentSpec(springs, np.array(k), rest - np.array(stretch), tuple(types))
+
+
+def _kenta() -> tuple[SpineRobot, LigamentSpec, tuple[str, ...]]:
+    chain = Chain.straight([KENTA_SEGMENT_M] * KENTA_JOINTS, KENTA_LIMIT_RAD,
+                           rest_pitch_rad=np.radians(KENTA_REST_PITCH_DEG))
+    muscles, groups = _kenta_muscles()
+    motors = tuple({"A": KENTA_MOTOR_A, "B": KENTA_MOTOR_B, "C": KENTA_MOTOR_C}[g] for g in groups)
+    robot = SpineRobot(
+        name="Kenta", source="seed 003 §3.7, Table 3.3", model=SpineModel(chain, muscles), motors=motors,
+        pull_link=tuple(0 if nm.startswith("HIP") else KENTA_JOINTS for nm in muscles.names),
+        disc=DiscSpec(3.0, 3.0, 0.05, "chosen (moulded KE-106 JIS-A 50 around the ball, §3.7.1)"),
+        link_mass_kg=(3.0,) + (0.06,) * (KENTA_JOINTS - 1) + (1.5,),  # chosen: 20 motors per block
+        block_half_m=KENTA_BLOCK_HALF_M, vertebra_radius_m=0.018,
+        notes=("central Ø1.2 mm stainless wire fixed at the hip, tensioned at the shoulder (§3.7.1): "
+               "not modelled",
+               "3-axis accelerometers on 5 of the 9 vertebrae (§3.7.3): which five is not stated"),
+    )
+    return robot, _kenta_ligaments(chain), groups
+
+
+KENTA, KENTA_LIGAMENTS, KENTA_MOTOR_GROUPS = _kenta()
+
+# ---------------------------------------------------------------------------------------------
+# SQ43, HanzouS, BeBe
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class SQ43Spec:
+    """SQ43 (§3.2): rigid parts A and memory-foam parts B; 2 bending DOF (servo A: styrene rods,
+    lateral; servo B: wires, vertical), flexibility 3 variables / 0 DOF; the §3.2.3 design search."""
+
+    parts_a: int = 4  # Fig. 3.3
+    foam_length_m: float = 0.010  # part B, y direction (§3.2.3)
+    foam: str = "memory foam M-41 (Sanko Yugyo)"
+    angle_limit_deg: float = 30.0  # |a_i| ≤ 30° (§3.2.3)
+    search_step_deg: float = 0.5  # Δ (§3.2.3)
+    starts_deg: tuple = ((5.0, 5.0, 5.0), (-5.0, -5.0, 5.0), (15.0, 5.0, -15.0), (5.0, -15.0, 5.0))  # Table 3.1
+    spine_length_m: float = 0.20  # chosen, because L is not in text (spec §6.3)
+    mass_kg: float = 1.9  # §3.2.2
+    dof: int = 14  # 3 per leg × 4 + 2 spine (§3.2.2)
+    spine_dof: int = 2
+    source: str = "seed 003 §3.2, Table 3.1, eqs. 3.1–3.2"
+
+
+@dataclass(frozen=True)
+class HanzouSSpec:
+    """HanzouS (§3.3): a leaf spring clamped between cam plates; the cam angle is proportional to
+    the spring's effective length (§3.3.1). Spring dimensions are not in the text: chosen."""
+
+    joints: int = 18
+    servos: int = 19  # 18 joints + the stiffness cam
+    leaf_width_m: float = 0.030  # chosen
+    leaf_thickness_m: float = 1.0e-3  # chosen
+    youngs_modulus_pa: float = 206e9  # spring steel, chosen
+    length_range_m: tuple[float, float] = (0.02, 0.08)  # chosen: effective length at cam 0° … 180°
+    cam_range_deg: float = 180.0  # chosen
+    source: str = "seed 003 §3.3"
+
+    def effective_length_m(self, cam_deg) -> np.ndarray:
+        """Cam angle → effective spring length, linear (§3.3.1)."""
+        lo, hi = self.length_range_m
+        return lo + (hi - lo) * np.clip(np.asarray(cam_deg, dtype=float) / self.cam_range_deg, 0.0, 1.0)
+
+    def bending_stiffness_n_m(self, cam_deg) -> np.ndarray:
+        """Tip stiffness of the clamped leaf, 3 E I / L³ (cantilever)."""
+        inertia = self.leaf_width_m * self.leaf_thickness_m**3 / 12
+        return 3 * self.youngs_modulus_pa * inertia / self.effective_length_m(cam_deg) ** 3
+
+
+@dataclass(frozen=True)
+class BeBeSpec:
+    """BeBe (§4.8.2–4.8.4): a full-size medical spine model, 36 on/off McKibben muscles."""
+
+    model: SpineModel
+    regions: tuple[str, ...]
+    region_link: tuple[int, ...]
+    vertebrae: int = 24  # §4.8.2
+    muscles: int = 36  # §4.8.2
+    supply_pressure_atm: float = 4.0  # about 4 atm (§4.8.2)
+    contraction_ratio: float = 0.30  # "about 30 %" stroke requirement (§4.8.2)
+    image_period_s: float = 0.066  # §4.8.4
+    cos_threshold: float = 0.2  # §4.8.3
+    total_length_m: float = 0.720  # §4.8.2
+    # chosen, because the force–contraction curves (Figs. 4.45–4.47) are not in text
+    max_force_n: float = 150.0
+    source: str = "seed 003 §4.8"
+
+
+BEBE_REGIONS = ("head", "shoulder", "chest", "abdomen1", "abdomen2", "waist")  # §4.8.2, Fig. 4.50
+
+
+def _bebe() -> BeBeSpec:
+    """Chosen geometry: 24 joints of 26 mm (≈ 620 mm of spine under a 100 mm head); the 6 regions
+    at vertebrae 24 (waist, base), 19, 14, 9, 4 and the head; 36 muscles (Table 4.10 not in text):
+    between consecutive regions, 6 each — rectus-like front pair, back pair, and two obliques that
+    cross (the external/internal obliques co-operate in bending, antagonise in twist, §4.8.2) —
+    for 5 spans = 30, plus 6 long muscles waist → shoulder (front L/R, side L/R, back L/R)."""
+    n = 24
+    chain = Chain.straight([0.026] * n, math.radians(12.0))
+    region_link = (n, 20, 15, 10, 5, 0)  # head … waist (link 0 = waist block)
+    r = 0.045
+    names, paths = [], []
+    for k in range(5):
+        lo, hi = region_link[k + 1], region_link[k]
+        tag = f"{BEBE_REGIONS[k + 1]}-{BEBE_REGIONS[k]}"
+        pairs = {"FL": ((r, r / 2), (r, r / 2)), "FR": ((r, -r / 2), (r, -r / 2)),
+                 "BL": ((-r, r / 2), (-r, r / 2)), "BR": ((-r, -r / 2), (-r, -r / 2)),
+                 "OL": ((r / 2, -r), (0.0, r)), "OR": ((r / 2, r), (0.0, -r))}
+        for suffix, ((x0, y0), (x1, y1)) in pairs.items():
+            names.append(f"{tag}:{suffix}")
+            paths.append([(lo, (x0, y0, 0.0)), (hi, (x1, y1, 0.0))])
+    for suffix, (x, y) in {"LF": (r, r), "RF": (r, -r), "LS": (0.0, r), "RS": (0.0, -r), "LB": (-r, r),
+                           "RB": (-r, -r)}.items():
+        names.append(f"waist-shoulder:{suffix}")
+        paths.append([(0, (x, y, 0.0)), (region_link[1], (x, y, 0.0))])
+    return BeBeSpec(SpineModel(chain, MuscleSet.from_paths(names, paths)), BEBE_REGIONS, region_link)
+
+
+SQ43 = SQ43Spec()
+HANZOUS = HanzouSSpec()
+BEBE = _bebe()
+
+ROBOTS = {"cla": CLA, "rabbit": RABBIT, "kenta": KENTA}

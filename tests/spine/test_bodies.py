@@ -1,0 +1,132 @@
+"""The MuJoCo spine body (spatial tendons = eq. 4.25, wires that only pull, reels) and the quasi-static body."""
+
+import numpy as np
+import pytest
+
+from shintai.core.runtime import Loop
+from shintai.spine.bodies import QuasiStaticSpine
+from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.control import Mode, MuscleControl
+from shintai.spine.geometry import uniform_posture, whole_spine
+from shintai.spine.robots import CLA, CLA_ARMS_DOWN, CLA_TRUNK_LOADS, RABBIT
+
+
+@pytest.fixture(scope="module")
+def plain():
+    return SpineBody(CLA, interference=False)
+
+
+def test_tendon_paths_are_eq_4_25_for_hinge_and_ball_joints(plain):
+    rng = np.random.default_rng(0)
+    ball = SpineBody(CLA, joint="ball", interference=False)
+    for _ in range(3):
+        theta = rng.uniform(-0.25, 0.25, 15)
+        for body in (plain, ball):
+            body.set_theta(theta)
+            assert np.allclose(body.theta(), theta, atol=1e-9)
+            assert np.allclose(body.path_lengths(), CLA.model.lengths(theta), atol=1e-10)
+
+
+def test_interference_only_lengthens_the_convex_side():
+    """§4.7.2's hypothesis, as modelled: a bent spine pushes the muscles on its convex side out
+    around the middle vertebra, so they are longer than eq. 4.25; the others are unchanged."""
+    body = SpineBody(CLA, interference=True)
+    theta = uniform_posture(np.radians([0.0, 30.0, 0.0]), CLA.n)  # forward: the back is convex
+    body.set_theta(theta)
+    extra = body.path_lengths() - CLA.model.lengths(theta)
+    back = [CLA.muscle_names.index(n) for n in ("CLA-RB", "CLA-LB")]
+    assert np.all(extra >= -1e-12)
+    assert np.all(extra[back] > 1e-5)
+    assert np.allclose(np.delete(extra, back), 0.0, atol=1e-12)
+
+
+def test_the_wire_only_pulls_and_its_joint_torque_is_minus_J_transpose_T(plain):
+    """Sign convention: winding a reel in tensions its wire, whose generalised force on the spine
+    is τ = −J_mᵀT (eq. 4.22); paying it out leaves it slack: no force at all (it cannot push)."""
+    body = plain
+    theta = uniform_posture(np.radians([5.0, -8.0, 3.0]), CLA.n)
+    body.set_theta(theta)
+    disc = np.tile([CLA.disc.k_bend_nm_rad, CLA.disc.k_bend_nm_rad, CLA.disc.k_twist_nm_rad], CLA.n) * theta
+    reel_q = body.model.jnt_qposadr[[body.id("joint", f"{n}:reel") for n in CLA.muscle_names]]
+    spine = body.spine_qpos  # hinge qpos and dof addresses coincide here
+    slack = body.model.tendon_lengthspring[body.tendon_ids, 1] - body.data.ten_length[body.tendon_ids]
+    body.data.qpos[reel_q] = slack  # every wire exactly taut, zero tension
+    for j, wind in ((0, 1e-3), (5, 2e-3)):
+        body.data.qpos[reel_q[j]] += wind
+    body.forward()
+    tension = body.wire_tension()
+    assert tension[0] == pytest.approx(CLA.sensor.wire_stiffness_n_m * 1e-3, rel=1e-6)
+    assert tension[5] == pytest.approx(CLA.sensor.wire_stiffness_n_m * 2e-3, rel=1e-6)
+    assert np.allclose(np.delete(tension, [0, 5]), 0.0)
+    tau = body.data.qfrc_passive[spine] + disc  # remove the discs' −Kθ
+    assert np.allclose(tau, CLA.model.tension_to_torque(theta, tension), atol=1e-6)
+    assert body.data.qfrc_passive[body.model.jnt_dofadr[body.id("joint", "CLA-RF:reel")]] == pytest.approx(-tension[0])
+    body.data.qpos[reel_q[0]] -= 3e-3  # pay out: slack, no force
+    body.forward()
+    assert body.wire_tension()[0] == 0.0
+    assert np.allclose(body.data.qfrc_passive[spine] + disc, CLA.model.tension_to_torque(theta, body.wire_tension()),
+                       atol=1e-6)
+
+
+def test_positive_duty_winds_in_and_raises_tension():
+    body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
+    body.hold(np.zeros(15))
+    for _ in range(100):
+        body.apply({"duty": np.r_[0.3, np.zeros(7)]})
+        body.step()
+    snap = body.snapshot()
+    assert snap["encoder"][0] > 0 and snap["tension_true"][0] > 1.0
+    assert snap["current"][0] > 0 and snap["encoder"][0] > 10 * np.abs(snap["encoder"][1:]).max()
+    with pytest.raises(ValueError, match="8 muscles"):
+        body.apply({"duty": np.zeros(3)})
+
+
+def test_accelerometers_give_the_true_static_posture():
+    """Eq. 3.4 in a static simulation equals the shoulder's pitch/roll relative to the waist
+    (spec §5.3.10)."""
+    body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
+    for whole in ([0.0, 15.0, 0.0], [-12.0, 0.0, 0.0]):
+        body.reset()
+        body.hold(uniform_posture(np.radians(whole), CLA.n))
+        for _ in range(600):
+            body.step()
+        snap = body.snapshot()
+        true = np.degrees(whole_spine(snap["theta"]))[:2]
+        assert np.allclose(np.degrees(snap["posture"]), true, atol=0.3)
+        assert np.abs(true).max() > 10.0  # the hand did bend the spine
+
+
+def test_disc_stiffness_changes_at_run_time(plain):
+    plain.set_disc(8.0, 2.0)
+    names = [plain.model.joint(j).name for j in range(plain.model.njnt)]
+    k = dict(zip(names, plain.model.jnt_stiffness))
+    assert k["j3_pitch"] == 8.0 and k["j3_yaw"] == 2.0 and k["CLA-RF:reel"] == 0.0
+
+
+def test_quasi_static_equal_tensions_cancel():
+    """§4.6.2: all muscles at the same target tension cancel; only the discs hold the posture (no
+    gravity, symmetric layout → upright). Pulling the two front muscles harder bends the spine
+    forward (+pitch), by about what linear statics with the uniform-bend J predicts."""
+    body = QuasiStaticSpine(CLA, gravity=False)
+    body.set_laws(Mode.T, tension=0.2)
+    body.step()
+    assert body.result.success and np.abs(body.result.theta).max() < 1e-9
+    extra = np.r_[0.5, 0.5, np.zeros(6)]  # small, so the column's compression barely softens it
+    body.set_laws(Mode.T, tension=0.2 + extra)
+    body.step()
+    pitch = whole_spine(body.result.theta)[1]
+    U = np.tile(np.eye(3) / CLA.n, (CLA.n, 1))
+    J_u = CLA.model.jacobian(np.zeros(15)) @ U
+    predicted = -(J_u.T @ extra)[1] / (CLA.disc.k_bend_nm_rad / CLA.n)
+    assert body.result.success and pitch > 0 and pitch == pytest.approx(predicted, rel=0.1)
+
+
+def test_quasi_static_length_control_reaches_the_model_posture():
+    """L mode without gravity: the muscles at their eq. 4.25 lengths put the spine at the commanded
+    uniform posture, up to the wire stretch the discs cause."""
+    body = QuasiStaticSpine(CLA, gravity=False)
+    target = uniform_posture(np.radians([8.0, -10.0, 0.0]), CLA.n)
+    body.apply({"length": CLA.model.lengths(target)})
+    body.step()
+    assert body.result.success
+    assert np.allclose(np.degrees(whole_spine(body.result.theta)), [8.0, -10.0, 0.0], atol=1.0)

@@ -1,0 +1,109 @@
+"""Muscle control modes (§4.6, eqs. 4.36–4.42, Table 4.6) against hand calculations, and §4.7's policy."""
+
+import numpy as np
+import pytest
+
+from shintai.spine.control import (
+    RECOMMENDED, Gains, Mode, MuscleControl, encoder_targets, interference_modes, law_L, law_LL, law_S, law_T,
+    software_spring, table_4_6_gains, unified_duty,
+)
+
+G = Gains(K_Pl=2000.0, K_Il=1.0e4, K_Dl=3.0, K_Pt=0.1, K_Dt=1e-3, T_t=0.5, T_l=10.0, k_s=3000.0, T_r=9.8)
+
+
+def test_law_L_hand_calculation():
+    # l = 1 mm wound, target 1.2 mm (too long: wind in), integral 1e−5 m s, dl/dt = 2 mm/s
+    o = law_L(1e-3, 1.2e-3, 1e-5, 2e-3, G)
+    assert o == pytest.approx(-2000 * (-0.2e-3) - 1e4 * 1e-5 - 3.0 * 2e-3)  # 0.4 − 0.1 − 0.006
+    assert o == pytest.approx(0.294)
+
+
+def test_law_T_hand_calculation_and_dead_band():
+    assert law_T(12.0, 9.8, 5.0, G) == pytest.approx(-0.1 * 2.2 - 1e-3 * 5.0)  # too tight: pay out
+    assert law_T(9.5, 9.8, 5.0, G) == 0.0  # |T − T_r| < T_t
+    assert law_T(9.3, 9.8, 0.0, G) == pytest.approx(0.05)  # on the edge of the dead band: acts
+
+
+def test_software_spring_and_law_S():
+    assert software_spring(1e-3, 2e-3, 3000.0) == pytest.approx(3.0)  # stretched by 1 mm → 3 N
+    # T_r = 3000 (0 − (−2 mm)) = 6 N; measured 4 N: o = −0.1 (4 − 6) − 1e−3 · 1
+    assert law_S(4.0, -2e-3, 0.0, 1.0, G) == pytest.approx(0.2 - 1e-3)
+
+
+def test_law_LL_switches_off_at_the_limit():
+    args = (1e-3, 1.2e-3, 0.0, 0.0)
+    assert law_LL(*args, 9.0, G) == pytest.approx(law_L(*args, G))
+    assert law_LL(*args, 10.0, G) == 0.0  # T ≥ T_l: o = 0
+
+
+@pytest.mark.parametrize("mode", list(Mode))
+def test_unified_law_reduces_to_each_mode(mode):
+    """Eq. 4.41 with Table 4.6's parameter settings equals the mode's own law."""
+    rng = np.random.default_rng(int(mode))
+    for _ in range(50):
+        l, l_r, integral, dl = rng.normal(0, 1e-3, 4)
+        T, dT = rng.uniform(0, 20), rng.normal(0, 10)
+        l_0 = rng.normal(0, 1e-3)
+        g = table_4_6_gains(mode, G)
+        own = {Mode.L: law_L(l, l_r, integral, dl, G), Mode.T: law_T(T, G.T_r, dT, G),
+               Mode.S: law_S(T, l, l_0, dT, G), Mode.LL: law_LL(l, l_r, integral, dl, T, G)}[mode]
+        assert unified_duty(l, l_r, integral, dl, T, g.T_r, dT, l_0, g) == pytest.approx(own, abs=1e-12)
+
+
+def test_controller_tick_per_mode_saturation_and_sign():
+    ctl = MuscleControl(4, G, period=1e-3)
+    ctl.set_modes([Mode.L, Mode.T, Mode.S, Mode.LL])
+    ctl.set_targets(l_r=[1e-3, 0, 0, 1e-3], T_r=[0, 5.0, 0, 0], l_0=[0, 0, 0, 0])
+    ctl.reset({"encoder": np.zeros(4), "tension": np.full(4, 5.0)})
+    o = ctl.duty(np.zeros(4), np.array([5.0, 5.0, 5.0, 12.0]), 1e-3)
+    assert o[0] == pytest.approx(1.0)  # 1 mm too long: saturated wind-in (L)
+    assert o[1] == 0.0  # at target tension (T, dead band)
+    assert o[2] == pytest.approx(-0.5, abs=1 / 255)  # spring at rest, 5 N too much: pay out (S)
+    assert o[3] == 0.0  # above the limit (LL)
+    assert ctl.state.integral[0] == pytest.approx(-1e-6) and ctl.state.integral[3] == 0.0
+
+
+def test_mode_switch_restarts_the_length_integral():
+    ctl = MuscleControl(2, G)
+    ctl.state.integral[:] = 1e-5
+    ctl.set_modes([Mode.L, Mode.T])
+    assert ctl.state.integral[0] == 1e-5  # still L
+    ctl.set_modes([Mode.T, Mode.LL])
+    ctl.set_modes([Mode.L, Mode.LL])
+    assert ctl.state.integral[0] == 0.0 and ctl.state.integral[1] == 0.0
+
+
+def test_module_contributes_duty_from_snapshot():
+    ctl = MuscleControl(2, G)
+    snap = {"t": 0.0, "encoder": np.zeros(2), "tension": np.zeros(2)}
+    ctl.reset(snap)
+    out = ctl.update(snap)
+    assert set(out) == {"duty"} and out["duty"].shape == (2,)
+
+
+def test_interference_policy():
+    """§4.7.2: shortening muscles L, lengthening muscles the tension-limited mode."""
+    modes = interference_modes([0.20, 0.20, 0.20], [0.19, 0.21, 0.20], Mode.LL)
+    assert list(modes) == [Mode.L, Mode.LL, Mode.L]
+    assert RECOMMENDED["normal"] == (Mode.L, Mode.LL) and RECOMMENDED["stiff"] == (Mode.L, Mode.L)
+
+
+def test_encoder_targets_grow_as_the_muscle_shortens():
+    assert np.allclose(encoder_targets([0.195, 0.205], [0.2, 0.2]), [0.005, -0.005])
+
+
+def test_benchmark_reference_matches_the_vectorised_tick():
+    """The naive per-muscle loop of the Kenta benchmark computes the same duties (before PWM quantisation)."""
+    from shintai.spine.benchmarks import naive_tick
+
+    rng = np.random.default_rng(7)
+    controls = [MuscleControl(40, G), MuscleControl(40, G)]
+    for c in controls:
+        c.set_modes(np.arange(40) % 4)
+        c.set_targets(l_r=np.linspace(-1e-3, 1e-3, 40), T_r=8.0, l_0=np.zeros(40))
+        c.reset({"encoder": np.zeros(40), "tension": np.full(40, 8.0)})
+    for _ in range(5):
+        l, T = rng.normal(0, 1e-3, 40), np.abs(rng.normal(10, 3, 40))
+        fast = controls[0].duty(l, T, 1e-3)
+        slow = naive_tick(controls[1], l, T, 1e-3)
+        assert np.abs(fast - slow).max() <= 0.5 / 255 + 1e-12

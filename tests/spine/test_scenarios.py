@@ -1,0 +1,72 @@
+"""Short runs of the spine scenarios: their outputs, and the behaviour each is about."""
+
+import json
+
+import pytest
+
+from shintai.scenarios.registry import get
+from shintai.scenarios.runner import run_scenario
+
+
+def test_spine_scenarios_are_registered():
+    for sid in ("spine.control-modes", "spine.teach-playback", "spine.software-spring", "spine.rabbit-stiffening"):
+        assert get(sid).checks
+    assert get("spine.control-modes").demo and get("spine.control-modes").video
+
+
+@pytest.fixture(scope="module")
+def control_modes(tmp_path_factory):
+    out = tmp_path_factory.mktemp("control-modes")
+    result = run_scenario("spine.control-modes", out=out, quiet=True, overrides={
+        "modes": "all_l,l_t", "max_angle_deg": "20", "hold_s": "1.2", "move_s": "0.5", "window_s": "0.4",
+        "ablation": "false"})
+    return out, result
+
+
+def test_control_modes_short_run(control_modes):
+    """All-L tracks the ±20° sequences within a few degrees; L + T loses the spine (Table 4.8 mode 6)."""
+    out, result = control_modes
+    assert "error" not in result
+    m = result["metrics"]
+    assert m["all_l.collapsed"] == 0 and m["all_l.max_pitch_held_deg"] == 20 and m["all_l.max_roll_held_deg"] == 20
+    assert m["all_l.mean_error_pitch_deg"] < 5 and m["all_l.mean_error_roll_deg"] < 5
+    assert m["l_t.collapsed"] == 1
+    checks = {c["name"]: c for c in result["checks"]}
+    assert checks["l_t.collapsed"]["ok"] and checks["all_l.mean_error_pitch_deg"]["ok"]
+    table = result["extra"]["table_4_8"]
+    assert table["all_l"]["thesis"]["mean_error_pitch_deg"] == 4.73 and "mean_current_a" in table["all_l"]["ours"]
+    for png in ("table_4_8", "posture_errors", "posture_time_series", "spine_3d"):
+        assert (out / f"{png}.png").stat().st_size > 10_000
+    assert json.loads((out / "metrics.json").read_text())["metrics"] == m
+
+
+def test_control_modes_rejects_unknown_modes(tmp_path):
+    result = run_scenario("spine.control-modes", out=tmp_path, quiet=True, overrides={"modes": "all_x"})
+    assert "unknown mode configuration" in result["error"]
+
+
+def test_teach_playback_short_run(tmp_path):
+    result = run_scenario("spine.teach-playback", out=tmp_path, quiet=True,
+                          overrides={"speedups": "1,4,8", "key_postures": "false"})
+    m = result["metrics"]
+    assert m["speedup_4.relative_length_error"] < 0.1 and m["speedup_4.saturated_fraction"] == 0
+    assert m["speedup_8.saturated_fraction"] > 0.05
+    assert m["speedup_8.relative_length_error"] > 2 * m["speedup_4.relative_length_error"]
+    assert m["speedup_8.duration_s"] == pytest.approx(m["speedup_1.duration_s"] / 8, abs=0.03)
+
+
+def test_software_spring_short_run(tmp_path):
+    result = run_scenario("spine.software-spring", out=tmp_path, quiet=True,
+                          overrides={"k_s_list": "50,400", "push_s": "0.8", "release_s": "1.5"})
+    assert result["ok"], [c for c in result["checks"] if not c["ok"]]
+    m = result["metrics"]
+    assert m["k_s_400.tension_per_length_n_mm"] > 4 * m["k_s_50.tension_per_length_n_mm"]
+
+
+def test_rabbit_stiffening_short_run(tmp_path):
+    result = run_scenario("spine.rabbit-stiffening", out=tmp_path, quiet=True,
+                          overrides={"precompressions_mm": "0.25,1.5", "ablation": "false"})
+    m = result["metrics"]
+    assert m["stiffness_monotone"] == 1 and m["stiffness_ratio"] > 2
+    assert m["pre_1.5mm.disc_compression_mm"] > m["pre_0.25mm.disc_compression_mm"]
+    assert (tmp_path / "rabbit_stiffness.png").exists()
