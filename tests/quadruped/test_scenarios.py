@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from shintai.scenarios.runner import run_scenario
 
 
@@ -14,3 +16,59 @@ def test_replay_scenario_passes_and_writes_its_outputs(tmp_path):
     assert json.loads((tmp_path / "metrics.json").read_text())["scenario"] == "quadruped.replay"
     assert (tmp_path / "paths.png").exists() and (tmp_path / "body_movement.png").exists()
     assert (tmp_path / "log.npz").exists()
+
+
+def run(sid, tmp_path, **overrides):
+    result = run_scenario(sid, out=tmp_path, overrides={k: str(v) for k, v in overrides.items()}, quiet=True)
+    assert "error" not in result, result.get("error")
+    return result
+
+
+def test_tiny_training_run_writes_networks_curves_and_resumes_to_the_same_result(tmp_path):
+    tiny = dict(population=4, generations=2, order_generations=1, free_generations=1, environments=2,
+                executor="serial")
+    first = run("quadruped.train", tmp_path, **tiny)
+    m = first["metrics"]
+    assert m["generations"] == 2 and m["order_generations"] == 1 and m["reproduces_shipped"] is None
+    assert 0.0 <= m["train_success_rate"] <= 1.0 and 0.0 <= m["order_accuracy"] <= 1.0
+    for name in ("action_fixed.npz", "swing_order.npz", "action_free.npz", "learning_curves.png", "action.ga.npz"):
+        assert (tmp_path / name).exists()
+    again = run("quadruped.train", tmp_path, **tiny)
+    assert again["metrics"]["best_fitness"] == m["best_fitness"]
+    assert again["metrics"]["free_best_fitness"] == m["free_best_fitness"]
+
+
+def test_avoid_known_walks_the_shipped_network_to_the_goal(tmp_path):
+    result = run("quadruped.avoid-known", tmp_path)
+    m = result["metrics"]
+    assert m["reached"] == 1 and m["collisions"] == 0 and m["limit_violations"] == 0
+    assert m["min_stability_margin_m"] > 0 and m["final_error_m"] <= 0.2
+    assert len(result["extra"]["cycles"]) == m["cycles"]
+    assert result["thesis"]["cycles"]["value"] == 9
+    assert (tmp_path / "walk_path.png").exists() and (tmp_path / "walk_legs.png").exists()
+
+
+def test_avoid_unseen_and_free_gait_run_the_shipped_networks(tmp_path):
+    m = run("quadruped.avoid-unseen", tmp_path / "unseen")["metrics"]
+    assert m["reached"] == 1 and m["collisions"] == 0
+    free = run("quadruped.free-gait", tmp_path / "free")["metrics"]
+    for key in ("s621", "s622"):
+        assert free[f"{key}_reached"] == 1 and free[f"{key}_baseline_reached"] == 1
+    assert free["order_changes"] == free["s621_order_changes"] + free["s622_order_changes"]
+
+
+def test_swing_order_compares_the_three_strategies_on_one_action_sequence(tmp_path):
+    result = run("quadruped.swing-order", tmp_path)
+    m = result["metrics"]
+    assert m["body_movement_exhaustive_mm"] <= m["body_movement_fixed_mm"]
+    assert m["table3_body_movement_exhaustive_mm"] <= m["table3_body_movement_fixed_mm"]
+    assert m["optimal_orders_found"] == 8 and m["teacher_patterns"] == 160
+    assert len(result["extra"]["br_per_cycle_mm"]["ours"]["fixed"]) == m["cycles"]
+
+
+def test_generalization_reports_rates_over_training_and_unseen_environments(tmp_path):
+    m = run("quadruped.generalization", tmp_path, unseen=12)["metrics"]
+    assert m["train_success_rate"] >= 0.9
+    assert 0.0 <= m["unseen_success_rate"] <= 1.0
+    assert m["unseen_collision_rate"] + m["unseen_limit_rate"] + m["unseen_timeout_rate"] == pytest.approx(
+        1 - m["unseen_success_rate"])

@@ -9,5 +9,11 @@ RBF networks trained by a genetic algorithm (Yamaguchi), as a kinematic, quasi-s
 * ``episode``     perception, network inputs and the batched walking-cycle loop;
 * ``fitness``     GA fitness functions, eqs. (9)-(12) and (13)-(15);
 * ``replay``      the paper's action tables replayed (dead reckoning, executor, Br comparison);
-* ``scenarios``   registered scenarios (``quadruped.replay``).
+* ``training``    the GA training of both networks (seed §4.1.2, §5.1, §6.1) and the trained weights
+  (``trained/*.npz``, made by ``shintai run quadruped.train``);
+* ``plots``       path, leg-height and learning-curve figures;
+* ``video``       a kinematically driven TITAN-VIII MJCF rendered to MP4;
+* ``scenarios``   registered scenarios (``quadruped.replay``, ``.train``, ``.avoid-known``,
+  ``.avoid-unseen``, ``.swing-order``, ``.free-gait``, ``.generalization``);
+* ``benchmarks``  one GA generation: naive serial vs vectorised vs process pool.
 """

@@ -131,6 +131,14 @@ GA_ELITES = 10
 GA_TOURNAMENT = 3
 GA_CROSSOVER_RATE = 0.6  # uniform crossover
 FITNESS_PENALTY = 10.0  # eqs. (10), (11)
+# Mutation and generations: not printed (§3.2, §7.17). Chosen: each gene mutated with probability
+# GA_MUTATION_RATE by Gaussian noise of GA_MUTATION_SIGMA x its range (the shared GA's operator), and
+# generation counts that keep the default training run (all three stages) well under an hour on 2 cores.
+GA_MUTATION_RATE = 0.02
+GA_MUTATION_SIGMA = 0.1
+GA_GENERATIONS = 150  # action network, fixed crawl order (seed §4.1.2)
+GA_ORDER_GENERATIONS = 100  # swing-order network (seed §5.1)
+GA_FREE_GENERATIONS = 50  # action network re-trained with the swing-order network (seed §6.1)
 
 # --- Swing-order teacher (§3.3, seed §5.1) ------------------------------------------------------
 TEACHER_ZR = (0.300, 0.370)  # [m]
