@@ -1,0 +1,96 @@
+"""GA training of the networks (seed §4.1.2, §5.1, §6.1) and the shipped trained set."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from shintai.evolve import ProcessExecutor, SerialExecutor, load_checkpoint
+from shintai.quadruped import constants as C
+from shintai.quadruped import fitness as F
+from shintai.quadruped import training as T
+from shintai.quadruped import world as W
+
+TINY = T.TrainSettings(generations=2, order_generations=2, free_generations=2, population=5, environments=3, seed=7)
+
+
+@pytest.fixture(scope="module")
+def whole(tmp_path_factory):
+    """An uninterrupted tiny training run: its folder and results."""
+    out = tmp_path_factory.mktemp("whole")
+    return out, T.train(out, TINY, SerialExecutor())
+
+
+def test_action_ga_is_deterministic_for_a_seed_on_every_executor(tmp_path, whole):
+    first = whole[1]["action"]
+    again = T.run_stage("action", TINY, SerialExecutor(), tmp_path / "a.npz", resume=False)
+    with ProcessExecutor(2) as pool:
+        pooled = T.run_stage("action", TINY, pool, tmp_path / "b.npz", resume=False)
+    other = T.run_stage("action", dataclasses.replace(TINY, seed=8), SerialExecutor(), tmp_path / "c.npz",
+                        resume=False)
+    for r in (again, pooled):
+        assert np.array_equal(r.genome, first.genome) and np.array_equal(r.best, first.best)
+    assert not np.array_equal(other.genome, first.genome)
+    assert first.generations == 2 and np.all(np.diff(first.best) <= 0)  # elitism keeps the best
+    assert first.best_fitness == F.action_fitness(first.genome, T.training_envs(3))
+
+
+class Interrupt(Exception):
+    pass
+
+
+def test_a_killed_training_resumes_to_the_uninterrupted_result(tmp_path, whole):
+    folder, whole = whole
+
+    def kill(stage, done, total, best):
+        if stage == "free" and done == 1:
+            raise Interrupt
+
+    with pytest.raises(Interrupt):
+        T.train(tmp_path / "killed", TINY, SerialExecutor(), progress=kill)
+    assert load_checkpoint(tmp_path / "killed" / "free.ga.npz").generation == 0
+    resumed = T.train(tmp_path / "killed", TINY, SerialExecutor(), resume=True)
+    for stage in T.STAGES:
+        assert np.array_equal(resumed[stage].genome, whole[stage].genome)
+        assert np.array_equal(T.load_curve(tmp_path / "killed" / T.FILES[stage], stage)[0], whole[stage].best)
+    policy = T.load_order(folder / T.FILES["order"])
+    assert np.array_equal(policy.weights, T.order_policy(whole["order"].genome).weights)
+
+
+def test_the_free_stage_starts_from_the_fixed_order_population(whole):
+    folder, _ = whole
+    first = load_checkpoint(folder / "free.ga.npz").history.best[0]
+    fixed_population = load_checkpoint(folder / "action.ga.npz").population
+    policy = T.load_order(folder / T.FILES["order"])
+    assert first == F.action_fitness_batch(fixed_population, T.training_envs(3), policy).min()
+
+
+def test_training_arguments_are_checked_with_one_line_errors(tmp_path):
+    with pytest.raises(ValueError, match="environments must be in"):
+        T.TrainSettings(environments=0)
+    with pytest.raises(ValueError, match="'free' needs"):
+        T.train(tmp_path, TINY, SerialExecutor(), stages=("free",))
+    with pytest.raises(FileNotFoundError, match="quadruped.train"):
+        T.load_action(tmp_path / "missing.npz")
+    np.savez(tmp_path / "short.npz", genome=np.zeros(5))
+    with pytest.raises(ValueError, match="not an action network"):
+        T.load_action(tmp_path / "short.npz")
+
+
+def test_shipped_networks_load_and_walk_scenario_4_2_1_to_the_goal():
+    genome = T.load_action()
+    assert genome.shape == (F.ACTION_NET.size,)
+    ep = T.evaluate(genome, W.EnvBatch.of([W.scenario_421()]))
+    assert T.success(ep)[0] and not ep.collided[0] and np.hypot(*ep.final_error[0]) <= C.GOAL_RADIUS
+    order = T.load_order()
+    free = T.evaluate(T.load_action(stage="free"), W.EnvBatch.of([W.scenario_421()]), order)
+    assert T.success(free)[0]
+    assert T.order_accuracy(order) >= 0.9
+
+
+def test_shipped_set_records_the_default_settings():
+    for stage in T.STAGES:
+        best, mean, settings = T.load_curve(None, stage)
+        assert settings == T.TrainSettings().__dict__
+        assert len(best) == T.TrainSettings().generations_of(stage) and np.all(np.diff(best) <= 0)
+        assert np.all(mean >= best)
