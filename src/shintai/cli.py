@@ -94,7 +94,8 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
     from shintai.scenarios.report import write_report
 
     out.mkdir(parents=True, exist_ok=True)
-    jobs = [(sid, str(out / sid), seed, video and registry.SCENARIOS[sid].video) for sid in ids]
+    jobs = [(sid, str(out / sid), seed, video and registry.SCENARIOS[sid].video and registry.SCENARIOS[sid].demo_video)
+            for sid in ids]
     t0 = time.perf_counter()
 
     def progress(done, total):

@@ -123,3 +123,11 @@ def test_bench_writes_json(tmp_path):
     assert main(["bench", "--only", "core.loop-overhead", "--out", str(tmp_path)]) == 0
     bench = json.loads((tmp_path / "bench.json").read_text())
     assert bench["core.loop-overhead"]["ratio_loop_vs_direct"] > 0
+
+
+def test_demo_videos_only_where_default_parameters_render():
+    registry.load_all()
+    for sc in registry.SCENARIOS.values():
+        if sc.demo and sc.demo_video and sc.video:
+            params = sc.resolve()
+            assert params.get("plant", "mujoco") == "mujoco", f"{sc.id}: the demo would ask a non-MuJoCo plant for video"

@@ -130,6 +130,7 @@ class Scenario:
     thesis: dict[str, ThesisValue] = field(default_factory=dict)
     demo: bool = False  # headline scenario of its body, part of `make demo`
     video: bool = False  # can render an MP4 with --video (MuJoCo bodies)
+    demo_video: bool = True  # the demo films it (False where only non-default parameters render)
 
     def param(self, name: str) -> Param:
         for p in self.params:
@@ -158,14 +159,14 @@ BENCHMARKS: dict[str, Benchmark] = {}
 
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
-             demo: bool = False, video: bool = False):
+             demo: bool = False, video: bool = False, demo_video: bool = True):
     """Decorator registering ``run(ctx) -> metrics`` as a scenario."""
 
     def register(fn):
         if id in SCENARIOS and SCENARIOS[id].run is not fn:
             raise ValueError(f"scenario {id!r} registered twice")
         SCENARIOS[id] = Scenario(id, source, summary, fn, tuple(params), tuple(checks),
-                                 dict(thesis or {}), demo, video)
+                                 dict(thesis or {}), demo, video, demo_video)
         return fn
 
     return register

@@ -261,6 +261,7 @@ COMMON_PARAMS = (
     },
     demo=True,
     video=True,
+    demo_video=False,  # the demo runs the kinematic plant; only plant=mujoco renders
 )
 def tracking(ctx) -> dict:
     p = ctx.params
