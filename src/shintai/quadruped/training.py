@@ -17,7 +17,7 @@ crossover with probability 0.6 (``GAConfig.seed004``); mutation and generations 
 and are chosen in ``constants`` (``GA_*``). Every stage uses the run's seed; the result is
 bit-identical for one seed on every executor (serial, process pool, Ray).
 
-What the GA learns (the shipped set, seed 0, default settings; 34 min on 2 shared cores): all 96
+What the GA learns (the shipped set, seed 0, default settings; 17 min on 2 shared cores): all 96
 training environments are reached without failure, in 24-29 cycles (mean 26.4; the paper shows 9-11
 in its examples) with final errors of 0.10-0.20 m (paper 0.023-0.073 m). Every run converges to the
 same kind of gait: a crab walk with a steady turn (ΔXr ≈ 100 mm sideways, ΔYr ≈ 0, Δθr ≈ 7° per
