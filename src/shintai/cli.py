@@ -9,7 +9,9 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import json
+import signal
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -182,8 +184,24 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def interrupt_on_sigterm(signum, frame) -> None:
+    """SIGTERM (a cancelled job) ends a run like Ctrl-C: finished results are kept, pools closed."""
+    raise KeyboardInterrupt
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    if threading.current_thread() is not threading.main_thread():
+        return run_command(args)
+    previous = signal.signal(signal.SIGTERM, interrupt_on_sigterm)
+    try:
+        return run_command(args)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def run_command(args: argparse.Namespace) -> int:
+    """Run the parsed sub-command; usage errors exit 2, interruptions 130."""
     registry.load_all()
     warn_load_errors()
     try:

@@ -2,8 +2,12 @@
 
 import operator
 import os
+import signal
+import subprocess
+import sys
 import time
 from functools import partial
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -98,3 +102,26 @@ def test_chunks_cover_the_items_evenly():
     assert all(a == b for (_, a), (b, _) in zip(bounds, bounds[1:]))
     assert {stop - start for start, stop in bounds} <= {6, 7}
     assert chunk_bounds(3, 6) == [(0, 1), (1, 2), (2, 3)]
+
+
+def alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    with open(f"/proc/{pid}/stat") as f:  # a zombie is dead for our purpose
+        return f.read().split(")")[-1].split()[0] != "Z"
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_pool_workers_end_with_their_parent(sig):
+    child = subprocess.Popen([sys.executable, str(Path(__file__).with_name("pool_child.py"))],
+                             stdout=subprocess.PIPE, text=True)
+    workers = [int(p) for p in child.stdout.readline().split()]
+    assert len(workers) == 2 and all(alive(p) for p in workers)
+    child.send_signal(sig)
+    child.wait(timeout=10)
+    deadline = time.monotonic() + 10
+    while any(alive(p) for p in workers) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(alive(p) for p in workers)

@@ -23,9 +23,11 @@ the failing item index and the original error (the worker's traceback is attache
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import multiprocessing
 import os
 import pickle
+import signal
 import traceback
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -77,6 +79,25 @@ def _raise_failure(failure: tuple[str, str, str]) -> None:
     err = ItemError(f"{label} failed: {error}")
     err.add_note(trace.rstrip())
     raise err
+
+
+PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+
+
+def die_with_parent(parent_pid: int) -> None:
+    """Pool-worker initializer: end this worker when the process that started the pool ends.
+
+    Without it a parent killed by SIGTERM or SIGKILL (a cancelled training run) leaves its forked
+    workers computing, and then waiting for work, forever. Linux only (``prctl(PR_SET_PDEATHSIG)``);
+    elsewhere a no-op. The ``getppid`` check closes the race of a parent that died before the call.
+    """
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent_pid:
+        os._exit(1)
 
 
 def chunk_bounds(n: int, chunks: int) -> list[tuple[int, int]]:
@@ -161,7 +182,8 @@ class ProcessExecutor(Executor):
     """A pool of ``workers`` processes (default ``os.cpu_count()``), started once and kept warm.
 
     The pool forks (Linux): workers inherit the parent's imported modules, so start-up is cheap and
-    any module-level function of the parent can be sent. ``fn`` must be picklable.
+    any module-level function of the parent can be sent. ``fn`` must be picklable. Workers end with
+    the parent, however it ends (:func:`die_with_parent`).
     """
 
     name = "process"
@@ -175,7 +197,8 @@ class ProcessExecutor(Executor):
 
     def pool(self) -> ProcessPoolExecutor:
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("fork"))
+            self._pool = ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("fork"),
+                                             initializer=die_with_parent, initargs=(os.getpid(),))
         return self._pool
 
     def completed(self, fn, items, bounds, batch):
