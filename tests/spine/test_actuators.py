@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from shintai.spine.actuators import (
-    DCMotorDrive, Encoder, TensionSensor, posture_from_accelerometers, pwm_duty, shunt_current, tilt,
+    DCMotorDrive, Encoder, TensionSensor, fsr_force, posture_from_accelerometers, pwm_duty, shunt_current, tilt,
+    zmp,
 )
 from shintai.spine.geometry import rpy_matrix
 from shintai.spine.robots import (
@@ -79,3 +80,31 @@ def test_accelerometer_tilt_recovers_roll_and_pitch(roll, pitch):
     assert np.allclose(tilt(reading), [roll, pitch])
     waist = rpy_matrix([0.0, 0.0, 0.0]).T @ np.array([0.0, 0.0, 9.81])
     assert np.allclose(posture_from_accelerometers(reading, waist), [roll, pitch])
+
+
+def test_posture_fast_path_equals_the_batch_tilts():
+    """The 1 ms single-reading path of eq. 3.4 gives the same angles as the array path."""
+    rng = np.random.default_rng(5)
+    chest, waist = rng.normal(0, 1, (2, 3)) + [0.0, 0.0, 9.0]
+    batch = posture_from_accelerometers(chest[None], waist[None])[0]
+    assert np.allclose(posture_from_accelerometers(chest, waist), batch, atol=1e-15)
+    assert np.allclose(batch, tilt(chest) - tilt(waist))
+
+
+def test_zmp_is_the_force_weighted_mean_of_the_fsr_positions():
+    """Eq. 3.5 by hand: corners of a 0.1 × 0.06 m sole, three times the force on the front pair."""
+    corners = np.array([[0.05, 0.03], [0.05, -0.03], [-0.05, 0.03], [-0.05, -0.03]])
+    assert np.allclose(zmp(corners, [3.0, 3.0, 1.0, 1.0]), [0.025, 0.0])
+    assert np.all(np.isnan(zmp(corners, np.zeros(4))))
+    table_reading, table_force = np.array([0, 100, 400, 1023]), np.array([0.0, 1.0, 5.0, 20.0])
+    assert fsr_force(250, table_reading, table_force) == pytest.approx(3.0)  # linear between points
+
+
+def test_tension_sensor_drift_biases_the_absolute_reading_not_the_relative_one():
+    """§3.6.1: drift makes the absolute value inaccurate while relative values stay usable."""
+    sensor = TensionSensor(CLA.sensor)
+    clean = sensor.read(np.array([5.0, 6.0]))
+    sensor.drift_counts = 20.0
+    drifted = sensor.read(np.array([5.0, 6.0]))
+    assert np.all(drifted - clean > 0.2)  # biased upwards
+    assert (drifted[1] - drifted[0]) == pytest.approx(clean[1] - clean[0], rel=0.2)  # the step survives

@@ -119,6 +119,23 @@ def test_plant_has_hysteresis_and_does_not_superpose(plant_and_shifts):
     assert bebe.superposition_error(make, shifts, [pair], 0.5)[0] > 0.1
 
 
+def test_cooperating_pairs_are_same_span_and_same_direction():
+    shifts = np.array([[1.0, 0.0], [1.0, 0.5], [-1.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 0.1]])
+    assert bebe.cooperating_pairs(shifts, spans=2) == [(0, 1), (3, 5)]  # never (0, 3): other span
+
+
+def test_cooperating_muscles_on_one_span_do_not_superpose(plant_and_shifts):
+    """§4.8.3: two co-operating McKibben muscles on the same joints shorten each other, so each pulls
+    less than alone; the same kind on another span (other joints) superposes far better."""
+    make, shifts = plant_and_shifts
+    names = make().model.muscles.names
+    same = (names.index("rectus-L/waist-abdomen 1"), names.index("ext-oblique-L/waist-abdomen 1"))
+    assert same in bebe.cooperating_pairs(shifts, len(bebe.SPANS))
+    other = (names.index("rectus-L/waist-abdomen 1"), names.index("rectus-L/abdomen 1-shoulder"))
+    e_same, e_other = bebe.superposition_error(make, shifts, [same, other], 0.5)
+    assert e_same > 0.05 and e_same > 2 * e_other
+
+
 def test_plant_rejects_unknown_channels():
     with pytest.raises(ValueError, match="channels"):
         bebe.BeBePlant().apply({"pressure": np.zeros(36)})

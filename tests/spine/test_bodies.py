@@ -81,6 +81,23 @@ def test_positive_duty_winds_in_and_raises_tension():
         body.apply({"duty": np.zeros(3)})
 
 
+def test_snapshot_sensors_equal_the_body_state():
+    """The snapshot's muscle entries are the body's own state functions (tension, current, lengths,
+    θ), read at the same instant."""
+    body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
+    body.hold(uniform_posture(np.radians([5.0, -8.0, 3.0]), CLA.n))
+    for _ in range(50):
+        body.apply({"duty": np.linspace(-0.2, 0.3, 8)})
+        body.step()
+    snap = body.snapshot()
+    assert np.array_equal(snap["tension_true"], body.wire_tension())
+    assert np.array_equal(snap["current"], body.currents())
+    assert np.allclose(snap["lengths"], body.path_lengths(), atol=1e-15)
+    assert np.array_equal(snap["theta"], body.theta())
+    assert np.array_equal(snap["encoder"], body.encoder.read(body.wound()))
+    assert snap["t"] == body.t and snap["qpos"].shape == (body.model.nq,)
+
+
 def test_accelerometers_give_the_true_static_posture():
     """Eq. 3.4 in a static simulation equals the shoulder's pitch/roll relative to the waist
     (spec §5.3.10)."""
@@ -130,3 +147,28 @@ def test_quasi_static_length_control_reaches_the_model_posture():
     body.step()
     assert body.result.success
     assert np.allclose(np.degrees(whole_spine(body.result.theta)), [8.0, -10.0, 0.0], atol=1.0)
+
+
+def test_kenta_ligaments_are_pre_stretched_extension_springs():
+    """§3.7.1: Kenta's ligaments sit where robots.py puts them, are stretched 1–2 mm past their
+    natural length at rest (so they pull, k (l − l_n)), and make the spine sag less."""
+    import mujoco
+
+    from shintai.spine.geometry import SpineModel
+    from shintai.spine.robots import KENTA, KENTA_LIGAMENTS
+
+    body = SpineBody(KENTA, ligaments=KENTA_LIGAMENTS)
+    ids = [mujoco.mj_name2id(body.model, mujoco.mjtObj.mjOBJ_TENDON, nm) for nm in KENTA_LIGAMENTS.springs.names]
+    body.forward()
+    rest = SpineModel(KENTA.model.chain, KENTA_LIGAMENTS.springs).lengths(np.zeros(3 * KENTA.n))
+    assert np.allclose(body.data.ten_length[ids], rest, atol=1e-9)
+    stretch = body.data.ten_length[ids] - KENTA_LIGAMENTS.natural_length_m
+    assert np.all((stretch > 0.9e-3) & (stretch < 2.1e-3))
+    assert body.model.tendon_stiffness[ids] == pytest.approx(KENTA_LIGAMENTS.stiffness_n_m)
+    sag = {}
+    for key, lig in (("with", KENTA_LIGAMENTS), ("without", None)):
+        b = SpineBody(KENTA, ligaments=lig)
+        for _ in range(400):
+            b.step()
+        sag[key] = np.abs(b.theta()).max()
+    assert sag["with"] < sag["without"]

@@ -63,6 +63,29 @@ def test_controller_tick_per_mode_saturation_and_sign():
     assert ctl.state.integral[0] == pytest.approx(-1e-6) and ctl.state.integral[3] == 0.0
 
 
+def test_controller_tick_equals_the_per_mode_laws():
+    """The vectorised 1 ms tick gives, muscle by muscle, the duty of eqs. 4.37–4.40 (before the PWM
+    quantisation), on random readings in all four modes."""
+    rng = np.random.default_rng(3)
+    m = 16
+    ctl = MuscleControl(m, G, period=1e-3)
+    modes = np.tile([Mode.L, Mode.T, Mode.S, Mode.LL], 4)
+    ctl.set_modes(modes)
+    l_r, T_r, l_0 = rng.normal(0, 1e-4, m), rng.uniform(2, 15, m), rng.normal(0, 1e-4, m)
+    ctl.set_targets(l_r=l_r, T_r=T_r, l_0=l_0)
+    l0, T0 = rng.normal(0, 1e-4, m), rng.uniform(0, 15, m)
+    ctl.reset({"encoder": l0, "tension": T0})
+    l1, T1 = l0 + rng.normal(0, 2e-6, m), T0 + rng.normal(0, 0.5, m)
+    o = ctl.duty(l1, T1, 1e-3)
+    dl, dT = (l1 - l0) / 1e-3, (T1 - T0) / 1e-3
+    integral = ctl.state.integral
+    expected = np.select([modes == Mode.L, modes == Mode.T, modes == Mode.S],
+                         [law_L(l1, l_r, integral, dl, G), law_T(T1, T_r, dT, G), law_S(T1, l1, l_0, dT, G)],
+                         law_LL(l1, l_r, integral, dl, T1, G))
+    assert np.abs(o - np.clip(expected, -1, 1)).max() <= 0.5 / 255 + 1e-12
+    assert np.all(integral[(modes == Mode.T) | (modes == Mode.S)] == 0.0)  # frozen outside L / LL
+
+
 def test_mode_switch_restarts_the_length_integral():
     ctl = MuscleControl(2, G)
     ctl.state.integral[:] = 1e-5

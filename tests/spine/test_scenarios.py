@@ -40,6 +40,34 @@ def test_control_modes_short_run(control_modes):
     assert json.loads((out / "metrics.json").read_text())["metrics"] == m
 
 
+def test_posture_targets_follow_the_min_jerk_move_then_hold():
+    """PostureTargets sets eq. 4.25's lengths of the player's posture each tick of a move, ends at the
+    commanded posture, and leaves the targets alone while idle."""
+    import numpy as np
+
+    from shintai.spine.control import MuscleControl, encoder_targets
+    from shintai.spine.geometry import uniform_posture
+    from shintai.spine.robots import CLA
+    from shintai.spine.scenarios import PostureTargets
+
+    zero = CLA.model.lengths(np.zeros(15))
+    control = MuscleControl(8)
+    targets = PostureTargets(control, CLA.model, zero)
+    targets.reset({"t": 0.0})
+    whole = np.radians([0.0, -30.0, 0.0])
+    targets.go(whole, 1.0)
+    for k in range(1, 1100):
+        targets.update({"t": k * 1e-3})
+        assert np.array_equal(control.l_r, encoder_targets(
+            CLA.model.lengths(uniform_posture(targets.whole, CLA.n)), zero))
+        if k == 500:
+            assert 0.3 < targets.whole[1] / whole[1] < 0.7  # mid-way through the move
+    assert np.allclose(targets.whole, whole)
+    control.l_r[:] = 0.0
+    targets.update({"t": 1.2})
+    assert np.all(control.l_r == 0.0)  # idle: targets untouched
+
+
 def test_control_modes_rejects_unknown_modes(tmp_path):
     result = run_scenario("spine.control-modes", out=tmp_path, quiet=True, overrides={"modes": "all_x"})
     assert "unknown mode configuration" in result["error"]
@@ -70,3 +98,4 @@ def test_rabbit_stiffening_short_run(tmp_path):
     assert m["stiffness_monotone"] == 1 and m["stiffness_ratio"] > 2
     assert m["pre_1.5mm.disc_compression_mm"] > m["pre_0.25mm.disc_compression_mm"]
     assert (tmp_path / "rabbit_stiffness.png").exists()
+

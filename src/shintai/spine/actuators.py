@@ -12,12 +12,15 @@
 * :class:`TensionSensor` — Cla's parallel-plate sensor, eq. 3.3, an FSR on a 10-bit ADC, read back
   through the calibration table (high resolution at low tension, low at high tension).
 * :func:`shunt_current` — eq. 3.6, I = V/R with R = 0.1 Ω.
+* :func:`zmp` and :func:`fsr_force` — eq. 3.5, the ZMP from Cla's four sole FSRs read through a
+  calibration table (§3.6.2).
 * :func:`tilt` and :func:`posture_from_accelerometers` — eq. 3.4: pitch and roll of the shoulder
   relative to the waist from the two gravity vectors (static only; yaw is unobservable).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -54,7 +57,8 @@ class DCMotorDrive:
 
     def current(self, duty, speed_m_s) -> np.ndarray:
         """Motor current [A] (average over the PWM period): I_stall (o − v / v0)."""
-        return self.stall_current_a * (np.clip(duty, -1.0, 1.0) - np.asarray(speed_m_s) / self.no_load_speed_m_s)
+        o = np.minimum(np.maximum(duty, -1.0), 1.0)
+        return self.stall_current_a * (o - np.asarray(speed_m_s) / self.no_load_speed_m_s)
 
     def backdriven(self, tension_n, duty=0.0) -> np.ndarray:
         """Whether the tension overcomes the motor force at rest plus the gear friction (§4.6.4)."""
@@ -63,7 +67,7 @@ class DCMotorDrive:
 
 def pwm_duty(o) -> np.ndarray:
     """The duty sent to the driver: saturated to [−1, 1] and quantised to the PWM resolution."""
-    return np.round(np.clip(o, -1.0, 1.0) * PWM_STEPS) / PWM_STEPS
+    return np.round(np.minimum(np.maximum(o, -1.0), 1.0) * PWM_STEPS) / PWM_STEPS
 
 
 class Encoder:
@@ -87,6 +91,10 @@ class TensionSensor:
     With d = b − f/k the sideways wire deflection, eq. 3.3 gives F = f √(l² − d²) / d explicitly,
     so the FSR force for a tension is found by interpolating that monotone curve; the firmware
     reads the tension back from the ADC count through the same curve (its calibration table).
+
+    Drift (§3.6.1: "there is drift, so absolute accuracy is low; relative values are usable"):
+    ``drift_counts`` is an offset of the FSR's ADC count that the calibration table does not know;
+    0 (none) unless set — its size and rate are not in the text.
     """
 
     def __init__(self, spec: TensionSensorSpec, table_points: int = 4000):
@@ -97,6 +105,7 @@ class TensionSensor:
         self.table_tension = f * np.sqrt(spec.l_m**2 - d**2) / d
         self.full_scale = 2**spec.adc_bits - 1
         self.table_adc = self.full_scale * f / (f + spec.fsr_half_n)
+        self.drift_counts = 0.0
 
     def fsr_force(self, tension_n) -> np.ndarray:
         """Force on the pressure sensor f for wire tension F (eq. 3.3)."""
@@ -104,7 +113,10 @@ class TensionSensor:
 
     def adc(self, tension_n) -> np.ndarray:
         """The 10-bit ADC count for a tension."""
-        return np.round(np.interp(np.maximum(tension_n, 0.0), self.table_tension, self.table_adc))
+        count = np.interp(np.maximum(tension_n, 0.0), self.table_tension, self.table_adc)
+        if self.drift_counts:
+            count = np.clip(count + self.drift_counts, 0.0, self.full_scale)
+        return np.round(count)
 
     def read(self, tension_n) -> np.ndarray:
         """Tension as the controller sees it: the ADC count converted back through the calibration."""
@@ -114,6 +126,22 @@ class TensionSensor:
 def shunt_current(v_drop) -> np.ndarray:
     """Motor current from the voltage across the 0.1 Ω shunt, I = V / R (eq. 3.6)."""
     return np.asarray(v_drop, dtype=float) / SHUNT_OHM
+
+
+def fsr_force(reading, table_reading, table_force) -> np.ndarray:
+    """An FSR's force from its ADC reading through its calibration table, linearly interpolated
+    ("about 10 points measured, a table, linear interpolation", §3.6.2; the table is the robot's)."""
+    return np.interp(reading, table_reading, table_force)
+
+
+def zmp(positions, forces) -> np.ndarray:
+    """Eq. 3.5: the ZMP from the four sole FSRs at ``positions`` (4, 2 or 3) with forces (4,),
+    p_z = Σ f_i p_i / Σ f_i; NaN when the foot is unloaded."""
+    f = np.maximum(np.asarray(forces, dtype=float), 0.0)
+    total = f.sum()
+    if total <= 0.0:
+        return np.full(np.shape(positions)[-1], np.nan)
+    return f @ np.asarray(positions, dtype=float) / total
 
 
 def tilt(acc) -> np.ndarray:
@@ -135,4 +163,9 @@ def posture_from_accelerometers(acc_chest, acc_waist) -> np.ndarray:
     waist [rad]. The thesis does not say how the angle between the two gravity vectors is split
     into pitch and roll (spec §6.13): the difference of the two tilts is used, exact when the
     waist is level and the bend is about one axis, as in E11."""
+    if np.ndim(acc_chest) == 1 and np.ndim(acc_waist) == 1:  # one reading each: the 1 ms path
+        cx, cy, cz = acc_chest.tolist() if isinstance(acc_chest, np.ndarray) else acc_chest
+        wx, wy, wz = acc_waist.tolist() if isinstance(acc_waist, np.ndarray) else acc_waist
+        return np.array([math.atan2(cy, cz) - math.atan2(wy, wz),
+                         math.atan2(-cx, math.hypot(cy, cz)) - math.atan2(-wx, math.hypot(wy, wz))])
     return tilt(acc_chest) - tilt(acc_waist)

@@ -24,7 +24,10 @@ straight between rings on the regions: rectus-, erector-, lateral- and oblique-l
 kind on three spans. What makes it non-superposing and hysteretic, as the thesis measured:
 
 * McKibben force falls linearly with contraction and vanishes at the 30 % stroke (the shape of
-  Fig. 4.47), and a muscle stretched past its rest length pulls passively — two muscles do not add;
+  Fig. 4.47), and a muscle stretched past its rest length pulls passively — two muscles do not add:
+  two co-operating muscles on the same joints shorten each other as they bend the spine, so each
+  pulls less than it did alone (the geometric coupling of co-activated pneumatic muscles). This is
+  what the superposition test (:func:`superposition_error` on :func:`cooperating_pairs`) measures;
 * the lumped discs stiffen (τ = −k₁Δ − k₃Δ³ per joint axis) and the moment arms change with posture;
 * Coulomb friction in every joint axis: the posture moves only where the net torque exceeds τ_f
   (stick-slip), so the rest posture depends on the history — eq. (4.44);
@@ -246,6 +249,19 @@ def superposition_error(make_plant, shifts: np.ndarray, pairs, settle_s: float =
         both = start - plant.settle(valve, settle_s)
         errors.append(np.linalg.norm(both - shifts[i] - shifts[j]) / np.linalg.norm(shifts[i] + shifts[j]))
     return np.array(errors)
+
+
+def cooperating_pairs(shifts: np.ndarray, spans: int, cos_threshold: float = COS_THRESHOLD) -> list[tuple[int, int]]:
+    """The muscle pairs the superposition test of §4.8.3 is about: two muscles on the *same span*
+    (so they act on the same joints) whose single-muscle view shifts point the same way,
+    cos∠(v_i, v_j) > ``cos_threshold`` (the rule's own "same direction"). Muscles are numbered span by
+    span (``spans`` blocks of equal size). Pairs on different spans act on different joints and
+    superpose up to the image geometry and friction; antagonist pairs cancel, so their relative error
+    measures the cancellation, not the plant."""
+    per = len(shifts) // spans
+    unit = shifts / np.maximum(np.linalg.norm(shifts, axis=1, keepdims=True), 1e-12)
+    return [(s * per + a, s * per + b) for s in range(spans) for a in range(per) for b in range(a + 1, per)
+            if unit[s * per + a] @ unit[s * per + b] > cos_threshold]
 
 
 def hysteresis_residual(make_plant, muscle: int, settle_s: float = 1.0) -> float:

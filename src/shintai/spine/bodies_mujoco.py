@@ -27,6 +27,8 @@ Model (spec 003 §5.2):
   (twist) is not representable: MuJoCo tendons pass through each other.
 * **Sensors.** Accelerometers on the pelvis and the clavicle (eq. 3.4); encoders, tension sensors
   and motor currents are computed from the reel and tendon state in :meth:`SpineBody.snapshot`.
+* **Ligaments** (Kenta, §3.7.1), optional: extension springs between neighbouring vertebrae as
+  spatial tendons that pull only beyond their natural length (``ligaments=KENTA_LIGAMENTS``).
 * **A human hand**: a mocap body welded to the top link when active (:meth:`SpineBody.hold`), used
   to push the spine (E10) or teach it (E9).
 """
@@ -41,7 +43,7 @@ import numpy as np
 from shintai.sim.body import MujocoBody
 from shintai.spine.actuators import DCMotorDrive, Encoder, TensionSensor, posture_from_accelerometers
 from shintai.spine.geometry import matrix_rpy, rpy_matrix
-from shintai.spine.robots import DiscSpec, Load, SpineRobot
+from shintai.spine.robots import DiscSpec, LigamentSpec, Load, SpineRobot
 
 PELVIS_HEIGHT_M = 0.45  # chosen: the pelvis stands on (rigid) legs; only the spine moves
 REEL_OFFSET_M = 0.08  # chosen: wire inside the block between the pull point and the reel at s = 0
@@ -56,7 +58,8 @@ def _quat(R: np.ndarray) -> np.ndarray:
 
 
 def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
-               interference: bool = True, timestep: float = 5e-4) -> mujoco.MjSpec:
+               interference: bool = True, timestep: float = 5e-4,
+               ligaments: LigamentSpec | None = None) -> mujoco.MjSpec:
     """The MjSpec of ``robot``'s spine (see the module docstring)."""
     if joint not in ("hinge", "ball"):
         raise ValueError(f"joint must be 'hinge' or 'ball', got {joint!r}")
@@ -76,6 +79,8 @@ def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: 
     links = _add_links(spec, robot, joint, loads if loads is not None else robot.loads)
     _add_muscles(spec, robot, links, interference)
     _add_hand(spec, robot, links[-1])
+    if ligaments is not None:
+        _add_ligaments(spec, links, ligaments)
     for name, link in (("acc_waist", links[0]), ("acc_chest", links[-1])):
         link.add_site(name=name, pos=[0, 0, 0], size=[0.004, 0, 0])
         spec.add_sensor(name=name, type=mujoco.mjtSensor.mjSENS_ACCELEROMETER,
@@ -169,6 +174,22 @@ def _add_muscles(spec, robot: SpineRobot, links: list, interference: bool) -> No
                           gear=[drive.stall_force_n[j], 0, 0, 0, 0, 0], ctrllimited=True, ctrlrange=[-1.0, 1.0])
 
 
+def _add_ligaments(spec, links: list, ligaments: LigamentSpec) -> None:
+    """Kenta's ligaments (§3.7.1) as extension springs: a spatial tendon between the two anchor
+    sites with stiffness k and ``springlength = (0, natural length)``, so it pulls only when
+    stretched past its natural length (pre-stretched at rest: the chosen natural lengths are 1–2 mm
+    short, :func:`~shintai.spine.robots._kenta_ligaments`)."""
+    names, paths = ligaments.springs.names, ligaments.springs.paths
+    for j, name in enumerate(names):
+        tendon = spec.add_tendon(name=name, stiffness=float(ligaments.stiffness_n_m[j]),
+                                 springlength=[0.0, float(ligaments.natural_length_m[j])], width=0.0008,
+                                 rgba=[0.3, 0.6, 0.3, 1])
+        for k, (link, point) in enumerate(paths[j]):
+            site = f"{name}:p{k}"
+            links[link].add_site(name=site, pos=list(point), size=[0.002, 0, 0], group=3)
+            tendon.wrap_site(site)
+
+
 def _side_site(link, name: str, a, b, centre) -> str:
     """A site beside the wrap sphere on the side where the segment a–b passes it at rest (MuJoCo's
     ``sidesite``: the tendon wraps around that side)."""
@@ -204,7 +225,8 @@ class SpineBody(MujocoBody):
     """
 
     def __init__(self, robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
-                 interference: bool = True, timestep: float = 5e-4, control_period: float | None = None):
+                 interference: bool = True, timestep: float = 5e-4, control_period: float | None = None,
+                 ligaments: LigamentSpec | None = None):
         period = control_period if control_period is not None else robot.control_period_s
         substeps = round(period / timestep)
         if substeps < 1 or not math.isclose(substeps * timestep, period, rel_tol=1e-9):
@@ -214,7 +236,7 @@ class SpineBody(MujocoBody):
         self.drive = DCMotorDrive(robot.motors)
         self.encoder = Encoder(robot.motors)
         self.sensor = TensionSensor(robot.sensor)
-        super().__init__(build_spec(robot, loads, joint, interference, timestep), substeps=substeps)
+        super().__init__(build_spec(robot, loads, joint, interference, timestep, ligaments), substeps=substeps)
         m = self.model
         names = robot.muscle_names
         self.tendon_ids = np.array([mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_TENDON, nm) for nm in names])
@@ -313,17 +335,26 @@ class SpineBody(MujocoBody):
     # -- Body interface ---------------------------------------------------------------------------
 
     def snapshot(self):
-        snap = super().snapshot()
+        """MujocoBody's snapshot (t, qpos, qvel, ctrl, the accelerometers) without its per-joint
+        ``q:``/``dq:`` scalars (θ is ``theta``; the reels are ``encoder``) — they cost a tenth of
+        the 1 ms tick — plus the muscle sensors (class docstring)."""
         d = self.data
-        tension = self.wire_tension()
-        snap["encoder"] = self.encoder.read(d.qpos[self._reel_q])
+        values = np.concatenate((d.qpos, d.qvel, d.ctrl, d.sensordata))
+        snap = {"t": d.time}
+        for key, where in self._views:
+            if not key.startswith(("q:", "dq:")):
+                snap[key] = values[where]
+        reel = d.qpos[self._reel_q]
+        ten = d.ten_length[self.tendon_ids]
+        tension = self._k_wire * np.maximum(ten - self._free_length, 0.0)  # = wire_tension()
+        snap["encoder"] = self.encoder.read(reel)
         snap["tension"] = self.sensor.read(tension)
         snap["tension_true"] = tension
-        snap["current"] = self.currents()
+        snap["current"] = self.drive.current(d.ctrl[self._motor], d.qvel[self._reel_v])  # = currents()
         chest, waist = self._acc
         snap["posture"] = posture_from_accelerometers(d.sensordata[chest], d.sensordata[waist])
         snap["theta"] = self.theta()
-        snap["lengths"] = self.path_lengths()
+        snap["lengths"] = ten - self._reel_offset - reel  # = path_lengths()
         return snap
 
     def apply(self, command) -> None:

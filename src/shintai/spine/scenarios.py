@@ -39,7 +39,8 @@ K_S_UNIT_N_M = 30.0  # N/m per thesis unit of k_s (ADC counts per encoder count)
 class PostureTargets(Module):
     """Uniform-bend posture commands (Appendix A.1.3) through the seqplugin player: the player
     moves Θ = (φ_s, θ_s, ψ_s) with minimum jerk; each tick the model's lengths (eq. 4.25) become
-    the encoder targets l_r (and S-mode natural lengths l_0) of the muscle controller."""
+    the encoder targets l_r (and S-mode natural lengths l_0) of the muscle controller. While idle
+    (the targets already set) the player is not stepped, only its clock kept."""
 
     def __init__(self, control: MuscleControl, model: SpineModel, zero_lengths, name: str = "posture"):
         super().__init__(name)
@@ -53,18 +54,20 @@ class PostureTargets(Module):
 
     @property
     def whole(self) -> np.ndarray:
-        return self.player.state[0]
+        return self.player.x.copy()
 
     def reset(self, snapshot: Snapshot) -> None:
         self.player.reset(snapshot)
 
     def update(self, snapshot: Snapshot):
         busy = self.player.busy
+        if not busy and self._idle_set:
+            self.player.reset(snapshot)  # nothing moves; keep the player's clock
+            return None
         whole = self.player.update(snapshot)["whole"]
-        if busy or not self._idle_set:
-            l_r = encoder_targets(self.model.lengths(uniform_posture(whole, self.model.n)), self.zero)
-            self.control.set_targets(l_r=l_r, l_0=l_r)
-            self._idle_set = not busy
+        l_r = encoder_targets(self.model.lengths(uniform_posture(whole, self.model.n)), self.zero)
+        self.control.set_targets(l_r=l_r, l_0=l_r)
+        self._idle_set = not busy
         return None
 
 
@@ -315,18 +318,57 @@ def control_modes_scenario(ctx):
     whole ±30° pitch range; all-L's mean error is below 5° (0.9° pitch / 0.4° roll against 4.73° /
     3.68°); in pitch the S modes have the lowest mean tension (thesis finding (e)).
 
-    What does not, and why: (1) currents are 0.00–0.08 A against 0.25–1.3 A and L + S does not draw
-    the most: the model has no PWM ripple or gear losses under motion, and our S loop does not
-    chatter the way §4.7.3 says the 1 ms, FPU-less controller made it; (2) L + S-mid loses pitch
-    like all-S-mid: in forward pitch the load-carrying muscles are the lengthening ones, in S mode
-    in both configurations, so the model cannot tell them apart (with 'mid' = 200 both hold, with
-    errors up to ~15°); (3) the S modes lose roll ±30°: the raised-arm spine hanging on software
-    springs is a barely damped ~4 Hz oscillator and swings ±15–50° (unchanged at half the physics
-    timestep) — the thesis, too, calls S mode oscillation-prone but its spine held; (4) the
-    interference model barely changes muscle lengths (≤ 0.3 mm): all-L's small error comes from wire
-    stretch and gravity sag, and without wrapping all-L is *less* accurate and falls at +30° — the
-    wrap sphere lends the back muscles moment arm — so "interference drives the error" (spec §5.3.9)
-    does not hold here; (5) all-LL is not the most accurate mode (it equals all-L until the limit).
+    What does not, and why:
+
+    (1) Currents: ours are 0.01–0.05 A against 0.25–1.3 A, and L + S does not draw the most. Our
+    current is the motor's own, I = I_stall (o − v/v0) with I_stall = 1.10 A (Table 3.2: 14.2 mN m
+    stall, k_t = 24 V / 17 800 rpm), i.e. the holding current of the tension plus the controller's
+    activity. The thesis's figures cannot be holding currents of that motor: the tensions they go
+    with (0.09–0.48 kgf mean) need 0.003–0.017 A (1 kgf = 3.1 % of the 320 N stall force), 35–150×
+    less, and Appendix A's per-muscle means reach 3.8 A steady (Table A.15, all L, HIP-RB at pitch
+    −20, max 4.09 A in A.22, at 1.5 kgf) and 7.9 A (A.20) — over three times the stall current at
+    24 V. Gear losses do not close that gap (a planetary's 1/η is 1.2–1.4; Table 3.2 itself gives
+    0.958 N m = 14.2 mN m × 67.49, η = 1), nor does PWM ripple change a mean. So the thesis's
+    "current" is on another scale (the shunt voltage's gain and offset are not given, eq. 3.6) and
+    mostly dynamic: §4.7.3 blames S mode's "fine, continuous adjustment of the output … the 1 ms
+    period" and its "tendency to oscillate", and §4.6.2 says the dead band T_t exists "to prevent
+    vibration" — a tension loop that chatters. Ours does not: through the 20 kg reflected rotor
+    inertia (Table 3.2 gear, chosen rotor) and 3.9 kN s/m back-EMF damping the loop is overdamped at
+    our gains, and 1 ADC count of sensor noise does not change that (tried). With K_Pt three times
+    ours, the dead band's step makes S chatter and S currents rise to L's (tried, not adopted: the
+    thesis gives no gains, and choosing them to produce the finding would be tuning).
+
+    (2) L + S-mid loses pitch like all-S-mid. The mode assignment was re-read: §4.7.2's list,
+    Table 4.8 and Appendix A.1.2 all put the *lengthening* muscles in S for modes 7 and 8 (the
+    §4.7.3 prose swaps the words for modes 6–8 alike; for mode 6 its own explanation — "the
+    lengthening muscles under T keep paying out" — confirms the list). In forward pitch the muscles
+    that hold the arms lengthen, so they are in S in both configurations, with the same k_s ('mid' /
+    'high' are not given; E10's 100 and 400 are used). Our routing (Fig. 3.31 is not in the text)
+    makes CLA-RB/LB the only forward-pitch holders; the HIP muscles' lengths change only to second
+    order in pitch (−0.27 mm at 10°), whereas Appendix A shows HIP-RF/LF carrying forward-pitch
+    load on the robot (1.1–1.9 kgf at +30°, Tables A.1, A.6, A.7): the real routing differs, and
+    with it which muscles L + S puts in L. With 'mid' = 200 both hold, errors up to ~15°.
+
+    (3) The S modes lose roll ±30° (and all-S-mid pitch). This is not an underdamped swing: with
+    the disc damping ten times larger (0.5 N m s/rad) all-S-high falls too, already at −30° roll
+    (default: 27° peak deviation there, 30.4° on the way back at −20°, just over the 30° fall
+    limit; tried). At −30° the hanging arms' gravity beats the software springs (k_s 12 kN/m): pitch
+    and yaw drift away monotonically for ~1 s at low tension (≤ 1.5 kgf, duties near 0), then the
+    spine falls and bounces — the "sway" is the fall. §4.7.3 reports the same failure for modes 7
+    and 8 ("during roll the pitch posture became unstable and the spine fell forward or back"), but
+    not for all-S.
+
+    (4) The interference model barely changes muscle lengths (≤ 0.3 mm): all-L's small error comes
+    from wire stretch and gravity sag, and without wrapping all-L is *less* accurate — the wrap
+    sphere lends the back muscles moment arm — so "interference drives the error" (spec §5.3.9)
+    does not hold here. (5) All-LL is not the most accurate mode (it equals all-L until the limit).
+    (6) L + LL falls at +30° pitch with a mean error of 24° just over the 20° hold limit (at +20° it
+    sways 21° peak): the outcome sits on the hold criterion, and perturbations of 1e−9 m in the
+    length targets flip it (tried) — the check ``l_ll.max_pitch_held_deg`` is fragile.
+
+    Run time: the 1 ms loop costs ~0.1 ms of CPU per tick (MuJoCo ~45 µs for the two 0.5 ms
+    substeps; the controller tick, the sensor snapshot and the posture player were made leaner,
+    bit-identically); the default run simulates ~570 s in ~60 s of CPU.
     """
     p = ctx.params
     names = list(MODE_CONFIGS) if p["modes"] == "all" else [m.strip() for m in p["modes"].split(",")]
