@@ -141,3 +141,18 @@ def test_random_reachable_poses_are_reached(robot, fractions):
     start = _set(robot, goal, np.clip(_values(robot, goal, ARM) + 0.3, lo, hi))
     q, ok, (pos_err, _) = ik.solve(robot, {"r_grasp": _fk(robot, goal)[0]}, start, ARM)
     assert ok and pos_err <= 1e-4
+
+
+def test_cached_problem_is_per_model_and_gives_the_same_answer():
+    """ik.solve reuses its scratch data per (model, joints); a second model gets its own."""
+    from shintai.humanoid import ik as ik_module
+    from shintai.humanoid.robots.hrp2 import build_hrp2
+
+    a, b = build_hrp2(), build_hrp2()
+    joints = ["r_hip_pitch", "r_knee_pitch", "r_ankle_pitch"]
+    target = a.site_pos("r_sole") + [0.03, 0.0, 0.03]
+    first = ik_module.solve(a, {"r_sole": target}, joints=joints)
+    again = ik_module.solve(a, {"r_sole": target}, joints=joints)
+    other = ik_module.solve(b, {"r_sole": target}, joints=joints)
+    assert first.ok and np.array_equal(first.q, again.q) and np.array_equal(first.q, other.q)
+    assert ik_module._problem(a.model, joints) is not ik_module._problem(b.model, joints)

@@ -152,3 +152,25 @@ def test_the_robot_pedals_one_revolution_and_travels_2_45_m():
     travel = np.linalg.norm((body.body_pos("tricycle") - start)[:2])
     assert crank > math.radians(330)
     assert travel / crank * 2 * math.pi == pytest.approx(2.45, rel=0.01)
+
+
+def test_grip_grasp_holds_two_points_on_the_bar_and_grip_error_widens_the_handlebar():
+    """The "grip" grasp (GRIP_BAR_OFFSET): two point holds on the bar per hand, so the hand can turn
+    about the bar only; ``grip_error`` puts the true grips that much farther out (E1's model error)."""
+    body = riding.build_riding(grasp="grip", grip_error=0.01)
+    m, vehicle = body.model, body.body_pos("tricycle")
+    for side, sign in (("l", 1.0), ("r", -1.0)):
+        ids = [body.id("equality", riding.HOLD[side]), body.id("equality", riding.HOLD_BAR[side])]
+        assert all(m.eq_type[i] == mujoco.mjtEq.mjEQ_CONNECT for i in ids) and body.data.eq_active[ids].all()
+        anchors = [m.eq_data[i, 3:6] for i in ids]  # in the hand body's frame
+        assert np.linalg.norm(anchors[1] - anchors[0]) == pytest.approx(np.linalg.norm(riding.GRIP_BAR_OFFSET))
+        nominal = tricycle.grip_position(0.0, side)
+        assert body.site_pos(riding.GRIP[side]) - vehicle == pytest.approx(nominal + [0, sign * 0.01, 0], abs=1e-9)
+    _run(body, 1.0)
+    for side in SIDES:
+        assert _gap(body, side) < 0.002
+    riding.release(body, "l")
+    left = [body.id("equality", riding.HOLD["l"]), body.id("equality", riding.HOLD_BAR["l"])]
+    assert not body.data.eq_active[left].any()
+    riding.grasp(body, "l")
+    assert body.data.eq_active[body.id("equality", riding.HOLD_BAR["l"])]

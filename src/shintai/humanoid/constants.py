@@ -210,6 +210,14 @@ RIDING_WAIST_PITCH = 0.35
 RIDING_POSTURE = {"shoulder_pitch": -0.7, "elbow_pitch": -0.9, "hip_pitch": -1.2, "knee_pitch": 1.6,
                   "ankle_pitch": -0.3}
 GRIPPER_CLOSED = 0.2  # rad toward "close" (the left gripper closes toward +; Table A.2: 16° range)
+# The "grip" grasp of riding.build_riding (chosen, used by E1): a hand closed round a cylindrical
+# grip holds its position and the bar's direction but can turn about the bar (the grip rotates in
+# the palm), so the grasp is two point holds (equality "connect") on the bar, at the grasp centre
+# and this far along the hand's x axis (= the bar; ~ half the 6 cm grip length of the model). The
+# 6-DoF weld of Table 3.1 also locks that roll, so it turns every roll mismatch between the IK's
+# hand orientation and the true handle into wrist loads, which a position-only impedance
+# (Table 3.4, Eq. 3.13) cannot relieve.
+GRIP_BAR_OFFSET = (0.04, 0.0, 0.0)  # m, site frame of s_grasp
 
 # Joint servos (hrpsys joint PD): not in the thesis. Chosen stiffness so that the maximum torque
 # of Table A.2 is reached at a 0.05 rad (2.9°) error — stiff enough to hold the riding posture,
@@ -388,3 +396,95 @@ KENSHIRO_CONTACT_N = 2.0
 # Chosen: … and whose pedal-axle point (from the leg's forward kinematics) lies within this distance
 # of the crank circle (a fifth of r); a foot fallen off its pedal can still press something.
 KENSHIRO_ON_PEDAL_M = 0.02
+
+# Chosen (spec §6 item 15: the thesis does not give HRP2's foot orientation on the pedal; the pedal
+# turns freely, Table 3.1): the IK keeps each sole level in the vehicle frame, as in the riding
+# posture (ankle pitch −63° … −14° over the whole circle, inside Table A.2's 75° forward). With the
+# pitch left free the DLS IK let it drift by up to ±30°, the free pedal tilted with the sole, the
+# vertical f^trg = (0, 0, 150) N (Table 3.4) then had a 40 % component along the tilted pedal,
+# and the sole crept down the pedal (≈6 mm/s) until the passive foot fell off at θ_c ≈ 200°.
+PEDAL_SOLE_PITCH = 0.0  # rad, sole pitch about the crank axis relative to the vehicle frame
+
+# ------------------------------------------------------------------------------------------------
+# Ch. 4 corrections (§4.3–4.4, §7.3.1, §7.3.2, §7.4.1) — humanoid/corrections.py, navigation.py,
+# ch4_riding.py, ch4_scenarios.py. The thesis gives none of these numbers unless marked.
+# ------------------------------------------------------------------------------------------------
+
+WHEELBASE = TRICYCLE.crank_to_front + TRICYCLE.crank_to_back  # L of Eqs. 4.15–4.22: front to back shaft (Fig. A.1)
+
+
+@dataclass(frozen=True)
+class NavigationSpec:
+    """Depth sensor, costmap and dynamic-window planner (§4.4.2; ours: the thesis used ROS move_base/DWA)."""
+
+    # Depth sensor: MultiSense S7 field of view 80° × 49° (vendor data sheet; the thesis names the
+    # sensor, §A.2.1). Chosen ray grid and range.
+    fov_h: float = 80 * DEG
+    fov_v: float = 49 * DEG
+    rays_h: int = 48
+    rays_v: int = 12
+    max_range: float = 5.0  # m
+    min_obstacle_height: float = 0.05  # m, points lower than this are floor (ground filter)
+    # Costmap (ROS costmap_2d-like): chosen cell size and extent; inflation by the vehicle's
+    # half width plus a margin.
+    resolution: float = 0.05  # m per cell
+    size: tuple[float, float] = (11.0, 6.0)  # m (x, y) extent
+    origin: tuple[float, float] = (-2.0, -3.0)  # m, world position of cell (0, 0)'s corner
+    # Footprint: circles of this radius along the vehicle centreline (vehicle frame x, crank origin);
+    # covers wheels (tread 0.40 m → half 0.2 + tyre) and the rider's knees.
+    footprint_x: tuple[float, ...] = (-0.55, -0.2, 0.15, 0.5)
+    footprint_r: float = 0.32
+    # DWA (Fox et al. 1997): chosen limits of a slowly pedalled tricycle.
+    v_max: float = 0.4  # m/s
+    a_max: float = 0.4  # m/s²
+    yaw_acc_max: float = 1.0  # rad/s²
+    horizon: float = 3.0  # s of forward simulation per sample
+    samples_v: int = 7
+    samples_w: int = 15
+    w_path: float = 2.0  # per m of the trajectory end's distance from the global path
+    w_goal: float = 1.0  # per m still to go along the path
+    w_clearance: float = 0.4
+    clearance_cap: float = 0.3  # m: clearance beyond this earns nothing (else stopping scores best)
+    w_speed: float = 0.4
+    path_margin: float = 0.35  # m, chosen: the global path pays to come closer than this beyond the footprint
+    goal_tolerance: float = 0.3  # m: stop within this of the goal (the thesis: (ẋ, θ̇) → 0 at the goal)
+    period: float = 0.1  # s, planner period (move_base's controller_frequency 10 Hz)
+
+
+NAVIGATION = NavigationSpec()
+
+# Interrupt-type sitting recovery (§4.3.2, Table 7.6). Chosen: trigger when |θ_roll| exceeds 1°
+# (the thesis gives no threshold) at a crank angle within 5° of kπ; STAND pushes both feet with
+# Table 7.6's 320 N; L_hip→COG from the model's seated CoM (computed in the scenario). Why 1°: in
+# our model a creeping seat slip tilts the trunk by only a degree or two while the hip slides many
+# centimetres across the saddle (measured with an earlier 30 N foot contact: ≈1.5° at 9 cm, tipping
+# within ≈1 s past ≈3.5°), so a larger threshold would leave no θ_c = kπ window (every 4.1 s at
+# 0.3 m/s) before the fall. Chosen before the final runs; not changed since.
+RECOVERY_ROLL_THRESHOLD = 1 * DEG
+RECOVERY_CRANK_TOLERANCE = 5 * DEG
+RECOVERY_PUSH_N = 320.0  # N per foot, Table 7.6 (f_trg = (0, 0, 320)^T)
+RECOVERY_LIFT_M = 0.02  # m, chosen: the hip rises this much above the saddle during STAND
+RECOVERY_PHASE_S = 1.0  # s, chosen duration of each of STAND, SHIFT, RESEAT (T1–T3 not given)
+
+# Real-time chest posture control (§4.3.3, Eq. 4.8): k_C, T_C not given. Chosen k_C = 4 1/s,
+# T_C = 1 s: a 0.25 s response and a slow return of the correction.
+POSTURE_K_C = 4.0
+POSTURE_T_C = 1.0
+
+# Pedalling power detection (§4.4.3): no rule given. Chosen: a rise of the summed vertical ankle
+# force by more than 40 % above its running mean (2 s window) while the crank stalls.
+PPDM_RISE = 0.4
+PPDM_WINDOW_S = 2.0
+PPDM_PUSH_FACTOR = 2.0  # "push harder": f_trg doubled (150 → 300 N, near Table 7.6's 320 N)
+
+# Crank motor standing in for the legs (drive=motor, NOT the thesis's method): velocity servo.
+CRANK_MOTOR_KV = 200.0  # N m s/rad
+CRANK_MOTOR_TORQUE = 60.0  # N m, ≈ a 480 N push at r = 0.125 m
+# Feet riding the motor-driven pedals press with Table 3.4's leg target f^trg_z = 150 N (both feet:
+# the two pedal torques cancel, the motor turns the crank), the contact state of the thesis's driving.
+FOOT_FOLLOW_F_TRG = IMPEDANCE["passive_leg"].f_trg[2]
+# Chosen: a ride counts as a fall once the tricycle frame tilts this far from upright (its z axis
+# against the vertical); the thesis reports falls only qualitatively (§3.5.4: fall risk, safety lift).
+FALL_TILT = 30 * DEG
+# §3.5.4 (E7): the wait for a commanded motion to complete was cut to 80 % of the original's.
+WAIT_FRACTION_IMPROVED = 0.8

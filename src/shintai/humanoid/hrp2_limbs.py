@@ -17,7 +17,9 @@ plans use, is written in it, and it stays valid while the tricycle drives off (E
 ground its z is the vertical of f^trg = (0, 0, 150) N (Table 3.4).
 
 Orientation (Table 3.1; the thesis's impedance is position-only, spec §6 item 3): a sole keeps
-its y axis on the crank axis with the pitch free (the pedal turns freely, "line contact"); a hand
+its y axis on the crank axis and its pitch at ``PEDAL_SOLE_PITCH`` (level, the riding posture's;
+the freely turning pedal lies flat under it, so the vertical f^trg of Table 3.4 is normal to the
+pedal — see the constant for why the pitch is not left free); a hand
 keeps its x axis on the bar of the nominal handle at the handle angle its own point shows
 (method (a), :func:`~shintai.humanoid.switching.estimate_handle_angle`), roll about the bar free.
 The IK starts from the limb's previous command, not from the measured joints, so the servo target
@@ -30,8 +32,10 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid import ik, quat_axis
+from shintai.humanoid.active import R_y
+from shintai.humanoid.constants import PEDAL_SOLE_PITCH
 from shintai.humanoid.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
-from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
+from shintai.humanoid.robots.hrp2 import SIDES
 from shintai.humanoid.switching import estimate_handle_angle
 from shintai.humanoid.vehicles.tricycle import steer_axis
 from shintai.sim.body import MujocoBody
@@ -39,11 +43,13 @@ from shintai.sim.body import MujocoBody
 KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
 CRANK_AXIS_IN_SOLE = np.array([0.0, 1.0, 0.0])  # the pedal axle along the sole's y axis
+SOLE_IN_VEHICLE = R_y(PEDAL_SOLE_PITCH)  # the sole frame's orientation in the vehicle frame
 
 
 def waist_pose(body: MujocoBody) -> tuple[np.ndarray, np.ndarray]:
     """(position, rotation) of the robot's waist, world frame."""
-    return body.body_pos("waist"), body.data.body("waist").xmat.reshape(3, 3).copy()
+    waist = body.id("body", "waist")
+    return body.data.xpos[waist].copy(), body.data.xmat[waist].reshape(3, 3).copy()
 
 
 class VehicleFrame:
@@ -52,13 +58,23 @@ class VehicleFrame:
 
     def __init__(self, body: MujocoBody):
         self.body = body
+        self.waist = body.id("body", "waist")
         p_w, r_w = waist_pose(body)
         p_v, r_v = body.body_pos("tricycle"), body.data.body("tricycle").xmat.reshape(3, 3)
         self.offset, self.rot_in_waist = r_w.T @ (p_v - p_w), r_w.T @ r_v
+        self._key, self._pose = None, None
 
     def pose(self) -> tuple[np.ndarray, np.ndarray]:
-        p_w, r_w = waist_pose(self.body)
-        return p_w + r_w @ self.offset, r_w @ self.rot_in_waist
+        """(position, rotation) of the vehicle frame, world (read-only arrays: computed once per waist
+        pose, which several limbs and laws ask for every tick)."""
+        d = self.body.data
+        key = (d.xpos[self.waist].tobytes(), d.xmat[self.waist].tobytes())
+        if key != self._key:
+            p_w, r_w = d.xpos[self.waist], d.xmat[self.waist].reshape(3, 3)
+            p, r = p_w + r_w @ self.offset, r_w @ self.rot_in_waist
+            p.setflags(write=False), r.setflags(write=False)
+            self._key, self._pose = key, (p, r)
+        return self._pose
 
     def to_vehicle(self, world_point) -> np.ndarray:
         p, r = self.pose()
@@ -89,21 +105,39 @@ class Hrp2Limb:
         self.sensor = WRIST_FT[s] if kind == "hand" else ANKLE_FT[s]
         self.joints = ARM[s] if kind == "hand" else LEG[s]
         self.q = np.array([body.joint_qpos(j) for j in self.joints])
+        self.qadr = np.array([body.model.joint(j).qposadr[0] for j in self.joints])
         self.unreachable = 0
+        # ft_reaction's force, with its per-call look-ups done once (the torque is not needed here)
+        self._ft_site = body.id("site", f"{self.sensor}_ft")
+        self._ft_key = f"{self.sensor}_force"
+        self._ft_weight = body.model.body_subtreemass[body.model.site_bodyid[self._ft_site]] * body.model.opt.gravity
+        self._site_id = body.id("site", self.site)
+        # One FK / F/T reading per snapshot (the laws and the logging ask several times a tick); the
+        # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
+        self._point = self._force = (None, None)
 
     def point(self, snapshot) -> np.ndarray:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
-        return self.frame.to_vehicle(self.body.site_pos(self.site))
+        snap, value = self._point
+        if snap is not snapshot:
+            value = self.frame.to_vehicle(self.body.data.site_xpos[self._site_id])
+            self._point = (snapshot, value)
+        return value.copy()
 
     def force(self, snapshot) -> np.ndarray:
         """f^msr: the environment's force on the hand / foot, vehicle frame [N] (Eq. 3.13)."""
-        return self.frame.rotate_to_vehicle(ft_reaction(self.body, snapshot, self.sensor)[0])
+        snap, value = self._force
+        if snap is not snapshot:
+            rot = self.body.data.site_xmat[self._ft_site].reshape(3, 3)  # = ft_reaction(...)[0], faster
+            value = self.frame.rotate_to_vehicle(-rot @ snapshot[self._ft_key] - self._ft_weight)
+            self._force = (snapshot, value)
+        return value.copy()
 
     def target(self, xi) -> ik.Target:
         """The world-frame IK target of the contact point at ξ (vehicle frame), with its axis rule."""
         rot = self.frame.pose()[1]
         if self.kind == "foot":
-            return ik.Target(pos=self.frame.to_world(xi), axis=(CRANK_AXIS_IN_SOLE, rot[:, 1]))
+            return ik.Target(pos=self.frame.to_world(xi), rot=rot @ SOLE_IN_VEHICLE)
         theta_h = estimate_handle_angle({self.side: np.asarray(xi, dtype=float)})
         bar = np.zeros(3)  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
         mujoco.mju_rotVecQuat(bar, np.array([0.0, 1.0, 0.0]), quat_axis(steer_axis(), theta_h))
@@ -112,9 +146,7 @@ class Hrp2Limb:
     def solve(self, xi) -> ik.IKResult:
         """IK of this limb's joints for ξ, from its previous command (the rest of the body as measured)."""
         q0 = self.body.data.qpos.copy()
-        model = self.body.model
-        for joint, value in zip(self.joints, self.q):
-            q0[model.joint(joint).qposadr[0]] = value
+        q0[self.qadr] = self.q
         return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)
 
     def reachable(self, xi) -> bool:
@@ -125,8 +157,7 @@ class Hrp2Limb:
         """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable."""
         result = self.solve(xi)
         if result.ok:
-            adr = [self.body.model.joint(j).qposadr[0] for j in self.joints]
-            self.q = result.q[adr]
+            self.q = result.q[self.qadr]
         else:
             self.unreachable += 1
         return dict(zip(self.joints, self.q))

@@ -16,6 +16,7 @@ that step. A ``posture`` (joint values) is pursued in the null space of the targ
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -80,6 +81,8 @@ class _Problem:
             ids = [self._joint_id(name) for name in joints]
         self.qadr = model.jnt_qposadr[ids]
         self.dadr = model.jnt_dofadr[ids]
+        self._jacp, self._jacr = np.zeros((3, model.nv)), np.zeros((3, model.nv))
+        self._sites: dict[str, int] = {}
         limited = model.jnt_limited[ids].astype(bool)
         self.lo = np.where(limited, model.jnt_range[ids, 0], -np.inf)
         self.hi = np.where(limited, model.jnt_range[ids, 1], np.inf)
@@ -93,6 +96,12 @@ class _Problem:
         return j
 
     def site_id(self, name: str) -> int:
+        s = self._sites.get(name)
+        if s is None:
+            s = self._sites[name] = self._site_id(name)
+        return s
+
+    def _site_id(self, name: str) -> int:
         s = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_SITE, name)
         if s < 0:
             raise KeyError(f"IK: unknown site {name!r}")
@@ -101,32 +110,81 @@ class _Problem:
     def kinematics(self, qpos: np.ndarray) -> None:
         self.data.qpos[:] = qpos
         mujoco.mj_kinematics(self.model, self.data)
-        mujoco.mj_comPos(self.model, self.data)
+
+    def jacobian(self, site: int) -> tuple[np.ndarray, np.ndarray]:
+        """(3×n translational, 3×n rotational) Jacobian of ``site`` for the moving joints (``mj_jacSite``
+        into reused full-width buffers; measured faster than forming the columns from the joint axes
+        in NumPy)."""
+        mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, site)
+        return self._jacp[:, self.dadr], self._jacr[:, self.dadr]
 
 
-def _rows(problem: _Problem, site: int, target: Target):
-    """Error rows, Jacobian rows (selected dofs) and (position error, rotation error) of one target."""
-    m, d = problem.model, problem.data
-    jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
-    mujoco.mj_jacSite(m, d, jacp, jacr, site)
-    jacp, jacr = jacp[:, problem.dadr], jacr[:, problem.dadr]
-    errors, jacs, pos_err, rot_err = [], [], 0.0, 0.0
+_PROBLEMS: dict = {}  # (id(model), joints) -> (model, _Problem): the scratch data and addresses, reused
+_PROBLEMS_MAX = 32
+
+
+def _problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
+    """A cached :class:`_Problem` for this model and joint set (building one allocates an ``MjData``,
+    which cost more than the IK itself at one solve per limb per 4 ms control tick)."""
+    key = (id(model), None if joints is None else tuple(joints))
+    hit = _PROBLEMS.get(key)
+    if hit is not None and hit[0] is model:
+        return hit[1]
+    if len(_PROBLEMS) >= _PROBLEMS_MAX:
+        _PROBLEMS.pop(next(iter(_PROBLEMS)))
+    problem = _Problem(model, joints)
+    _PROBLEMS[key] = (model, problem)
+    return problem
+
+
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _prepared(target: Target) -> Target:
+    """``target`` with its axis pair as unit float vectors (done once per solve, not per iteration)."""
+    if target.axis is None:
+        return target
+    local, world = (np.asarray(v, float) / math.sqrt(float(np.dot(v, v))) for v in target.axis)
+    return Target(target.pos, target.rot, (local, world))
+
+
+def _errors(problem: _Problem, site: int, target: Target):
+    """Error rows and (position error, rotation error) of one target (its axis pair unit vectors,
+    :func:`_prepared`)."""
+    d = problem.data
+    errors, pos_err, rot_err = [], 0.0, 0.0
     if target.pos is not None:
         e = target.pos - d.site_xpos[site]
-        errors.append(e), jacs.append(jacp)
-        pos_err = float(np.linalg.norm(e))
+        errors.append(e)
+        pos_err = math.sqrt(float(e @ e))
     xmat = d.site_xmat[site].reshape(3, 3)
     if target.rot is not None:
         e = rotation_error(target.rot, xmat)
-        errors.append(e), jacs.append(jacr)
-        rot_err = float(np.linalg.norm(e))
+        errors.append(e)
+        rot_err = math.sqrt(float(e @ e))
     if target.axis is not None:
-        local, world = (np.asarray(v, float) / np.linalg.norm(v) for v in target.axis)
+        local, world = target.axis
         a = xmat @ local
-        across = np.cross(a, world)
-        errors.append(across), jacs.append((np.eye(3) - np.outer(a, a)) @ jacr)
-        rot_err = max(rot_err, float(np.arctan2(np.linalg.norm(across), a @ world)))
-    return errors, jacs, pos_err, rot_err
+        across = cross(a, world)
+        errors.append(across)
+        rot_err = max(rot_err, math.atan2(math.sqrt(float(across @ across)), float(a @ world)))
+    return errors, pos_err, rot_err
+
+
+def _jacobian_rows(problem: _Problem, site: int, target: Target) -> list:
+    """The Jacobian rows (moving dofs) matching :func:`_errors`' rows of one target."""
+    jacp, jacr = problem.jacobian(site)
+    jacs = []
+    if target.pos is not None:
+        jacs.append(jacp)
+    if target.rot is not None:
+        jacs.append(jacr)
+    if target.axis is not None:
+        a = problem.data.site_xmat[site].reshape(3, 3) @ target.axis[0]
+        jacs.append(jacr - np.outer(a, a @ jacr))  # (I − a aᵀ) J_r: the axis error's rows
+    return jacs
 
 
 def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
@@ -143,6 +201,8 @@ def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
 
 def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray) -> np.ndarray:
     """Damped-least-squares step on the free columns."""
+    if free.all():
+        return jac.T @ np.linalg.solve(jac @ jac.T + damping**2 * np.eye(len(err)), err)
     j = jac[:, free]
     step = np.zeros(jac.shape[1])
     step[free] = j.T @ np.linalg.solve(j @ j.T + damping**2 * np.eye(len(err)), err)
@@ -172,15 +232,15 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
     model = body_or_model.model if isinstance(body_or_model, MujocoBody) else body_or_model
     if q0 is None:
         q0 = body_or_model.data.qpos if isinstance(body_or_model, MujocoBody) else model.qpos0
-    problem = _Problem(model, joints)
-    sites = {problem.site_id(name): as_target(spec) for name, spec in targets.items()}
+    problem = _problem(model, joints)
+    sites = {problem.site_id(name): _prepared(as_target(spec)) for name, spec in targets.items()}
     rest = _posture_vector(problem, posture)
     q = np.array(q0, dtype=float)
     q[problem.qadr] = np.clip(q[problem.qadr], problem.lo, problem.hi)
     best, converged, moved = (np.inf, q.copy(), (np.inf, np.inf)), None, np.inf
     for _ in range(max_iter):
         problem.kinematics(q)
-        err, jac, residual = _stack(problem, sites)
+        err, residual = _stack_errors(problem, sites)
         score = max(residual[0] / tol, residual[1] / rot_tol)
         if score <= 1.0:
             converged = (q.copy(), residual)
@@ -188,6 +248,7 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
                 break
         elif score < best[0]:
             best = (score, q.copy(), residual)
+        jac = _stack_jacobian(problem, sites)  # only when a step follows (not on the final check)
         after = _limited_step(problem, q[problem.qadr], jac, err, rest, damping, max_step, posture_gain)
         moved = float(np.abs(after - q[problem.qadr]).max())
         q[problem.qadr] = after
@@ -207,27 +268,40 @@ def _posture_vector(problem: _Problem, posture: Mapping[str, float] | None) -> n
     return np.array([posture.get(n, np.nan) for n in names])
 
 
-def _stack(problem: _Problem, sites: dict[int, Target]):
-    errors, jacs, pos_err, rot_err = [], [], 0.0, 0.0
+def _stack_errors(problem: _Problem, sites: dict[int, Target]):
+    errors, pos_err, rot_err = [], 0.0, 0.0
     for site, target in sites.items():
-        e, j, p, r = _rows(problem, site, target)
+        e, p, r = _errors(problem, site, target)
         errors += e
-        jacs += j
         pos_err, rot_err = max(pos_err, p), max(rot_err, r)
-    return np.concatenate(errors), np.vstack(jacs), (pos_err, rot_err)
+    return np.concatenate(errors), (pos_err, rot_err)
+
+
+def _stack_jacobian(problem: _Problem, sites: dict[int, Target]) -> np.ndarray:
+    mujoco.mj_comPos(problem.model, problem.data)  # cdof and subtree CoMs, which mj_jacSite needs
+    jacs = []
+    for site, target in sites.items():
+        jacs += _jacobian_rows(problem, site, target)
+    return np.vstack(jacs)
 
 
 def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max_step, posture_gain) -> np.ndarray:
     """The moving joints after one DLS step (+ null-space posture pull), inside their limits: a joint
     at a limit that the step pushes further is frozen and the step recomputed without it."""
     free = np.ones(len(q), dtype=bool)
+    at_lo, at_hi = q <= problem.lo, q >= problem.hi
+    at_limit = bool(at_lo.any() or at_hi.any())
     for _ in range(len(q)):
         step = _dls_step(jac, err, damping, free)
         if rest is not None:
             pull = np.where(np.isnan(rest), 0.0, posture_gain * (rest - q))
             step += _null_step(jac, pull, free)
-        step *= min(1.0, max_step / max(np.abs(step).max(), 1e-12))
-        blocked = free & (((q <= problem.lo) & (step < 0)) | ((q >= problem.hi) & (step > 0)))
+        biggest = float(np.abs(step).max())
+        if biggest > max_step:
+            step *= max_step / biggest
+        if not at_limit:  # no joint at a limit: nothing to freeze
+            break
+        blocked = free & ((at_lo & (step < 0)) | (at_hi & (step > 0)))
         if not blocked.any():
             break
         free &= ~blocked

@@ -2,15 +2,17 @@
 
 Five contacts close the loops of Fig. 3.2 / Eq. 3.1: the hip is **welded** to the saddle (the
 thesis assumes the waist fixed, §3.3.2; equality ``hip_saddle``), each hand holds its grip with a
-switchable equality (``hold_l``, ``hold_r``: a weld = the 6-DoF bilateral grasp of Table 3.1, or a
-connect = a point hold), and each sole rests on its freely turning pedal in unilateral contact (no
-binding, Table 3.1). The initial posture is found by IK (:mod:`shintai.humanoid.ik`): hands on the
-grips with the bar across the hand, soles flat on level pedals, waist leaning forward; every servo
-holds it (keyframe ``ride``).
+switchable equality (``hold_l``, ``hold_r``: a weld = the 6-DoF bilateral grasp of Table 3.1, a
+connect = a point hold, or — ``grip`` — a connect plus a second one on the bar, ``hold_l_bar``,
+``hold_r_bar``: the hand holds the round grip but can turn in it, E1's choice), and each sole rests
+on its freely turning pedal in unilateral contact (no binding, Table 3.1). The initial posture is
+found by IK (:mod:`shintai.humanoid.ik`): hands on the grips with the bar across the hand, soles flat
+on level pedals, waist leaning forward; every servo holds it (keyframe ``ride``).
 
 :func:`build_riding` makes the body; its options choose which grips are held and how, the crank
-load, the start angles, and the model errors of the experiments (E1: the true steering axis away
-from the nominal one the controllers use; E4: the true crank centre moved). The controllers' model
+load, the start angles, and the model errors of the experiments (E1: the true grips farther out from the
+steering axis, or the axis shifted or inclined, away from the nominal handle the controllers use;
+E4: the true crank centre moved). The controllers' model
 is always the nominal :data:`~shintai.humanoid.constants.TRICYCLE`.
 
 :func:`grasp` takes hold **at the current pose** (it rewrites the equality's stored relative pose
@@ -28,22 +30,27 @@ Names for controllers and scenarios (``s`` is ``l`` or ``r``):
 * Joints: the 32 of :mod:`~shintai.humanoid.robots.hrp2` (servos named alike); the tricycle's
   ``handle`` and ``crank`` (no sensors on the tricycle, §3.4.4: estimate θ_h, θ_c from the robot's
   FK; ``q:handle``/``q:crank`` are the true angles, for evaluation only).
-* Equalities: ``hip_saddle``, ``hold_l``, ``hold_r``, ``drive`` (the crank gear).
+* Equalities: ``hip_saddle``, ``hold_l``, ``hold_r`` (+ ``hold_l_bar``, ``hold_r_bar`` with the grip
+  grasp), ``drive`` (the crank gear).
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import mujoco
 import numpy as np
 
 from shintai.humanoid import fill_keyframe, ik, scene_spec, set_joints
-from shintai.humanoid.constants import (ARM_JOINTS, GRIPPER_CLOSED, HRP2_LINKS, LEG_JOINTS, RIDING_POSTURE,
-                                        RIDING_WAIST_PITCH, SUBSTEPS, TRICYCLE)
+from shintai.humanoid.constants import (ARM_JOINTS, GRIP_BAR_OFFSET, GRIPPER_CLOSED, HRP2_LINKS, LEG_JOINTS,
+                                        RIDING_POSTURE, RIDING_WAIST_PITCH, SUBSTEPS, TRICYCLE)
 from shintai.humanoid.robots.hrp2 import SIDES, add_hrp2, side_posture
 from shintai.humanoid.vehicles.tricycle import add_tricycle, tricycle_state
 from shintai.sim.body import MujocoBody
 
 HOLD = {s: f"hold_{s}" for s in SIDES}  # grip equalities
+HOLD_BAR = {s: f"hold_{s}_bar" for s in SIDES}  # second point hold of the "grip" grasp (on the bar)
+GRASPS = ("weld", "connect", "grip")
 HIP_SADDLE = "hip_saddle"
 GRIP = {s: f"grip_{s}" for s in SIDES}  # tricycle grip sites
 PEDAL = {s: f"pedal_{s}_top" for s in SIDES}  # pedal platform sites
@@ -61,16 +68,20 @@ IK_JOINTS = ["waist_pitch"] + [j for s in SIDES for j in ARM[s] + LEG[s]]  # mov
 
 def riding_spec(grasp: str = "weld", held=("l", "r"), crank_damping: float | None = None,
                 crank_friction: float | None = None, handle_error=(0.0, 0.0, 0.0),
-                crank_error=(0.0, 0.0)) -> mujoco.MjSpec:
+                crank_error=(0.0, 0.0), grip_error: float = 0.0, rake_error: float = 0.0) -> mujoco.MjSpec:
     """The scene: tricycle at the origin, humanoid above the saddle, the equalities (relative poses
     still to be set, see :func:`build_riding`)."""
-    if grasp not in ("weld", "connect"):
-        raise ValueError(f"grasp must be 'weld' or 'connect', got {grasp!r}")
+    if grasp not in GRASPS:
+        raise ValueError(f"grasp must be one of {GRASPS}, got {grasp!r}")
     unknown = set(held) - set(SIDES)
     if unknown:
         raise ValueError(f"held names grips 'l' and 'r' only, got {sorted(unknown)}")
     spec = scene_spec("hrp2-tricycle")
-    add_tricycle(spec, spec.worldbody, crank_damping=crank_damping, crank_friction=crank_friction,
+    true = TRICYCLE  # the simulated tricycle: the nominal one but for the handle-model errors of E1
+    if grip_error or rake_error:
+        true = dataclasses.replace(TRICYCLE, handle_width=TRICYCLE.handle_width + 2 * grip_error,
+                                   steer_rake=TRICYCLE.steer_rake + rake_error)
+    add_tricycle(spec, spec.worldbody, t=true, crank_damping=crank_damping, crank_friction=crank_friction,
                  handle_error=handle_error, crank_error=crank_error)
     x, z = TRICYCLE.saddle
     add_hrp2(spec, spec.worldbody, [x, 0, z + HRP2_LINKS.hip_cover])  # the hip cover on the saddle
@@ -80,6 +91,9 @@ def riding_spec(grasp: str = "weld", held=("l", "r"), crank_damping: float | Non
     for s in SIDES:
         spec.add_equality(name=HOLD[s], type=kind, name1="handle", name2=f"{s}_hand",
                           objtype=mujoco.mjtObj.mjOBJ_BODY, active=s in held)
+        if grasp == "grip":  # a second point hold on the bar: the hand may turn about the bar only
+            spec.add_equality(name=HOLD_BAR[s], type=mujoco.mjtEq.mjEQ_CONNECT, name1="handle", name2=f"{s}_hand",
+                              objtype=mujoco.mjtObj.mjOBJ_BODY, active=s in held)
     spec.add_key(name="ride")
     return spec
 
@@ -109,16 +123,22 @@ def riding_posture(model: mujoco.MjModel, theta_h: float = 0.0, theta_c: float =
     return result.q
 
 
-def hold_here(model: mujoco.MjModel, data: mujoco.MjData, name: str, anchor_site: str | None = None) -> None:
+def hold_here(model: mujoco.MjModel, data: mujoco.MjData, name: str, anchor_site: str | None = None,
+              offset=(0.0, 0.0, 0.0)) -> None:
     """Make equality ``name`` (a body–body weld or connect) hold the bodies' current relative pose.
 
-    The anchor is ``anchor_site`` (a site on body2, e.g. the hand's grasp centre) or body2's origin.
+    The anchor is ``anchor_site`` (a site on body2, e.g. the hand's grasp centre) or body2's origin,
+    moved by ``offset`` (in the site's frame).
     Weld data: the anchor in body2's frame, the same point in body1's frame, the rotation of body2
     relative to body1; connect data: the anchor in body1's and in body2's frame.
     """
     eq = model.equality(name).id
     b1, b2 = model.eq_obj1id[eq], model.eq_obj2id[eq]
     anchor = np.zeros(3) if anchor_site is None else model.site(anchor_site).pos.copy()
+    if anchor_site is not None and np.any(offset):
+        turned = np.zeros(3)
+        mujoco.mju_rotVecQuat(turned, np.asarray(offset, dtype=float), model.site(anchor_site).quat)
+        anchor = anchor + turned
     point = data.xpos[b2] + data.xmat[b2].reshape(3, 3) @ anchor
     in_b1 = data.xmat[b1].reshape(3, 3).T @ (point - data.xpos[b1])
     if model.eq_type[eq] == mujoco.mjtEq.mjEQ_CONNECT:
@@ -130,30 +150,45 @@ def hold_here(model: mujoco.MjModel, data: mujoco.MjData, name: str, anchor_site
     model.eq_data[eq, :10] = np.concatenate([anchor, in_b1, rel])
 
 
+def _bar_hold(model: mujoco.MjModel, side: str) -> bool:
+    return mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_EQUALITY, HOLD_BAR[side]) >= 0
+
+
 def grasp(body: MujocoBody, side: str) -> None:
     """Hold grip ``side`` at the hand's current pose (rewrites ``hold_<side>``, then switches it on)."""
     hold_here(body.model, body.data, HOLD[side], HAND[side])
     body.set_equality(HOLD[side], True)
+    if _bar_hold(body.model, side):
+        hold_here(body.model, body.data, HOLD_BAR[side], HAND[side], GRIP_BAR_OFFSET)
+        body.set_equality(HOLD_BAR[side], True)
 
 
 def release(body: MujocoBody, side: str) -> None:
     """Let go of grip ``side``."""
     body.set_equality(HOLD[side], False)
+    if _bar_hold(body.model, side):
+        body.set_equality(HOLD_BAR[side], False)
 
 
 def build_riding(theta_h: float = 0.0, theta_c: float = 0.0, held=("l", "r"), grasp: str = "weld",
                  crank_damping: float | None = None, crank_friction: float | None = None,
-                 handle_error=(0.0, 0.0, 0.0), crank_error=(0.0, 0.0), substeps: int = SUBSTEPS) -> MujocoBody:
+                 handle_error=(0.0, 0.0, 0.0), crank_error=(0.0, 0.0), substeps: int = SUBSTEPS,
+                 grip_error: float = 0.0, rake_error: float = 0.0) -> MujocoBody:
     """HRP2-JSK riding the tricycle, reset to keyframe ``ride``; one body step = 4 ms (hrpsys).
 
     ``theta_h``/``theta_c``: start handle and crank angles (θ_c = 0: left pedal forward, Fig. 3.11);
     ``held``: grips held at the start (``"l"``, ``"r"``); ``grasp``: ``"weld"`` (6-DoF grasp,
-    Table 3.1) or ``"connect"`` (point hold); ``crank_damping`` (N m s/rad) and ``crank_friction``
+    Table 3.1), ``"connect"`` (point hold) or ``"grip"`` (two point holds on the bar, ``GRIP_BAR_OFFSET``
+    apart: the hand holds a round grip it can turn in, see the constant); ``crank_damping`` (N m s/rad)
+    and ``crank_friction``
     (N m): the crank load (defaults in :class:`~shintai.humanoid.constants.TricycleSpec`);
     ``handle_error`` (x, y, z) m: the true steering axis moved from the nominal one (E1);
-    ``crank_error`` (x, z) m: the true crank centre moved (E4).
+    ``crank_error`` (x, z) m: the true crank centre moved (E4); ``grip_error`` m: the true grips this
+    much farther out from the steering axis (each side; a handlebar half-width error, E1);
+    ``rake_error`` rad: the true steering axis inclined this much more than the nominal rake (E1).
     """
-    model = riding_spec(grasp, held, crank_damping, crank_friction, handle_error, crank_error).compile()
+    model = riding_spec(grasp, held, crank_damping, crank_friction, handle_error, crank_error,
+                        grip_error, rake_error).compile()
     qpos = riding_posture(model, theta_h, theta_c)
     fill_keyframe(model, "ride", qpos)
     data = mujoco.MjData(model)
@@ -162,4 +197,6 @@ def build_riding(theta_h: float = 0.0, theta_c: float = 0.0, held=("l", "r"), gr
     hold_here(model, data, HIP_SADDLE)
     for side in SIDES:
         hold_here(model, data, HOLD[side], HAND[side])
+        if grasp == "grip":
+            hold_here(model, data, HOLD_BAR[side], HAND[side], GRIP_BAR_OFFSET)
     return MujocoBody(model, substeps=substeps, keyframe="ride")

@@ -210,3 +210,5 @@ def _plot_plan(ctx, k) -> None:
 
 
 from shintai.humanoid import tricycle_scenarios  # noqa: F401,E402
+from shintai.humanoid import driving_scenarios  # noqa: F401,E402
+from shintai.humanoid import ch4_scenarios  # noqa: F401,E402

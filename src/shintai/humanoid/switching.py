@@ -14,12 +14,14 @@ right active on π/2 + δ_c ≤ θ_c < 3π/2 + δ_c (mod 2π), left otherwise.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 
 import numpy as np
 
 from shintai.humanoid.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
+from shintai.humanoid.ik import cross
 from shintai.humanoid.vehicles.tricycle import grip_position, steer_axis, steer_point
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
@@ -46,7 +48,7 @@ def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> fl
         w = w - a * (a @ w)
         z = np.asarray(z, dtype=float)
         z = z - a * (a @ z)
-        num += a @ np.cross(z, w)
+        num += a @ cross(z, w)
         den += z @ w
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
@@ -66,9 +68,16 @@ def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
 def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
     """θ_h from the hand points on the grips (``{"left": p, "right": p}`` or one of them), in the
     vehicle frame, about the steering axis of the tricycle's nominal model."""
+    axis_point, zero, axis = _handle_model(t)
+    return fit_angle(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
+
+
+@functools.lru_cache(maxsize=8)
+def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
+    """The nominal steering axis point, each grip's θ_h = 0 direction from it, and the axis (constant:
+    computed once per tricycle model; :func:`estimate_handle_angle` runs every control tick)."""
     axis_point = steer_point(t)
-    zero = [grip_position(0.0, side[0], t) - axis_point for side in hands]
-    return fit_angle(list(hands.values()), zero, axis_point, steer_axis(t))
+    return axis_point, {s: grip_position(0.0, s, t) - axis_point for s in ("l", "r")}, steer_axis(t)
 
 
 def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:

@@ -21,7 +21,8 @@ bodies         ``waist`` (pelvis, root), ``chest``, ``head``, ``s_hand``, ``s_fo
                body per joint (``s_thigh``, ``s_shank``, ``s_forearm``, …)
 sites          ``s_wrist_ft``/``s_ankle_ft`` (F/T sensor frames), ``s_grasp`` (grasp centre,
                0.10 m beyond the wrist; its x axis is the axis of a grasped bar), ``s_sole``
-               (sole, under the ankle axis, foot frame), ``imu`` (chest)
+               (sole, under the ankle axis, foot frame), ``imu`` (chest), ``head_camera`` (depth
+               sensor origin on the head's face, x forward; :mod:`shintai.humanoid.navigation`)
 sensors        ``s_wrist_force``/``s_wrist_torque``, ``s_ankle_force``/``s_ankle_torque``: what
                the hand/foot receives from its parent link, in the site frame (see
                :func:`shintai.humanoid.add_ft_sensor` and :func:`ft_reaction`); ``imu_quat``
@@ -148,6 +149,8 @@ def add_hrp2(spec: mujoco.MjSpec, parent, pos, links: Hrp2Links = HRP2_LINKS):
     add_visual(neck, CAPSULE, [0.035], GREY, m["neck_yaw_link"], fromto=[0, 0, -0.09, 0, 0, 0.0])
     add_visual(head, BOX, [0.09, 0.08, links.head_top / 2], WHITE, m["head"], pos=[0.01, 0, links.head_top / 2])
     add_visual(head, BOX, [0.03, 0.09, 0.03], GREY, pos=[0.09, 0, links.head_top / 2 + 0.02])  # MultiSense face
+    # Depth-sensor origin of the head stereo camera (MultiSense S7, §A.2.1, §4.4.2); x forward.
+    head.add_site(name="head_camera", pos=[0.12, 0, links.head_top / 2 + 0.02])
     for side in SIDES:
         _add_leg(spec, waist, side, links)
         _add_arm(spec, chest, side, links)

@@ -1,0 +1,80 @@
+"""The ch. 4 riding rig (seed 000 §4.3–4.4): hip–saddle contact, reference channels, the whole-body
+rider on its reference model, the crank motor stand-in; short runs."""
+
+import math
+
+import numpy as np
+import pytest
+
+from shintai.core.runtime import FunctionModule, Loop
+from shintai.humanoid import ch4_riding as cr
+from shintai.humanoid.constants import DEG, TRICYCLE
+from shintai.humanoid.navigation import crank_rate
+
+
+def test_reference_channels_echo_and_reject_unknown():
+    body = cr.build_ch4(hip="weld")
+    body.apply({"ref:theta_h": 0.1, "ref:com_shift": 0.02})
+    snap = body.snapshot()
+    assert snap["ref:theta_h"] == 0.1 and snap["ref:com_shift"] == 0.02 and snap["ref:hip_lift"] == 0.0
+    with pytest.raises(KeyError):
+        body.apply({"ref:nonsense": 1.0})
+
+
+def test_roll_sign_convention():
+    c, s = math.cos(0.1), math.sin(0.1)
+    rx = np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+    assert cr.roll_of(rx) == pytest.approx(0.1)
+
+
+def test_rider_waist_turns_about_the_hip_point():
+    """Eq. 4.9: the reference waist turned by Δφ_C about the hip–saddle contact keeps the hip point."""
+    body = cr.build_ch4(hip="contact")
+    rider = cr.Rider(body)
+    pos, rot = rider.waist_pose(0.1, 0.0, 0.0)
+    hip_in_waist = rider.seat_rot.T @ (rider.hip_point - rider.seat_pos)
+    assert pos + rot @ hip_in_waist == pytest.approx(rider.hip_point, abs=1e-12)
+    assert cr.roll_of(rot @ rider.seat_rot.T) == pytest.approx(0.1)
+    pos2, _ = rider.waist_pose(0.0, 0.03, 0.02)
+    assert pos2 - rider.seat_pos == pytest.approx([0.0, 0.03, 0.02])
+
+
+def test_seated_robot_drives_and_steers_with_the_motor():
+    """Sitting on the saddle contact (no weld), the motor turning the crank, the arms steering: the
+    tricycle rolls D_c per revolution and turns at v tan θ_h / L (Eq. 4.15), the hip stays seated."""
+    body = cr.build_ch4(hip="contact")
+    rider = cr.Rider(body)
+    refs = FunctionModule(lambda s: {"ref:crank_rate": crank_rate(0.3) if s["t"] > 0.5 else 0.0,
+                                     "ref:theta_h": 0.2 if s["t"] > 2.0 else 0.0}, name="refs")
+    loop = Loop(body, [refs, rider, cr.CrankMotor()])
+    loop.run(3.5)
+    crank0, x0 = body.data.joint("crank").qpos[0], cr.vehicle_pose2d(body)
+    loop.run(2.0)
+    crank1, x1 = body.data.joint("crank").qpos[0], cr.vehicle_pose2d(body)
+    travel = np.hypot(*(x1[:2] - x0[:2]))
+    assert travel == pytest.approx(TRICYCLE.travel_per_rev * (crank1 - crank0) / (2 * math.pi), rel=0.05)
+    assert travel / 2.0 == pytest.approx(0.3, rel=0.1)
+    yaw_rate = (x1[2] - x0[2]) / 2.0
+    assert yaw_rate == pytest.approx(0.3 * math.tan(body.data.joint("handle").qpos[0]) / 1.2, rel=0.2)
+    assert body.data.joint("handle").qpos[0] == pytest.approx(0.2, abs=2 * DEG)
+    # still sitting: the saddle carries the weight less the feet's 2 × 150 N (≈250 N)
+    assert body.contact_force("waist")[2] > 150.0
+    assert rider.unreachable == 0
+
+
+def test_freewheel_backpedalling_does_not_move_the_tricycle():
+    """§4.4.3: turning the crank back provides no pedalling force (the hub freewheels); forward it drives."""
+    body = cr.build_ch4(hip="weld")
+    wheel = cr.Freewheel(body)
+    rider = cr.Rider(body)
+    rate = {"w": -0.8}
+    loop = Loop(body, [FunctionModule(lambda s: {"ref:crank_rate": rate["w"]}, name="refs"), rider, cr.CrankMotor()])
+    crank0, x0 = body.data.joint("crank").qpos[0], cr.vehicle_pose2d(body)[0]
+    loop.run(2.0)
+    assert body.data.joint("crank").qpos[0] < crank0 - 1.0  # the crank went back > 57°
+    assert abs(cr.vehicle_pose2d(body)[0] - x0) < 0.02  # the tricycle stayed
+    assert wheel.releases >= 1 and not wheel.engaged
+    rate["w"] = 0.8
+    loop.run(3.0)
+    assert wheel.engaged
+    assert cr.vehicle_pose2d(body)[0] - x0 > 0.5  # forward pedalling drives again
