@@ -170,3 +170,42 @@ def test_a_muscle_needs_two_points_and_unique_names():
 def test_joint_stiffness_function_accepts_a_jacobian():
     J = np.array([[1.0, 0.0], [0.0, 2.0], [1.0, 1.0]])
     assert np.allclose(joint_stiffness(J, [1.0, 1.0, 2.0]), J.T @ np.diag([1.0, 1.0, 2.0]) @ J)
+
+
+# Appendix A, Tables A.1 (all L, mean tension) and A.2 (all LL, mean tension) — the evidence for
+# Cla's routing (robots.CLA_TOP_M; Fig. 3.31 is not in the text). +1: the muscle
+# lengthens as the whole spine bends that way (A.1: its tension rises from ~0 under L control — it
+# is stretched past its model length; A.2: it stays at or rises to the LL limit), −1: it shortens
+# (A.2: it goes slack; A.1: its tension falls to 0); 0: the tables disagree or show nothing. Values
+# in kgf, 0 → ±20 (or ±30) of the first sweep. Pitch + is forward (the back muscles CLA-RB/LB
+# load), roll + to the right (the left muscles load).
+CLA_APPENDIX_A_SIGNS = {
+    #             CLA-RF CLA-LF CLA-RB CLA-LB HIP-RF HIP-LF HIP-RB HIP-LB
+    ("pitch", -1): (+1, +1, -1, -1, -1, -1, +1, +1),
+    # A.1: CLA-RF .07→.41, CLA-LF .01→.22, HIP-RB .04→.52, HIP-LB .03→.43 (−20);
+    # A.2: CLA-RB .42→0, CLA-LB .64→.03, HIP-RF .46→.06, HIP-LF .68→0 (−20 on the way back)
+    ("pitch", +1): (-1, -1, +1, +1, +1, +1, -1, -1),
+    # A.1: CLA-RB .01→.29, CLA-LB .07→.51, HIP-RF 0→.49, HIP-LF 0→.39, HIP-RB .25→0, HIP-LB .45→.02,
+    # CLA-RF .07→.02, CLA-LF .01→0 (+20)
+    ("roll", -1): (+1, 0, +1, 0, 0, -1, +1, -1),
+    # A.1: CLA-RF .04→.72, HIP-RB .19→.35 (−20); A.2: CLA-RF .44→1.24, CLA-RB .27→.71, HIP-LF
+    # .52→.03, HIP-LB .65→.07 (−30); CLA-LB (A.1 up, A.2 down) and HIP-RF (slack with HIP-LF in A.2:
+    # a pitch drift) undetermined
+    ("roll", +1): (-1, +1, -1, +1, 0, +1, 0, +1),
+    # A.1: CLA-LF 0→.25, CLA-LB .01→.18, HIP-LB .03→.22 (+30, from +10); A.2: CLA-RF .44→.03,
+    # CLA-RB .27→.09, HIP-LF .52→.80 (+30); HIP-RF, HIP-RB (A.1 and A.2 disagree) undetermined
+}
+
+
+@pytest.mark.parametrize("angle_deg", [10.0, 20.0, 30.0])
+@pytest.mark.parametrize("axis, sign", list(CLA_APPENDIX_A_SIGNS))
+def test_cla_routing_length_changes_agree_with_appendix_a(axis, sign, angle_deg):
+    """Eq. 4.25 on our Cla routing lengthens/shortens each muscle as Tables A.1/A.2 say the real
+    robot's did (the determinate entries of CLA_APPENDIX_A_SIGNS), at ±10°, ±20° and ±30°."""
+    assert CLA.muscle_names == ("CLA-RF", "CLA-LF", "CLA-RB", "CLA-LB", "HIP-RF", "HIP-LF", "HIP-RB", "HIP-LB")
+    whole = np.zeros(3)
+    whole[{"roll": 0, "pitch": 1}[axis]] = sign * np.radians(angle_deg)
+    delta = CLA.model.lengths(uniform_posture(whole, CLA.n)) - CLA.model.lengths(np.zeros(15))
+    expected = np.array(CLA_APPENDIX_A_SIGNS[(axis, sign)])
+    known = expected != 0
+    assert np.array_equal(np.sign(delta[known]), expected[known]), dict(zip(CLA.muscle_names, 1e3 * delta))

@@ -209,11 +209,30 @@ class SpineRobot:
 CLA_JOINTS = 5  # §3.6.1
 CLA_SEGMENT_M = 0.030  # chosen, because not in text: Rabbit's 120 mm / 5 joints, a little larger for a humanoid
 CLA_FIRST_BALL_M = 0.020  # chosen: pelvis top face to the first ball centre
-CLA_TOP_M = 0.020  # chosen: last ball centre to the clavicle's muscle points
+# Last ball centre to the clavicle's muscle points (the CLA-* pulleys and the HIP-* attachments):
+# reconstructed from Appendix A Tables A.1 (all L) and A.2 (all LL), because Fig. 3.31 is not in
+# the text (the sign table is ``CLA_APPENDIX_A_SIGNS`` in tests/spine/test_geometry.py). With
+# straight muscles and a uniform bend, a muscle's first-order length change is
+# Φ·[(b − c̄) × (t − c̄)]/l (b, t its pelvis and clavicle points, c̄ the centroid of the five ball
+# centres): the clavicle end's position is weighted by the pelvis point's depth below c̄, the pelvis
+# end's by the clavicle point's height above it. Before, the points were chosen symmetric about c̄
+# (pelvis points 80 mm below, clavicle points +20 mm → 80 mm above), so both ends weighed alike:
+# the side-crossing HIP muscles did not change length in pitch, nor the front/back-crossing CLA
+# muscles in roll (to first order; both shortened by the second-order chord term). The tables say
+# otherwise: HIP-RB/LB loaded and HIP-RF/LF paying out in backward pitch, the reverse in forward
+# pitch (HIP-RF/LF 1.12/0.69 kgf at +30, A.1), CLA-RF/RB loaded and CLA-LB/HIP-LB paying out in
+# roll −30 (A.1, A.2). Every such sign follows once the clavicle end weighs more, i.e. the clavicle
+# points sit closer above c̄ than the pelvis points sit below it. By how much the tables do not
+# say; chosen: the least change (5 mm steps) at which eq. 4.25 agrees with every determinate sign
+# of A.1/A.2 at ±10°, ±20° and ±30° (+10 mm: ±20° and ±30° disagree; 0 mm: ±30°; −5 mm: none).
+# Moving the pelvis points down instead (same weighting, longer muscles) never reaches the ±30°
+# signs (55–100 mm down: the HIP pitch signs at ±30° stay wrong) and moves Table 4.2's yaw/pitch
+# ‖Δq‖ ratio away from the thesis's (0.44 against 1.3; this choice 0.75, before 0.64).
+CLA_TOP_M = -0.005
 # Muscle points on the pelvis/clavicle corners: half-width and half-depth chosen, because not in
 # text, to match Table 4.2's division counts n = int|q − q0| [mm] (spec §2.3, derived): for uniform
-# bending of 1°/joint ‖Δq‖ ≈ 6 mm roll, 2–3 mm pitch, ~2 mm yaw; these give 5.9 / 3.2 / 2.0 mm
-# (and 60 / 35 / 19 mm at 10°/joint against the table's 56 / 16 / 20). Roll ≫ pitch agrees with
+# bending of 1°/joint ‖Δq‖ ≈ 6 mm roll, 2–3 mm pitch, ~2 mm yaw; these give 5.9 / 3.2 / 2.4 mm
+# (and 59 / 32 / 22 mm at 10°/joint against the table's 56 / 16 / 20). Roll ≫ pitch agrees with
 # "the pitch muscles pass near the rotation centre" (§4.7.2).
 CLA_HALF_WIDTH_M = 0.035
 CLA_HALF_DEPTH_M = 0.020
@@ -229,7 +248,18 @@ def _cla_muscles() -> MuscleSet:
     (RF→pelvis LF, LF→RF) and the back (RB→LB, LB→RB); the four HIP-* muscles (hip motors) cross the
     sides (HIP-RF → clavicle right-back, HIP-RB → right-front, and the same on the left). Each runs
     straight from block to block (no via holes: spec §6.16, the text says "crossing diagonally");
-    x forward, y left, z up, so "R" is y < 0.
+    x forward, y left, z up, so "R" is y < 0. The clavicle points sit
+    5 mm below the last ball centre (:data:`CLA_TOP_M`, reconstructed from Appendix A).
+
+    Checked against Appendix A (Tables A.1, A.2; the sign table in tests/spine/test_geometry.py):
+    the text's reading above — shoulder muscles to the L/R-opposite pelvis end across the front or
+    back, hip muscles along the sides — agrees with every determinate sign of the tables up to ±30°
+    once the clavicle points sit low. The swapped reading (shoulder muscles along the sides, hip
+    muscles across front/back) contradicts the tables' pitch rows (HIP-RB/LB would lengthen in
+    forward pitch; mean correlation of eq. 4.25's Δl with the 22 A.1/A.2 rows 0.00). Other
+    assignments fit the tables about as well as this one (all eight along the sides: 0.39, this
+    routing 0.30): the tables support, but do not single out, the routing; it is kept because the
+    text describes it, and only the clavicle points' height is taken from the tables.
     """
     w, d = CLA_HALF_WIDTH_M, CLA_HALF_DEPTH_M
     top = CLA_JOINTS  # the clavicle link

@@ -297,7 +297,8 @@ def control_modes_scenario(ctx):
     """E11 (§4.7.2–4.7.3) on a MuJoCo Cla with arms raised.
 
     Model: :mod:`shintai.spine.bodies_mujoco` — 5 rpy-hinge joints with linear discs, 8 straight
-    muscles (the chosen X routing of :data:`~shintai.spine.robots.CLA`) as spatial tendons that
+    muscles (the X routing of :data:`~shintai.spine.robots.CLA`: the text's reading, with the
+    clavicle points' height reconstructed from Appendix A's tension tables) as spatial tendons that
     only pull, motors with Table 3.2's torque–speed line and back-drive friction, the L/T/S/LL laws
     at 1 ms (:mod:`shintai.spine.control`). Interference: a Ø30 mm sphere on the middle vertebra
     the muscles wrap around — on the convex side of a bend they are pushed out and get longer than
@@ -311,12 +312,14 @@ def control_modes_scenario(ctx):
     30 calibrated once so that all-S-high's pitch errors are of Table 4.8's size (k_s = 400 →
     12 000 N/m); 'mid' read as E10's 100 and 'high' as its 400.
 
-    What reproduces (full run, defaults): L + T collapses — it holds −10…−30° while its T muscles
-    are the unloaded side and falls on the way back, when they must carry the arms (the thesis's
-    buckled at once); all-LL and L + LL hold −30…+20° but fall at +30° pitch (thesis: 10°) and hold
-    ±30° roll; all-S-mid loses pitch early (thesis: 20°); all-L, all-S-high and L + S-high hold the
-    whole ±30° pitch range; all-L's mean error is below 5° (0.9° pitch / 0.4° roll against 4.73° /
-    3.68°); in pitch the S modes have the lowest mean tension (thesis finding (e)).
+    What reproduces (full run, defaults): L + T collapses — it holds −10° and falls at −20° in
+    pitch and in roll (the thesis's buckled at once); all-LL holds pitch −30…+10° and falls at +20°
+    (thesis: 10°, the same cell) and holds ±30° roll; all-S-mid loses pitch early (thesis: 20°);
+    all-L, all-S-high and L + S-high hold the whole ±30° pitch and roll ranges (as in the thesis);
+    all-L's mean error is below 5° (1.35° pitch / 0.38° roll against 4.73° / 3.68°); in pitch the S
+    modes have the lowest mean tension (thesis finding (e)). Of Table 4.8's 16 max-held cells, 9
+    agree (6 with the earlier, symmetric clavicle points: the reconstruction from Appendix A made
+    all-LL's pitch and all-S-high's and L + S-high's roll agree, and L + LL's pitch disagree).
 
     What does not, and why:
 
@@ -343,13 +346,18 @@ def control_modes_scenario(ctx):
     §4.7.3 prose swaps the words for modes 6–8 alike; for mode 6 its own explanation — "the
     lengthening muscles under T keep paying out" — confirms the list). In forward pitch the muscles
     that hold the arms lengthen, so they are in S in both configurations, with the same k_s ('mid' /
-    'high' are not given; E10's 100 and 400 are used). Our routing (Fig. 3.31 is not in the text)
-    makes CLA-RB/LB the only forward-pitch holders; the HIP muscles' lengths change only to second
-    order in pitch (−0.27 mm at 10°), whereas Appendix A shows HIP-RF/LF carrying forward-pitch
-    load on the robot (1.1–1.9 kgf at +30°, Tables A.1, A.6, A.7): the real routing differs, and
-    with it which muscles L + S puts in L. With 'mid' = 200 both hold, errors up to ~15°.
+    'high' are not given; E10's 100 and 400 are used). Fig. 3.31 is not in the text; the routing
+    was checked against Appendix A (Tables A.1, A.2): the text's reading fits the tables' signs, but
+    with the clavicle points placed symmetrically about the spine the HIP muscles' lengths did not
+    change to first order in pitch, while the tables show HIP-RF/LF loaded in forward pitch (1.1 kgf
+    at +30°, A.1). With the clavicle points reconstructed from the tables (robots.CLA_TOP_M)
+    HIP-RF/LF lengthen in forward pitch and hold it together with CLA-RB/LB — but all four lengthen,
+    so they are in S in both modes, and L + S-mid still falls at +10° (23.7°), as before the
+    reconstruction. (With the symmetric points, 'mid' = 200 held both; not re-tried.)
 
-    (3) The S modes lose roll ±30° (and all-S-mid pitch). This is not an underdamped swing: with
+    (3) All-S-mid loses roll at −20° and L + S-mid at −30° (all-S-high and L + S-high hold ±30°
+    since the reconstruction; with the symmetric clavicle points they fell too, which is what the
+    following was measured on). This is not an underdamped swing: with
     the disc damping ten times larger (0.5 N m s/rad) all-S-high falls too, already at −30° roll
     (default: 27° peak deviation there, 30.4° on the way back at −20°, just over the 30° fall
     limit; tried). At −30° the hanging arms' gravity beats the software springs (k_s 12 kN/m): pitch
@@ -358,17 +366,22 @@ def control_modes_scenario(ctx):
     and 8 ("during roll the pitch posture became unstable and the spine fell forward or back"), but
     not for all-S.
 
-    (4) The interference model barely changes muscle lengths (≤ 0.3 mm): all-L's small error comes
+    (4) The interference model barely changes muscle lengths (≤ 0.07 mm at ±30°, only CLA-RF/LF or
+    CLA-RB/LB in pitch, nothing in roll; ≤ 0.3 mm with the symmetric points): all-L's small error comes
     from wire stretch and gravity sag, and without wrapping all-L is *less* accurate — the wrap
     sphere lends the back muscles moment arm — so "interference drives the error" (spec §5.3.9)
-    does not hold here. (5) All-LL is not the most accurate mode (it equals all-L until the limit).
-    (6) L + LL falls at +30° pitch with a mean error of 24° just over the 20° hold limit (at +20° it
-    sways 21° peak): the outcome sits on the hold criterion, and perturbations of 1e−9 m in the
-    length targets flip it (tried) — the check ``l_ll.max_pitch_held_deg`` is fragile.
+    does not hold here. (5) All-LL equals all-L posture by posture until its limit; its lower mean
+    pitch error (0.62° against 1.35°) is only that it stops before the large forward postures.
+    (6) L + LL holds the whole ±30° pitch range (5.5° error at +30°; thesis: 10°, and the check
+    ``l_ll.max_pitch_held_deg`` fails). With the symmetric clavicle points it fell at +30° with a
+    mean error of 24°, just over the 20° hold limit, and perturbations of 1e−9 m in the length
+    targets flipped it: the outcome sits near the hold criterion either way. All-LL (same targets,
+    the shortening muscles under LL too) falls at +20°.
 
     Run time: the 1 ms loop costs ~0.1 ms of CPU per tick (MuJoCo ~45 µs for the two 0.5 ms
     substeps; the controller tick, the sensor snapshot and the posture player were made leaner,
-    bit-identically); the default run simulates ~570 s in ~60 s of CPU.
+    bit-identically); the default run simulates ~620 s in ~70 s of CPU (~2 min wall on a loaded
+    2-core machine).
     """
     p = ctx.params
     names = list(MODE_CONFIGS) if p["modes"] == "all" else [m.strip() for m in p["modes"].split(",")]
