@@ -26,7 +26,7 @@ def test_passive_wheels_do_not_slip_sideways_when_pushed_along():
     body = MujocoSnake([0.0, 0.0, 0.0], np.zeros(N))
     hold(body, np.ones(N), 0.2)
     start = body.true_head()
-    body._slid = body._rolled = 0.0  # count from here, after settling
+    body._slid = body._rolled = body._jitter = body._path = 0.0  # count from here, after settling
     weight = 9.81 * body.mj.model.body_mass[1:].sum()
     links = [body.mj.id("body", f"link{j}") for j in range(1, 2 * N + 1)]
     for _ in range(30):
@@ -36,6 +36,25 @@ def test_passive_wheels_do_not_slip_sideways_when_pushed_along():
     summary = body.slip_summary()
     assert moved[0] > 0.2 and abs(moved[1]) < 0.01 * moved[0]
     assert summary["lateral_slip_fraction"] < 0.005 and summary["rolled_m"] > 1.0
+    # no mode switch: every period is "steady"; a steady push has no vibration to speak of
+    assert summary["lateral_slip_fraction_steady"] == pytest.approx(summary["lateral_slip_fraction"])
+    assert summary["lateral_jitter_fraction"] == pytest.approx(summary["lateral_slip_fraction"], rel=0.2)
+
+
+def test_settle_starts_the_clock_with_the_body_at_rest():
+    body = MujocoSnake(TRACKING.w_h0, TRACKING.phi0)
+    body.settle(0.3)
+    snap = body.snapshot()
+    assert body.t == 0.0 and snap["t"] == 0.0 and body.slip_summary()["rolled_m"] == 0.0
+    assert np.abs(body.mj.data.qvel).max() < 0.05  # at rest
+    assert snap["w_h"][:2] == pytest.approx(TRACKING.w_h0[:2], abs=2e-3)
+
+
+def test_a_mode_switch_moves_the_pitch_joints_no_faster_than_the_lift_rate():
+    body = MujocoSnake(TRACKING.w_h0, TRACKING.phi0)
+    grounded = candidate_modes(N, 4, 4, 2)[0]
+    body.apply({"phi_dot": np.zeros(N), "grounded": grounded})
+    assert np.abs(body._rate[1::2]).max() <= MUJOCO_SNAKE.lift_rate + 1e-12
 
 
 def test_lifting_by_pitch_joints_removes_the_wheels_ground_contact():

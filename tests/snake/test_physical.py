@@ -1,31 +1,32 @@
-"""Applications of §3.4 on the MuJoCo snake (scenarios_physical.py): targets, caging, door, handcart set-up."""
+"""Applications of §3.4 (scenarios_caging.py, scenarios_handcart.py, scenarios_door.py): targets, caging, door,
+handcart."""
 
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from shintai.core import Loop, Recorder
 from shintai.scenarios.registry import ParameterError, get
-from shintai.snake.constants import CAGING, CH3_GAINS, DOOR, HANDCART, MUJOCO_SNAKE
+from shintai.snake.constants import CAGING, DOOR, HANDCART, MUJOCO_SNAKE
 from shintai.snake.model3d import chain_from_pose, euler_zyx
 from shintai.snake.mujoco_plant import MujocoSnake
-from shintai.snake.scenarios_physical import (
+from shintai.snake.scenarios_caging import caging_targets, simulate_caging
+from shintai.snake.scenarios_door import (
     DoorOperator,
     ShiftControl,
-    Waypoints,
-    base_candidates,
-    caging_targets,
     door_geometry,
     door_scene,
-    double_arm_model,
-    handcart_geometry,
-    handcart_initial,
+    door_start,
     knob_point,
-    simulate_caging,
 )
-from shintai.snake.two_point import TwoPointLaw
+from shintai.snake.scenarios_handcart import handcart_geometry, handcart_initial, simulate_handcart
+from shintai.snake.scenarios_physical import (
+    Waypoints,
+    base_candidates,
+    double_arm_model,
+    head_raised_two_point_model,
+)
 
 
 def test_two_stage_targets_are_3_22_with_the_a7_reading():
@@ -59,19 +60,44 @@ def test_knob_moves_on_a_circle_about_the_hinge():
 
 
 def test_door_phase_1_hooks_the_knob_and_starts_to_open_the_door():
-    """A short run of the §3.4.3 operator: the head reaches the knob, the hook engages, the door opens."""
-    knob = knob_point(0.0)
+    """A short run of the §3.4.3 operator: the raised head reaches the knob, the hook engages, the door opens."""
     geometry = door_geometry()
-    law = TwoPointLaw(geometry, replace(CH3_GAINS, n_c=DOOR.n_c))
-    body = MujocoSnake([knob[0] - DOOR.approach_gap, knob[1], math.pi], DOOR.phi0, geometry, scene=door_scene(),
-                       head_pose="model")
-    operator = DoorOperator(body, law)
-    Loop(body, [operator], Recorder()).run(DOOR.t_approach + 6.0)
+    p_h, R_h, psi = door_start()
+    body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
+                       scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
+    body.place(p_h, R_h, psi)
+    body.settle(DOOR.settle)
+    operator = DoorOperator(body, geometry)
+    Loop(body, [operator], Recorder()).run(DOOR.t_approach + 12.0)
     phases = [phase for _, phase in operator.events]
     assert phases == ["pull"] and operator.events[0][0] <= DOOR.t_approach + 0.5
     assert body.mj.data.eq_active[body.mj.id("equality", "hook")]
     assert 0.02 < body.mj.joint_qpos("hinge") < 0.3  # opening, following the slow arc
     assert operator.hook_distance() < 0.01
+    assert np.abs(body.snapshot()["psi"]).max() < 1.0  # the arm does the pulling; no joint winds up
+
+
+def test_head_raised_two_point_model_matches_the_chain():
+    """Phase 2 model: its last three rows are the tail wheel's planar pose rate (2.13) of the 3D chain."""
+    from shintai.snake.model3d import PLANAR
+
+    geometry = door_geometry()
+    p_h, R_h, psi = door_start()
+    w_h = np.concatenate((p_h, euler_zyx(R_h)))
+    n_h = DOOR.raise_n_h
+    modes = base_candidates(geometry.n - n_h + 1, 2, 4, 0, fixed=2, tail_lifted=True)
+    assert (~modes[:, -1]).all() and modes[:, :2].all()
+    model = head_raised_two_point_model(geometry, n_h, modes)
+    A, B, c = model.matrices(w_h, psi, modes[0])
+    assert A.shape == (modes[0].sum() + 6, 9) and B.shape[1] == len(model.inputs) == 2 * n_h + geometry.n - n_h
+    rng = np.random.default_rng(1)
+    w_dot, u, h = rng.normal(size=6) * 0.05, rng.normal(size=len(model.inputs)) * 0.1, 1e-6
+    moved = psi.copy()
+    moved[model.inputs] += h * u
+    tail = lambda w, q: chain_from_pose(w, q, geometry.l).wheel_pose(geometry.n)[PLANAR]  # noqa: E731
+    tail_dot = (tail(w_h + h * w_dot, moved) - tail(w_h, psi)) / h
+    assert c[6:] == pytest.approx(tail(w_h, psi))
+    assert A[-3:] @ np.concatenate((w_dot, tail_dot)) == pytest.approx(B[-3:] @ u, abs=1e-5)
 
 
 def test_shift_control_moves_the_curve_toward_the_head():
@@ -113,3 +139,57 @@ def test_physical_scenarios_are_registered_with_video():
     with pytest.raises(ParameterError, match="runs"):
         get("snake.door").resolve({"runs": "-1"})
     assert get("snake.tracking").resolve({"plant": "mujoco"})["plant"] == "mujoco"
+
+
+def test_kinematic_box_is_pushed_clear_of_the_body_and_only_as_far_as_needed():
+    from shintai.snake.constants import CAGING_BOX
+    from shintai.snake.scenarios_caging import KinematicBox
+
+    box = KinematicBox((0.0, 0.0))
+    reach = box.reach
+    box.push(np.array([[reach[0] - 0.01, 0.0], [1.0, 1.0]]))  # one point 1 cm inside the +x face
+    assert box.xy == pytest.approx((-0.01, 0.0))
+    box.push(np.array([[reach[0] + 0.05, 0.0]]))  # clear: nothing moves
+    assert box.xy == pytest.approx((-0.01, 0.0))
+    assert reach[0] > CAGING_BOX.half[0] + MUJOCO_SNAKE.tread / 2
+
+
+def test_kinematic_caging_carries_the_box_with_the_u():
+    """§3.4.1 on the kinematic plant: stage 1 closes the U's bottom onto the box, which then moves along."""
+    run, track = simulate_caging(40.0, plant="kinematic")
+    assert run.pos_error.max() < 0.01 and track["caged"].all()
+    assert track["final"][0] - track["pos"][0][0] > 0.01  # pushed forward once the U closed on it
+
+
+def test_handcart_double_arm_law_tracks_on_the_kinematic_plant():
+    """§3.4.2 with §3.3's mode constants (n_c = 2): no stall; head and tail keep their offset; the cart moves."""
+    run = simulate_handcart(12.0, plant="kinematic")
+    e = run["error"]
+    assert max(np.linalg.norm(e[:, :3], axis=1).max(), np.linalg.norm(e[:, 6:9], axis=1).max()) < 1e-3
+    assert not run["stopped"].any() and len(np.unique(run["mode"])) > 1
+    offset = run["c"][:, :3] - run["c"][:, 6:9]
+    assert np.linalg.norm(offset - offset[0], axis=1).max() < 1e-3
+    assert run["c"][-1, 0] - run["c"][0, 0] == pytest.approx(0.5 * 12.0 / 120.0, abs=1e-3)
+
+
+def test_door_pull_is_feasible_with_the_head_raised_as_in_the_thesis():
+    """§3.4.3 phase 1 with head-raising control [12] (head-raised model (2.16)–(2.26)) on the kinematic plant:
+    the hooked head follows the knob's whole 90° arc (here in 30 s) within the joint limits, never stopped."""
+    from shintai.snake.scenarios_door import head_raising_pull
+
+    result = head_raising_pull(30.0)
+    assert result["max_joint_rad"] < math.pi / 2 and result["stopped_fraction"] == 0.0
+    assert result["max_pos_error_m"] < 1e-3
+
+
+def test_a_modes_matrices_are_the_all_grounded_ones_without_the_lifted_rows():
+    """T_σ (2.11), (2.35): SpatialTwoPoint.select builds B once and deletes rows; that equals building B_σ."""
+    geometry = handcart_geometry()
+    p_h, R_h, psi = handcart_initial()
+    w_h = np.concatenate((p_h, euler_zyx(R_h)))
+    modes = base_candidates(HANDCART.n_t - HANDCART.n_h + 1, 2, 4, 0, fixed=2)
+    model = double_arm_model(geometry, HANDCART.n_h, HANDCART.n_t, modes)
+    B = model.matrices(w_h, psi, np.ones(modes.shape[1], bool))[1]
+    rest = np.ones(B.shape[0] - modes.shape[1], bool)
+    for g in modes[::7]:
+        assert np.array_equal(B[np.r_[g, rest]], model.matrices(w_h, psi, g)[1])

@@ -167,14 +167,28 @@ class MujocoSnakeSettings:
     # (a lifted wheel's: 1). Chosen 10: with equal weights the support kept ~2 mm residuals, the rigid
     # body rocked onto other wheels and its long lifted tail touched down 30 % of the time; with 10, < 5 %.
     lift_ground_weight: float = 10.0
+    # Largest pitch-joint rate while lifting or lowering wheels (rad/s). How fast the robot lifts is not
+    # given (A14). Reaching the new pitch targets within one δt (2α ≈ 0.12 rad in 50 ms, wheels dropped and
+    # lifted at ≈ 0.16 m/s) made impacts with the stiff servos below: on MuJoCo 3/4 of the sideways slip of
+    # caging fell within 0.15 s of a mode switch, and tracking (§3.3) jumped 9 mm off its targets right
+    # after one. 0.5 rad/s lifts a wheel in about 0.25 s (servo no-load speed ≈ 4.8 rad/s): tracking 2.9 mm,
+    # caging slip 5.4 → 3.5 %, at the price of a lifted wheel still touching for those 0.25 s
+    # (contact_mismatch_fraction 0.6 → 3.8 % in caging).
+    lift_rate: float = 0.5
+    # For the slip statistics only: a control period counts as "steady" (no lift transient) from this long
+    # after a mode switch; twice the time lift_rate needs for a full lift.
+    switch_settle: float = 0.5
     # Position servo (XH430-V350-R, commanded by angle and angular velocity, §3.3): PD with velocity
     # feed-forward, torque = kp (ψ_cmd − ψ) + kv (ψ̇_cmd − ψ̇), clamped at the stall torque. At the factory
     # P gain the XH430 reaches its stall torque at about 0.2 rad of error (kp ≈ 20 N·m/rad); its P gain goes
-    # 20× higher. kp 60 N·m/rad: the lifted tail (4 links, ≈ 0.6 N·m about the last grounded wheel's pitch
-    # joint) then sags 10 mrad ≈ 3 mm at its tip, well inside lift_height; at 20 N·m/rad it sagged onto
-    # the floor. kv 1 N·m·s/rad: ζ = kv / (2 √(kp J)) ≈ 0.65 with J ≈ the armature.
-    servo_kp: float = 60.0
-    servo_kv: float = 1.0
+    # 20× higher. kp 200 N·m/rad: the pitch joints then sag < 0.01 rad under the lifted parts' weight. At
+    # 60 N·m/rad they sagged 12–25 mrad (2–3 mm at 2l, a third of lift_height): in caging on MuJoCo a
+    # grounded wheel hung or a lifted one touched in 12 % of the control periods, all through each t_σ
+    # window, and the body then moved by another mode's constraints (38 mm off the targets at t ≈ 83 s);
+    # at 200 the mismatches are confined to the lift transients. (400 N·m/rad chattered at the 2 ms step.)
+    # kv 2 N·m·s/rad: ζ = kv / (2 √(kp J)) ≈ 0.7 with J ≈ the armature.
+    servo_kp: float = 200.0
+    servo_kv: float = 2.0
     servo_torque: float = 4.1  # N·m; XH430-V350-R stall torque at 12 V (datasheet)
     # Reflected rotor inertia of a 353.5:1 gear head, about 1e−7 kg·m² × 353.5² ≈ 0.01 kg·m².
     servo_armature: float = 0.01
@@ -318,12 +332,8 @@ class DoorSetup:
     """
 
     n: int = 15  # wheels: "30 links" (§3.4.3); link length etc. "as the tracking robot" (CH3_ROBOT)
-    # Rule (iii) of §3.2.4 for this robot: at most n_c adjacent wheels lifted. The door simulation's mode
-    # parameters are not given; the §3.3 value n_c = 2 let the 30-link body lift 10 of 15 wheels, and
-    # its 6l unsupported spans sagged onto the floor (wheels lifted by the model touched, grounded ones
-    # hung), so the head went backwards while the model said forwards. n_c = 1 (the torque reason of
-    # Fig. 3.4 is stronger for the longer body); the other §3.3 gains are kept.
-    n_c: int = 1
+    # Mode constants: §3.3's (n_c = 2, n_g = 4, t_σ = 2 s; the door text gives none), on the base of the
+    # head-raised model with its two front wheels kept down (scenarios_physical.base_candidates, fixed = 2).
     width: float = 0.40  # m; a small door: twice the ≈ 0.2 m the body needs to pass (U-turn of two arms)
     thickness: float = 0.02  # m; leaf and wall
     height: float = 0.25  # m
@@ -339,6 +349,14 @@ class DoorSetup:
     # hooked head then lies 7 cm off the leaf, so the body (±0.045 m) clears it when the door is open.
     knob_from_edge: float = 0.03
     knob_offset: float = 0.07
+    knob_radius: float = 0.012  # m; a 24 mm ball (visual; the hook is an equality, not a contact)
+    knob_stem_radius: float = 0.006  # m; the knob's stem (visual)
+    knob_mass: float = 0.01  # kg, ball and stem each
+    # The knob slides vertically on the leaf (m, down and up), so that the hook holds it only in the plane:
+    # the planar head cannot follow its height exactly (the thesis's hook is "simple", §3.4.3).
+    knob_slide: tuple[float, float] = (-0.03, 0.05)
+    leaf_clearance: float = 0.005  # m between the leaf's edges and the door frame
+    wall_length: float = 1.5  # m of wall on each side of the doorway (further than the body reaches)
     hook_capture: float = 0.006  # m; the hook engages when the head tip is this close to the knob
     # Motion (operator's targets, A18). Initial U around where the leaf will swing (head arm along the
     # closed knob's line, U-turn of 4 × −π/4, tail arm at y ≈ 0.7, outside the leaf's 0.4 m sweep); small
@@ -347,6 +365,15 @@ class DoorSetup:
     phi0: tuple[float, ...] = (0.1, -0.1, 0.1, -0.1, 0.1, 0.05, -PI / 4, -PI / 4, -PI / 4, -PI / 4,
                                0.05, -0.1, 0.1, -0.1, 0.0)
     open_angle: float = PI / 2  # rad; phase 1 pulls the door to 90°
+    # Head raising for phases 1–2 as the thesis does it ([12], §3.4.3): wheels 1..raise_n_h − 1 lifted as an
+    # arm of 2·raise_n_h links (0.55 m, more than the knob's 0.37 m radius about the hinge), raised at
+    # raise_pitch from wheel raise_n_h and levelled at joint 2 (as the handcart's arms), the hook at its tip.
+    raise_n_h: int = 4
+    raise_pitch: float = 0.3
+    # The knob is this far below the raised head tip's unloaded height: the arm sags ≈ 12 mm under its weight
+    # when the body settles (MujocoSnake.settle, settle s), and the knob slides ±(knob_slide) on the leaf.
+    knob_drop: float = 0.01
+    settle: float = 1.0  # s at rest before the run starts
     t_approach: float = 5.0  # s; phase 1a, head to the knob
     # Target durations (s, on the operator's clock). Speeds as in §3.3 (0.57 m in 120 s ≈ 5 mm/s): the
     # knob's 0.58 m arc in 120 s; the tail's 0.62 m to the doorway in 120 s and 0.38 m inside in 80 s.
@@ -393,19 +420,39 @@ class HandcartSetup:
     base_yaw: tuple[float, ...] = (0.1, -0.1, -PI / 5, -PI / 5, -PI / 5, -PI / 5, -PI / 5, 0.1, -0.1)
     arm_pitch: float = 0.3
     advance: float = 0.5  # m; c_{d,e}: both ends +0.5 m in x, the rest held (§3.4.2, read as in A17)
+    # s the MuJoCo body rests under gravity before the run (MujocoSnake.settle): placed unloaded, the raised
+    # arms sagged 2–3 cm within 0.1 s, which the run counted as 33 mm of tracking error and 12 mm of drift;
+    # by 1 s the errors were < 1 mm.
+    settle: float = 1.0
     t_end: float = 120.0  # s; as §3.3
     # Base modes: wheels n_h and n_t always grounded (the model assumes them on the plane, (2.16), (2.29)),
-    # at most n_c = 1 lifted in a row (the reason of DoorSetup.n_c), at least n_g grounded.
-    n_c: int = 1
+    # at most n_c lifted in a row, at least n_g grounded: §3.3's n_c = 2, n_g = 4 and t_σ = 2 s (the handcart
+    # text restates no constants, A17; caging keeps §3.3's). An earlier choice n_c = 1 (the door's reason)
+    # left too few base modes: within any one mode σ_min(B_{d,σ}) fell from 0.02 to < 1e−3 in ≈ 1.3 s,
+    # before the next selection, so (3.20) stopped the robot at ≈ 3 s even on the kinematic plant.
+    n_c: int = 2
     n_g: int = 4
+    # Grounded wheels kept at each end of the base in every mode: 2, wheels n_h, n_h + 1 and n_t − 1, n_t
+    # (scenarios_physical.base_candidates: lifting n_h + 1 tips the frame of wheel n_h that (2.16) holds level).
+    fixed_end_wheels: int = 2
     # Cart: a 0.40 × 0.62 m board on four fixed-axle wheels (it rolls along x only, like a cart pushed
-    # straight) with a handle bar across its rear at the tips' height. Light (0.5 kg) so that the pushing
-    # force (rolling resistance and acceleration) stays far below the tips' servo torques.
+    # straight) with a handle pad in front of each tip. Light (0.5 kg) so that the pushing force (rolling
+    # resistance and acceleration) stays far below the tips' servo torques.
     cart_half: tuple[float, float, float] = (0.20, 0.31, 0.01)
     cart_mass: float = 0.5
     cart_wheel_radius: float = 0.03
-    bar_radius: float = 0.008
-    bar_gap: float = 0.01  # m between the head tip's capsule end and the bar at the start
+    cart_wheel_half_width: float = 0.01
+    cart_wheel_inset: float = 0.02  # m, wheels this far in from the board's sides
+    cart_wheel_mass: float = 0.02
+    cart_wheel_friction: tuple[float, float, float] = (1.0, 0.005, 0.0001)  # rubber, as the snake's tyres
+    cart_wheel_damping: float = 1e-4  # N·m·s/rad; a cheap caster bearing, 10× the snake's hub
+    # Handle pads (half sizes: thickness along x, width, height; m): 12 × 6 cm faces, wide enough that the
+    # tips stay on them with a few cm of sideways error, on light struts (visual only, no contact).
+    pad_half: tuple[float, float, float] = (0.01, 0.06, 0.03)
+    pad_mass: float = 0.01
+    strut_radius: float = 0.005
+    strut_mass: float = 0.001
+    bar_gap: float = 0.01  # m between the head tip's capsule end (tail wheel's rim) and its pad at the start
 
 
 HANDCART = HandcartSetup()

@@ -17,7 +17,8 @@ switching contacts off (:func:`lift_profile`: on a straight body exactly Fig. 2.
 curved body the pitch axes are not parallel and a least-squares fit keeps the axles level).
 
 Interface (as KinematicSnake): command ``phi_dot`` (n yaw rates, integrated into the yaw servos'
-targets) and ``grounded`` (the mode σ, turned into pitch targets reached over one control period);
+targets) and ``grounded`` (the mode σ, turned into pitch targets approached at most at
+``settings.lift_rate``, so a switch lifts and lowers wheels over a few control periods);
 snapshot ``t, w_h, phi, psi, grounded, slip`` plus ``wheel_contact`` (n, measured wheel–floor contact)
 and ``head_pose`` (6D). For the 3D models of §2.5 the command may instead be ``psi_dot`` (all 2n−1
 joint rates; ``grounded`` then only labels the wheels).
@@ -31,7 +32,11 @@ joint rates; ``grounded`` then only labels the wheels).
   period, m/s (the kinematic plant reports its constraint residual in the same unit).
 
 Slip statistics over a run: :meth:`MujocoSnake.slip_summary` — the sideways distance the floor-touching
-axles slid divided by the distance they rolled (the lateral slip fraction).
+axles slid divided by the distance they rolled (the lateral slip fraction). Both are net displacements per
+control period δt (the axle velocity integrated with its sign over the period, then the magnitude): the
+constraint (2.7) is about where a wheel goes, and the contact's vibration about its rest point (the
+tyre's elastic micro-motion at ~0.3 mm/s, which at the thesis's 5 mm/s crawl was 5–6 % of the speed when
+summed as a path length) is not sliding. The path-length ratio is kept as ``lateral_jitter_fraction``.
 """
 
 from __future__ import annotations
@@ -228,7 +233,11 @@ class MujocoSnake(Body):
                    heading=float(cfg.w_h[2]))
         self.slip = 0.0
         self.wheel_contact = np.zeros(geometry.n, dtype=bool)
-        self._slid = self._rolled = 0.0  # m, summed over floor-touching axles
+        self._slid = self._rolled = 0.0  # m, net per control period, summed over floor-touching axles
+        self._jitter = self._path = 0.0  # m, the same as path lengths (|v| h summed at every servo step)
+        self._window = np.zeros((geometry.n, 2))  # this period's signed [forward, sideways] travel per axle
+        self._steady = np.zeros(2)  # [rolled, slid] in the periods at least switch_settle after a mode switch
+        self._switched = -math.inf  # time of the last mode switch
         self._slip_max = 0.0
         self._mismatch = 0.0  # wheel·seconds in which a wheel's floor contact differs from the mode
 
@@ -271,6 +280,20 @@ class MujocoSnake(Body):
         self._w_model = np.array([p_h[0], p_h[1], self._heading])  # internal-model estimate (head_pose="model")
         self._phi_prev = psi[::2].copy()
 
+    def settle(self, duration: float) -> None:
+        """Let the body come to rest under gravity for ``duration`` s with the servos holding their commands,
+        then start the clock (t = 0) and the slip statistics there. A body put down by :meth:`place` is
+        unloaded; raised parts (the handcart's arms) then sag by centimetres in the first 0.1 s. An experiment
+        starts from the robot at rest, its initial controlled variables measured there ((3.21), (3.26))."""
+        grounded = self.grounded.copy()
+        for _ in range(int(round(duration / self.dt))):
+            self.apply({"psi_dot": np.zeros(self.geometry.joints), "grounded": grounded})
+            self.step()
+        self.steps, self.t = 0, 0.0
+        self.slip, self._slid, self._rolled, self._jitter, self._path, self._slip_max = (0.0,) * 6
+        self._steady[:], self._window[:], self._mismatch, self._switched = 0.0, 0.0, 0.0, -math.inf
+        self._phi_prev = self.mj.data.sensordata[self._enc][::2].copy()
+
     # -- Body interface ----------------------------------------------------------------------------
 
     def snapshot(self) -> dict:
@@ -285,7 +308,10 @@ class MujocoSnake(Body):
             raise ValueError(f"MuJoCo snake: unknown command channel(s) {sorted(unknown)}; known: {self.CHANNELS}")
         n = self.geometry.n
         if "grounded" in command:
-            self.grounded = check_mode(command["grounded"], n)
+            grounded = check_mode(command["grounded"], n)
+            if not np.array_equal(grounded, self.grounded):
+                self._switched = self.t
+            self.grounded = grounded
         if "psi_dot" in command:  # every joint rate-commanded (3D models); "grounded" only labels the wheels
             if "phi_dot" in command:
                 raise ValueError("give phi_dot (planar; pitch joints lift the wheels) or psi_dot (all joints), not both")
@@ -295,8 +321,9 @@ class MujocoSnake(Body):
             phi = self.mj.data.sensordata[self._enc][::2] + phi_dot * self.dt  # yaw at the period's end
             self._rate = np.empty(self.geometry.joints)
             self._rate[::2] = phi_dot
-            self._rate[1::2] = (lift_profile(phi, self.grounded, self.geometry.l, self.settings)
-                                - self._psi_cmd[1::2]) / self.dt
+            lift = lift_profile(phi, self.grounded, self.geometry.l, self.settings)
+            limit = self.settings.lift_rate
+            self._rate[1::2] = np.clip((lift - self._psi_cmd[1::2]) / self.dt, -limit, limit)
         wheels = self._geom_wheel >= 0  # tyres of lifted wheels drawn blue (as the plots' hollow markers)
         self.mj.model.geom_rgba[wheels] = np.where(self.grounded[self._geom_wheel[wheels]][:, None],
                                                    TYRE_RGBA, LIFTED_TYRE_RGBA)
@@ -318,6 +345,12 @@ class MujocoSnake(Body):
             self.mj.step()
             self._measure_slip(h)
         self._psi_cmd = self._psi_cmd + self._rate * self.dt
+        rolled, slid = np.abs(self._window).sum(axis=0)
+        self._rolled += rolled
+        self._slid += slid
+        if self.t - self._switched >= self.settings.switch_settle:  # this period is clear of a mode switch
+            self._steady += np.array([rolled, slid])
+        self._window[:] = 0.0
         self.mj.forward()  # sensors of the state reached (MuJoCo computes them at the start of a step)
         self.steps += 1
         self.t = self.steps * self.dt
@@ -342,11 +375,12 @@ class MujocoSnake(Body):
             # link's roll rate ω_x adds ω_x r_w to its sideways speed (the axle's own is polluted by roll).
             v = d.sensordata[self._axle_vel[contact, None] + np.arange(3)]
             roll_rate = d.sensordata[self._axle_gyro[contact]]
-            lateral = np.abs(v[:, 1] + roll_rate * self.settings.wheel_radius)
-            self.slip = max(self.slip, float(lateral.max()))
+            lateral = v[:, 1] + roll_rate * self.settings.wheel_radius
+            self.slip = max(self.slip, float(np.abs(lateral).max()))
             self._slip_max = max(self._slip_max, self.slip)
-            self._slid += float(lateral.sum()) * h
-            self._rolled += float(np.abs(v[:, 0]).sum()) * h
+            self._window[contact] += np.column_stack((v[:, 0], lateral)) * h
+            self._jitter += float(np.abs(lateral).sum()) * h
+            self._path += float(np.abs(v[:, 0]).sum()) * h
 
     def _head_estimate(self) -> np.ndarray:
         if self.head_pose == "model":
@@ -399,11 +433,18 @@ class MujocoSnake(Body):
         return np.array([self.mj.site_pos(f"axle{i}") for i in range(1, self.geometry.n + 1)])
 
     def slip_summary(self) -> dict:
-        """``lateral_slip_fraction`` = sideways distance slid / distance rolled by the floor-touching axles;
-        ``max_lateral_slip_m_s``; ``rolled_m`` (summed over axles); ``contact_mismatch_fraction`` = share of
-        wheel-time in which a wheel touched the floor while lifted or did not while grounded."""
+        """``lateral_slip_fraction`` = sideways distance slid / distance rolled by the floor-touching axles
+        (net per control period, see the module docstring); ``lateral_slip_fraction_steady`` the same over
+        the periods at least ``settings.switch_settle`` after a mode switch (no lift transient);
+        ``lateral_jitter_fraction`` the same as path
+        lengths at every servo step (contact vibration included); ``max_lateral_slip_m_s``; ``rolled_m``
+        (summed over axles); ``contact_mismatch_fraction`` = share of wheel-time in which a wheel touched
+        the floor while lifted or did not while grounded."""
         wheel_time = self.geometry.n * self.t
+        steady_rolled, steady_slid = self._steady
         return {"lateral_slip_fraction": self._slid / self._rolled if self._rolled > 0 else 0.0,
+                "lateral_slip_fraction_steady": steady_slid / steady_rolled if steady_rolled > 0 else 0.0,
+                "lateral_jitter_fraction": self._jitter / self._path if self._path > 0 else 0.0,
                 "max_lateral_slip_m_s": self._slip_max, "rolled_m": self._rolled,
                 "contact_mismatch_fraction": self._mismatch / wheel_time if wheel_time > 0 else 0.0}
 

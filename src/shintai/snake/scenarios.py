@@ -332,5 +332,5 @@ def switching_ablation(ctx) -> dict:
     return m
 
 
-from shintai.snake import scenarios_physical  # noqa: F401,E402
+from shintai.snake import scenarios_caging, scenarios_door, scenarios_handcart  # noqa: F401,E402
 from shintai.snake import scenarios_two_plane  # noqa: F401,E402
