@@ -78,3 +78,39 @@ def test_freewheel_backpedalling_does_not_move_the_tricycle():
     loop.run(3.0)
     assert wheel.engaged
     assert cr.vehicle_pose2d(body)[0] - x0 > 0.5  # forward pedalling drives again
+
+
+def test_grip_grasp_holds_both_bar_points():
+    """grasp=grip: both point holds per hand are on and satisfied at the start; the hands stay on the grips."""
+    body = cr.build_ch4(hip="contact", grasp="grip")
+    m = body.model
+    for s in ("l", "r"):
+        assert body.data.eq_active[m.equality(f"hold_{s}_bar").id] and body.data.eq_active[m.equality(f"hold_{s}").id]
+    for _ in range(50):
+        body.step()
+    for s in ("l", "r"):
+        assert np.linalg.norm(body.site_pos(f"{s}_grasp") - body.site_pos(f"grip_{s}")) < 0.01
+
+
+def test_seat_slip_builds_with_driving_and_restarts_after_lift(monkeypatch):
+    """SeatSlip: grows only while the crank turns and the hip sits; zero and restarted once the hip lifts."""
+    from shintai.humanoid.ch4_scenarios import SeatSlip
+    body = cr.build_ch4(hip="contact")
+    seated = {"fz": 300.0}
+    monkeypatch.setattr(body, "contact_force", lambda name: np.array([0.0, 0.0, seated["fz"]]))
+    slip = SeatSlip(body, rate=10.0, f_max=100.0, start=0.0)
+    dof = body.model.joint("crank").dofadr[0]
+    slip({"t": 0.0})
+    slip({"t": 1.0})
+    assert slip.force == 0.0  # the crank stands: no driving, no slip
+    body.data.qvel[dof] = 1.0
+    slip({"t": 2.0})
+    assert slip.force == pytest.approx(10.0)
+    waist = body.id("body", "waist")
+    assert body.data.xfrc_applied[waist, 1] == pytest.approx(10.0, rel=1e-6)  # +F along the vehicle's y
+    seated["fz"] = 0.0  # STAND: the hip leaves the saddle
+    slip({"t": 3.0})
+    assert slip.force == 0.0 and slip.resets == 1
+    seated["fz"] = 300.0
+    slip({"t": 4.0})
+    assert slip.force == pytest.approx(10.0)  # built up again from zero

@@ -57,6 +57,8 @@ def test_sitting_recovery_phases():
     assert reseat["ref:com_shift"] == pytest.approx(0.2 * math.sin(0.1))
     rec.update({"t": 3.01})
     assert rec.done
+    # after the recovery the driving system holds ρ = y_g(n+1) (§7.2)
+    assert rec.held({"t": 4.0}) == {"ref:com_shift": pytest.approx(0.2 * math.sin(0.1))}
 
 
 def test_kajita_posture_law_against_hand_calculation():

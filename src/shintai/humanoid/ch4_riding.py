@@ -50,11 +50,12 @@ from shintai.core.runtime import Module
 from shintai.humanoid import fill_keyframe, ik, quat_axis
 from shintai.humanoid.active import grip_plan
 from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
+                                        GRIP_BAR_OFFSET,
                                         IMPEDANCE, TRICYCLE)
 from shintai.humanoid.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.navigation import OBSTACLE_GROUP
 from shintai.humanoid.passive import ActiveImpedance
-from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, HOLD, LEG, SOLE, WRIST_FT, hold_here,
+from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, HOLD, HOLD_BAR, LEG, SOLE, WRIST_FT, hold_here,
                                      riding_posture, riding_spec)
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.vehicles.tricycle import pedal_position, steer_axis
@@ -166,6 +167,8 @@ def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_mo
     hold_here(model, data, HIP_SADDLE)
     for side in SIDES:
         hold_here(model, data, HOLD[side], HAND[side])
+        if riding_options.get("grasp") == "grip":
+            hold_here(model, data, HOLD_BAR[side], HAND[side], GRIP_BAR_OFFSET)
     body = Ch4Body(model, substeps=round(CONTROL_PERIOD / model.opt.timestep), keyframe="ride")
     body.set_equality(HIP_SADDLE, hip == "weld")
     return body

@@ -106,6 +106,11 @@ class SittingRecovery(Module):
         self.history.append((self.t0, self.roll, self.y_to))
         self.done = False
 
+    def held(self, snapshot) -> dict:
+        """The contribution while the recovery is *not* running: its ρ = y_g(n) held (§7.2), so the
+        reference CoM stays where the last recovery moved it when driving resumes."""
+        return {"ref:com_shift": float(self.index.rho[0])}
+
     def phase(self, t: float) -> str:
         k = int((t - self.t0) / self.phase_s)
         return ("stand", "shift", "reseat")[k] if k < 3 else "over"
