@@ -68,13 +68,49 @@ def test_door_phase_1_hooks_the_knob_and_starts_to_open_the_door():
     body.place(p_h, R_h, psi)
     body.settle(DOOR.settle)
     operator = DoorOperator(body, geometry)
-    Loop(body, [operator], Recorder()).run(DOOR.t_approach + 12.0)
+    recorder = Recorder()
+    Loop(body, [operator], recorder).run(DOOR.t_approach + 12.0)
     phases = [phase for _, phase in operator.events]
     assert phases == ["pull"] and operator.events[0][0] <= DOOR.t_approach + 0.5
     assert body.mj.data.eq_active[body.mj.id("equality", "hook")]
     assert 0.02 < body.mj.joint_qpos("hinge") < 0.3  # opening, following the slow arc
     assert operator.hook_distance() < 0.01
     assert np.abs(body.snapshot()["psi"]).max() < 1.0  # the arm does the pulling; no joint winds up
+    grounded = recorder.values("door.grounded").astype(bool)  # the wheels' mode, for the plots
+    assert grounded.shape == (len(recorder.times("door.phase")), geometry.n)
+    assert not grounded[:, :DOOR.raise_n_h - 1].any() and grounded[:, DOOR.raise_n_h - 1].all()
+    assert recorder.values("raise.V_m").min() > 0.0
+
+
+def test_door_plots_draw_wheels_paths_and_modes(tmp_path):
+    """plot_door on a short recorded run: the top view, the time series and the mode timeline are written."""
+    from contextlib import contextmanager
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shintai.snake.scenarios_door import DoorRun, plot_door
+
+    class Ctx:
+        @contextmanager
+        def figure(self, name, nrows=1, ncols=1, **kwargs):
+            fig, axes = plt.subplots(nrows, ncols, **kwargs)
+            yield fig, axes
+            fig.savefig(tmp_path / f"{name}.png")
+            plt.close(fig)
+
+    geometry = door_geometry()
+    p_h, R_h, psi = door_start()
+    body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
+                       scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
+    body.place(p_h, R_h, psi)
+    operator = DoorOperator(body, geometry)
+    recorder = Recorder()
+    Loop(body, [operator], recorder).run(1.0)
+    plot_door(Ctx(), recorder, DoorRun(False, 0, operator.events, 0.0, body.t))
+    assert {p.name for p in tmp_path.iterdir()} == {"top_view.png", "phases.png", "modes.png"}
 
 
 def test_head_raised_two_point_model_matches_the_chain():

@@ -146,9 +146,41 @@ def draw_body(ax, w_h, phi, grounded, alpha=1.0, label=None):
     wheels = wheel_poses(cfg)
     ax.plot(pts[:, 0], pts[:, 1], "-", color="0.35", lw=1.5, alpha=alpha, label=label)
     ax.plot(*pts[0], "k^", ms=6, alpha=alpha)
-    ax.scatter(wheels[grounded, 0], wheels[grounded, 1], s=28, c="tab:red", zorder=3, alpha=alpha)
-    ax.scatter(wheels[~grounded, 0], wheels[~grounded, 1], s=28, facecolors="white", edgecolors="tab:blue",
+    draw_wheels(ax, wheels, grounded, alpha)
+
+
+def draw_wheels(ax, wheels, grounded, alpha=1.0, size=28):
+    """Wheels (rows x, y, ...) coloured by mode: grounded filled red, lifted hollow blue."""
+    grounded = np.asarray(grounded, dtype=bool)
+    ax.scatter(wheels[grounded, 0], wheels[grounded, 1], s=size, c="tab:red", zorder=3, alpha=alpha)
+    ax.scatter(wheels[~grounded, 0], wheels[~grounded, 1], s=size, facecolors="white", edgecolors="tab:blue",
                zorder=3, alpha=alpha)
+
+
+def draw_link_points(ax, points, grounded, alpha=1.0, size=22) -> None:
+    """A simulated body as logged by scenarios_physical.link_points (head tip, link origins, tail tip; wheel i
+    at row 2i): the polyline, the head ▲ and the wheels coloured by mode (:func:`draw_wheels`)."""
+    ax.plot(points[:, 0], points[:, 1], "-", color="0.3", lw=2, alpha=alpha)
+    ax.plot(*points[0], "^", color="tab:orange", alpha=alpha)
+    draw_wheels(ax, points[2::2], grounded, alpha, size)
+
+
+def draw_track(ax, actual, target, color, label, target_label) -> None:
+    """A control point's path (solid) against its target (dashed), both (N, 2)."""
+    ax.plot(target[:, 0], target[:, 1], "--", color=color, lw=1, label=target_label)
+    ax.plot(actual[:, 0], actual[:, 1], "-", color=color, lw=2, alpha=0.6, label=label)
+
+
+def wheel_legend(ax, size=28, lifted="lifted wheel") -> None:
+    """Legend entries for :func:`draw_wheels`."""
+    ax.scatter([], [], c="tab:red", s=size, label="grounded wheel")
+    ax.scatter([], [], facecolors="white", edgecolors="tab:blue", s=size, label=lifted)
+
+
+def shade_stopped(ax, t, stopped, dt=CH3_GAINS.dt) -> None:
+    """Red bands over the control periods stopped by the input limit (3.20)."""
+    for k in np.flatnonzero(stopped):
+        ax.axvspan(t[k], t[k] + dt, color="tab:red", alpha=0.15, lw=0)
 
 
 def plot_top_view(ctx, run: TrackingRun, name: str = "top_view") -> None:
@@ -165,8 +197,7 @@ def plot_top_view(ctx, run: TrackingRun, name: str = "top_view") -> None:
             if all(np.hypot(*(run.c[k, :2] - p)) > 0.02 for p in labelled):  # no overlapping labels at a stall
                 ax.annotate(f"{run.t[k]:.0f} s", run.c[k, :2], fontsize=7, xytext=(3, 3), textcoords="offset points")
                 labelled.append(run.c[k, :2])
-        ax.scatter([], [], c="tab:red", s=28, label="grounded wheel")
-        ax.scatter([], [], facecolors="white", edgecolors="tab:blue", s=28, label="lifted wheel")
+        wheel_legend(ax)
         ax.set_aspect("equal")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
@@ -190,8 +221,7 @@ def plot_time_series(ctx, run: TrackingRun, name: str = "errors") -> None:
         ax[2].set_ylabel("singular values")
         ax[2].set_xlabel("t [s]")
         for a in ax:
-            for k in np.flatnonzero(run.stopped):
-                a.axvspan(tc[k], tc[k] + CH3_GAINS.dt, color="tab:red", alpha=0.15, lw=0)
+            shade_stopped(a, tc, run.stopped)
             a.legend(fontsize=7, ncol=2, loc="best")
         ax[0].set_title(f"{run.name}: red bands = stopped by the input limit (3.20)", fontsize=9)
 

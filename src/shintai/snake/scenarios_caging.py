@@ -25,7 +25,14 @@ from shintai.snake.constants import CAGING, CAGING_BOX, CH3_GAINS, CH3_ROBOT, MU
 from shintai.snake.model import body_points, configuration
 from shintai.snake.mujoco_plant import MujocoSnake, Scene, head_path_difference
 from shintai.snake.plant import KinematicSnake
-from shintai.snake.scenarios import TrackingRun, draw_body, plot_modes, plot_time_series, run_two_point
+from shintai.snake.scenarios import (
+    TrackingRun,
+    draw_body,
+    plot_modes,
+    plot_time_series,
+    run_two_point,
+    wheel_legend,
+)
 from shintai.snake.scenarios_physical import Probe, Waypoints, inside_body_loop
 from shintai.snake.two_point import TwoPointLaw
 
@@ -163,8 +170,7 @@ def plot_caging(ctx, run: TrackingRun, track: dict) -> None:
         ax.set_aspect("equal")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        ax.scatter([], [], c="tab:red", s=28, label="grounded wheel")
-        ax.scatter([], [], facecolors="white", edgecolors="tab:blue", s=28, label="lifted wheel")
+        wheel_legend(ax)
         ax.legend(fontsize=7, loc="upper left")
         ax.set_title("caging transport (box: brown squares at the bodies' times)", fontsize=9)
 
@@ -244,5 +250,8 @@ CAGING_NOTES = (
     "servos leaves one hanging by a fraction of a millimetre now and then, or a lift transient at a mode switch "
     "still has a lifted wheel down, and the body then moves by other constraints than the model's. Earlier "
     "(servo kp 60 N·m/rad) the pitch joints sagged 2–3 mm under the lifted parts, mismatches lasted whole t_σ "
-    "windows and the error reached 38 mm at t ≈ 83 s; see constants.MujocoSnakeSettings.servo_kp."
+    "windows and the error reached 38 mm at t ≈ 83 s; see constants.MujocoSnakeSettings.servo_kp. Holding the "
+    "yaw joints (u = 0) until a switch's lift is complete is not done: the thesis switches every t_σ without a "
+    "pause and stops only by the input limit (3.20) (§3.2.4–3.2.5), and as a trial it made things worse (RMS "
+    "1.20 → 1.47 mm, max 7.5 → 9.2 mm; the targets (3.22)–(3.23) run on while the body waits)."
 )

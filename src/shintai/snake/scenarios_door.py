@@ -32,6 +32,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, DOOR, MUJOCO_SNAKE, SnakeGeometry
 from shintai.snake.mujoco_plant import MujocoSnake, Scene
 from shintai.snake.model3d import chain_from_wheel
+from shintai.snake.scenarios import draw_link_points, draw_track, shade_stopped, wheel_legend
 from shintai.snake.scenarios_physical import (
     KinematicSpatial,
     SpatialTwoPoint,
@@ -162,6 +163,7 @@ class DoorOperator(Module):
         self.controller: SpatialTwoPoint | None = None
         self.shift: ShiftControl | None = None
         self.events: list[tuple[float, str]] = []
+        self.grounded = np.ones(geometry.n, bool)  # the wheels' mode last sent to the body
         self.estimate: np.ndarray | None = None
         self.psi_prev: np.ndarray | None = None
 
@@ -212,11 +214,19 @@ class DoorOperator(Module):
         t = float(snapshot["t"])
         seen = self.observed(snapshot)
         self.advance(t, seen)
+        command = self.command(t, seen)
+        if "grounded" in command:
+            self.grounded = np.asarray(command["grounded"], dtype=bool)
         self.log(t, **{f"{self.name}.phase": DOOR_PHASES.index(self.phase),
                        f"{self.name}.angle": self.body.mj.joint_qpos("hinge"),
                        f"{self.name}.head": self.body.snapshot()["head_pose"], f"{self.name}.estimate": seen["head_pose"],
                        f"{self.name}.tail": self.body.mj.site_pos(f"axle{self.geometry.n}"),
-                       f"{self.name}.clock": self.clock, f"{self.name}.body": link_points(self.body)})
+                       f"{self.name}.clock": self.clock, f"{self.name}.body": link_points(self.body),
+                       f"{self.name}.grounded": self.grounded.copy()})
+        return command
+
+    def command(self, t: float, seen) -> dict:
+        """The phase's command: shift control, hold, or the phase's two-point controller."""
         joints = self.geometry.joints
         if self.phase in ("shift", "passed"):
             psi_dot = np.zeros(joints)
@@ -380,45 +390,102 @@ def head_raising_pull(duration: float = DOOR.t_pull) -> dict:
             "stopped_fraction": float(recorder.values("raise.stopped").mean())}
 
 
+def door_series(recorder: Recorder, key: str) -> tuple[np.ndarray, np.ndarray]:
+    """(times, values) of ``<controller>.<key>`` over phases 1 and 2 (controllers ``raise`` then ``tail``), the
+    values cut to their common columns (the head's 6D pose first in both)."""
+    parts = [(recorder.times(f"{name}.{key}"), np.atleast_2d(recorder.values(f"{name}.{key}").T).T)
+             for name in ("raise", "tail") if f"{name}.{key}" in recorder.names()]
+    if not parts:
+        return np.zeros(0), np.zeros((0, 6))
+    width = min(v.shape[1] for _, v in parts)
+    t = np.concatenate([tt for tt, _ in parts])
+    order = np.argsort(t, kind="stable")
+    return t[order], np.concatenate([v[:, :width] for _, v in parts])[order]
+
+
 def plot_door(ctx, recorder: Recorder, run: DoorRun) -> None:
-    """Top view with the door at a few times, and the phases, door angle and target errors over time."""
+    """Top view (bodies at the phase changes with wheels by mode, the leaf, head and tail-wheel paths against
+    their targets), the errors / V_m / door angle over time with the phases marked, and the mode timeline."""
     d = DOOR
     t = recorder.times("door.phase")
     body, angle = recorder.values("door.body"), recorder.values("door.angle")
-    with ctx.figure("top_view", figsize=(8.0, 6.5)) as (fig, ax):
+    grounded, phase = recorder.values("door.grounded").astype(bool), recorder.values("door.phase").astype(int)
+    head, tail = recorder.values("door.head"), recorder.values("door.tail")
+    tc, c_d = door_series(recorder, "c_d")
+    has_tail = "tail.c_d" in recorder.names()
+    with ctx.figure("top_view", figsize=(8.5, 7.0)) as (fig, ax):
         for x0, y0, y1 in ((0.0, -0.8, 0.0), (0.0, d.width, d.width + 0.8)):
             ax.add_patch(Rectangle((x0, y0), d.thickness, y1 - y0, color="0.6"))
-        picks = np.unique(np.r_[np.searchsorted(t, [e for e, _ in run.events]), len(t) - 1].clip(0, len(t) - 1))
+        picks = np.unique(np.r_[0, np.searchsorted(t, [e for e, _ in run.events]), len(t) - 1].clip(0, len(t) - 1))
+        labels = []
         for j, k in enumerate(picks):
             alpha = 0.25 + 0.75 * j / max(len(picks) - 1, 1)
-            ax.plot(body[k, :, 0], body[k, :, 1], "-", color="0.3", lw=2, alpha=alpha)
-            ax.plot(*body[k, 0], "^", color="tab:orange", alpha=alpha)
+            draw_link_points(ax, body[k], grounded[k], alpha)
             leaf = d.width * np.array([-np.sin(angle[k]), np.cos(angle[k])])
             ax.plot([0, leaf[0]], [0, leaf[1]], "-", color="tab:brown", lw=3, alpha=alpha)
-            ax.annotate(f"{t[k]:.0f} s {DOOR_PHASES[int(recorder.values('door.phase')[k])]}", body[k, -1],
-                        fontsize=7, xytext=(3, -8), textcoords="offset points")
+            text = f"{t[k]:.0f} s {DOOR_PHASES[phase[k]]}"
+            near = [label for label in labels if np.hypot(*(label[0] - body[k, -1])) < 0.05]
+            if near:  # bodies that barely moved between phase changes share one label
+                near[0][1] += f", {text}"
+            else:
+                labels.append([body[k, -1], text])
+        for point, text in labels:
+            ax.annotate(text, point, fontsize=7, xytext=(3, -8), textcoords="offset points")
+        draw_track(ax, head[:, :2], c_d[:, :2], "tab:orange", "head tip", "head target (phases 1–2)")
+        held = phase <= DOOR_PHASES.index("tail")  # the estimate is used (and meaningful) in phases 1–2 only
+        ax.plot(*recorder.values("door.estimate")[held, :2].T, ":", color="tab:red", lw=1,
+                label="head: internal-model estimate (phases 1–2)")
+        tail_target = recorder.values("tail.c_d")[:, 6:8] if has_tail else np.zeros((0, 2))
+        draw_track(ax, tail[:, :2], tail_target, "tab:green", "tail wheel", "tail-wheel target (phase 2)")
+        wheel_legend(ax, 22)
         ax.set_aspect("equal")
         ax.set_xlabel("x [m] (wall at x = 0; inside: x > 0)")
         ax.set_ylabel("y [m]")
+        ax.legend(fontsize=7, loc="best")
         ax.set_title(f"door: phase reached {run.phase_reached}, passed = {int(run.passed)} "
-                     "(leaf brown, head ▲, bodies at the phase changes)", fontsize=9)
-    with ctx.figure("phases", nrows=3, ncols=1, figsize=(7.5, 7.5), sharex=True) as (fig, ax):
-        ax[0].step(t, recorder.values("door.phase"), where="post")
+                     "(leaf brown, head ▲, bodies at the start and the phase changes)", fontsize=9)
+    events = [(e, name) for e, name in run.events]
+    with ctx.figure("phases", nrows=4, ncols=1, figsize=(7.5, 9.0), sharex=True) as (fig, ax):
+        ax[0].step(t, phase, where="post")
         ax[0].set_yticks(range(len(DOOR_PHASES)), DOOR_PHASES, fontsize=7)
+        ax[0].set_title("phases (operator); red bands: stopped by the input limit (3.20)", fontsize=9)
         ax[1].plot(t, np.degrees(angle), label="door angle")
         ax[1].set_ylabel("door angle [deg]")
-        for name, label in (("raise", "phase 1"), ("tail", "phase 2")):
-            if f"{name}.error" in recorder.names():
-                e = recorder.values(f"{name}.error")
-                tc = recorder.times(f"{name}.error")
-                ax[2].plot(tc, 1e3 * np.linalg.norm(e[:, :3], axis=1), label=f"head vs target ({label})")
-                if e.shape[1] > 6:
-                    ax[2].plot(tc, 1e3 * np.hypot(e[:, 6], e[:, 7]), label=f"tail wheel vs target ({label})")
-        ax[2].plot(t, 1e3 * np.linalg.norm((recorder.values("door.head") - recorder.values("door.estimate"))[:, :3],
-                                           axis=1), label="head: true − internal-model estimate")
-        ax[2].set_ylabel("[mm]")
-        ax[2].set_xlabel("t [s]")
-        ax[2].legend(fontsize=7)
+        if len(tc):
+            _, error = door_series(recorder, "error")
+            ax[2].plot(tc, 1e3 * np.linalg.norm(error[:, :3], axis=1), lw=1,
+                       label="head: target − internal-model estimate (controller's e)")
+            k = np.searchsorted(t, tc).clip(0, len(t) - 1)
+            ax[2].plot(tc, 1e3 * np.linalg.norm(c_d[:, :3] - head[k, :3], axis=1), lw=1, label="head: target − true")
+        if has_tail:
+            e = recorder.values("tail.error")
+            ax[2].plot(recorder.times("tail.error"), 1e3 * np.hypot(e[:, 6], e[:, 7]), lw=1,
+                       label="tail wheel: target − true")
+        ax[2].set_ylabel("position error [mm]")
+        ts, V_m = door_series(recorder, "V_m")
+        if len(ts):
+            ax[3].semilogy(ts, V_m[:, 0], lw=1, label="V_m = σ_min(B_σ) of the mode in use (3.19)")
+        ax[3].set_ylabel("singular value")
+        ax[3].set_xlabel("t [s]")
+        ts, stopped = door_series(recorder, "stopped")
+        for a in ax:
+            shade_stopped(a, ts, stopped[:, 0].astype(bool))
+            for e, _ in events:
+                a.axvline(e, color="0.5", ls=":", lw=0.8)
+        for a in ax[1:]:
+            if a.get_legend_handles_labels()[0]:
+                a.legend(fontsize=7, loc="best")
+    with ctx.figure("modes", figsize=(7.5, 4.0)) as (fig, ax):
+        n = grounded.shape[1]
+        ax.imshow(grounded.T, aspect="auto", cmap="Reds", vmin=0, vmax=1.4, interpolation="nearest",
+                  extent=(t[0], t[-1] + CH3_GAINS.dt, n + 0.5, 0.5))
+        for e, name in events:
+            ax.axvline(e, color="k", ls=":", lw=0.8)
+            ax.annotate(name, (e, 0.5), fontsize=7, rotation=90, va="top", xytext=(2, -2), textcoords="offset points")
+        ax.set_ylabel("wheel (1 = head)")
+        ax.set_xlabel("t [s]")
+        ax.set_title("grounded wheels (red) / lifted (white): the raised head part, base modes, the lifted tail "
+                     "wheel in phase 2", fontsize=8)
 
 
 @scenario(

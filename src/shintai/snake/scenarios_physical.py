@@ -291,8 +291,9 @@ class SpatialTwoPoint(Module):
         psi_dot[self.lift_joints] = rate
         self.lift_cmd = self.lift_cmd + rate * self.period
         p = self.name
+        V_m = float(np.linalg.svd(B, compute_uv=False)[-1])  # σ_min(B_σ) of the mode in use, (3.19)
         self.log(t, **{f"{p}.c": c, f"{p}.c_d": c_d, f"{p}.error": error, f"{p}.stopped": stopped,
-                       f"{p}.u_norm": u_norm, f"{p}.mode": self.mode, f"{p}.psi": psi})
+                       f"{p}.u_norm": u_norm, f"{p}.mode": self.mode, f"{p}.psi": psi, f"{p}.V_m": V_m})
         return {"psi_dot": psi_dot, "grounded": self.grounded()}
 
     def sigma_gradient(self, w_h, psi, grounded, B, step: float = 1e-4) -> np.ndarray:
