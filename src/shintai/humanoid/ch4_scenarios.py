@@ -11,14 +11,16 @@
 * ``humanoid.small-obstacle`` (§4.4.3, Fig. 4.22): the 14 mm board with and without the pedalling
   power detection method.
 
-**Drive.** Every scenario has ``drive``: ``legs`` — the humanoid pedals with its own legs through
-the ch. 3 operation modules (role-switched active/passive legs, :mod:`shintai.humanoid.operation`);
+**Drive.** Every scenario has ``drive``: ``legs`` — the humanoid pedals with its own legs;
 ``motor`` — a crank motor (velocity servo) *stands in for the legs*, the feet riding the pedals
 under the active leg impedance with Table 3.4's 150 N. The motor is not the thesis's method; metrics
-notes say which drive ran. Exception: in ``humanoid.small-obstacle`` ``legs`` places both soles on
-the pedals at Eq. 4.22's crank target (:class:`LeadPedal`), because the detection method must turn
-the crank *back* (Table 4.7: ρ = θ_c^ref), which the Fig. 3.16 schedule cannot. The arms always steer
-by the humanoid's own whole-body IK (:class:`~shintai.humanoid.ch4_riding.Rider`).
+notes say which drive ran. With ``legs``, ``humanoid.sitting-recovery`` runs the ch. 3 operation
+modules (the Fig. 3.16 schedule, role-switched active/passive legs, :mod:`shintai.humanoid.operation`);
+the other three place both soles on the pedals at Eq. 4.22's crank target (:class:`LeadPedal`),
+because the detection method must turn the crank *back* (Table 4.7: ρ = θ_c^ref) and the navigator
+must set the crank rate (Eq. 4.18, 0 at the goal), neither of which the forward Fig. 3.16 schedule
+can; on the steps the schedule also stalled (see :func:`posture_steps`). The arms always steer by
+the humanoid's own whole-body IK (:class:`~shintai.humanoid.ch4_riding.Rider`).
 """
 
 from __future__ import annotations
@@ -43,9 +45,14 @@ DRIVES = ("motor", "legs")
 MOTOR_NOTE = ("drive=motor: a crank motor stands in for the legs (NOT the thesis's pedalling); the arms steer by "
               "the humanoid's own IK")
 LEGS_NOTE = "drive=legs: the humanoid pedals with its own legs (ch. 3 active/passive role switching)"
+LEAD_NOTE = ("drive=legs: the humanoid's legs turn the crank at the commanded rate (both soles placed on the "
+             "pedals at Eq. 4.22's crank target from ω_c^ref, leg impedance, 150 N)")
 
 
 # --- shared running -------------------------------------------------------------------------------
+
+LEAD_DT = DELTA_T  # s: Eq. 4.22's Δt for the legs' crank target (the thesis's transition time Δt = 0.8 s)
+LEGS_FZ = 150.0  # N: Table 3.4's active-leg target force f^trg_z, both soles on the pedals (drive=legs)
 
 
 def legs_pedalling(body, revolutions: float, time_scale: float):
@@ -64,14 +71,78 @@ def legs_pedalling(body, revolutions: float, time_scale: float):
     return legs, feet, schedule
 
 
-def drive_modules(body, drive: str, legs_revolutions: float = 3.0, time_scale: float = 0.25):
-    """The modules that move the tricycle: (rider, [modules]) for ``drive`` = motor or legs."""
+class CrankEstimate:
+    """θ_c by method (a) from both feet (§3.4.4), unwrapped; evaluated once per snapshot time."""
+
+    def __init__(self, body):
+        from shintai.humanoid.hrp2_limbs import riding_limbs
+        self.feet = riding_limbs(body, "foot")
+        self.t, self.angle = None, None
+
+    def __call__(self, snapshot) -> float:
+        from shintai.humanoid.switching import estimate_crank_angle, wrap_pi
+        from shintai.humanoid.tricycle_scenarios import pedal_axles
+        from shintai.humanoid.vehicles.tricycle import crank_centre
+        if snapshot["t"] != self.t:
+            measured = estimate_crank_angle(pedal_axles(self.feet, snapshot), crank_centre())
+            self.angle = measured if self.angle is None else self.angle + wrap_pi(measured - self.angle)
+            self.t = snapshot["t"]
+        return self.angle
+
+    def fz(self, snapshot) -> dict:
+        return {side[0]: float(limb.force(snapshot)[2]) for side, limb in self.feet.items()}
+
+
+class LeadPedal(Module):
+    """The legs turn the crank: every Δt a new target θ_c^ref = θ_c + (2π Δt / D_c) ẋ^ref (Eq. 4.22,
+    θ_c measured by method (a), ẋ^ref taken at the sample's start), approached linearly over the
+    sample and then held; both soles are placed on the pedals there under the leg impedance
+    (:class:`~shintai.humanoid.ch4_riding.Rider`), the foot on the downstroke pushing the crank.
+    ``speed``: ẋ^ref [m/s], or ``None`` to follow the crank-rate command ``ref:crank_rate`` of another
+    module (ω_c^ref of Eq. 4.18, e.g. the navigator's; ẋ^ref = D_c ω_c^ref / 2π) — at ω_c^ref = 0 the
+    target stays at the measured angle and the legs hold the crank (the tricycle stops).
+    ``extra_active`` adds force to the active (stepping) leg of the §3.5.2 role table (Eq. 3.19's
+    switching angles θ_c^init + kπ) — PPDM's "push harder"."""
+
+    def __init__(self, name: str, crank: CrankEstimate, speed: float | None, extra_active: float = 0.0):
+        super().__init__(name, CONTROL_PERIOD)
+        self.crank, self.speed, self.extra = crank, speed, extra_active
+
+    def xdot_ref(self, snapshot) -> float:
+        if self.speed is not None:
+            return self.speed
+        return max(cr.travel_of_crank(float(snapshot.get("ref:crank_rate", 0.0))), 0.0)
+
+    def reset(self, snapshot) -> None:
+        self.start = self.crank(snapshot)
+        self.t_k, self.theta_k = float(snapshot["t"]), self.start
+        self.xdot_k = self.xdot_ref(snapshot)
+
+    def update(self, snapshot):
+        from shintai.humanoid.navigation import crank_reference
+        from shintai.humanoid.switching import active_leg
+        t, theta = float(snapshot["t"]), self.crank(snapshot)
+        if t - self.t_k >= LEAD_DT:  # a new sample: Eq. 4.22 from the measured angle
+            self.t_k, self.theta_k, self.xdot_k = t, theta, self.xdot_ref(snapshot)
+        # reached linearly over the sample (the transition Δt of Fig. 3.16), then held
+        frac = min((t - self.t_k) / LEAD_DT, 1.0)
+        target = self.theta_k + frac * (crank_reference(self.theta_k, self.xdot_k, LEAD_DT) - self.theta_k)
+        out = {"ref:crank_target": target}
+        if self.extra:
+            out[f"ref:foot_fz_{active_leg(theta, DELTA_C)[0]}"] = self.extra
+        return out
+
+
+def drive_modules(body, drive: str):
+    """The modules that move the tricycle: (rider, [modules]) for ``drive`` = motor or legs. Both
+    follow the crank-rate command ``ref:crank_rate`` (ω_c^ref, Eq. 4.18) of another module: the motor
+    as its velocity target, the legs through Eq. 4.22's crank target (:class:`LeadPedal`, both soles on
+    the pedals, 150 N)."""
     if drive == "motor":
         rider = Rider(body, feet=True)
         return rider, [rider, cr.CrankMotor()]
-    rider = Rider(body, feet=False)
-    legs, _, _ = legs_pedalling(body, legs_revolutions, time_scale)
-    return rider, [rider, legs]
+    rider = Rider(body, feet=True, crank_of=lambda s: s["ref:crank_target"], base_fz=LEGS_FZ)
+    return rider, [rider, LeadPedal("legs", CrankEstimate(body), None)]
 
 
 def video_of(ctx, body, **view):
@@ -141,7 +212,8 @@ def vehicle_geoms(model) -> np.ndarray:
     source="seed 000 §4.4.2, §7.3.2, Eqs. 4.15–4.22, Figs. 4.14–4.19",
     summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall",
     params=[
-        Param("drive", "motor", "who turns the crank: motor (stand-in) or legs (ch. 3 pedalling)", choices=DRIVES),
+        Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
+              choices=DRIVES),
         Param("max_s", 60.0, "give up after this much driving [s]", lo=5.0, hi=200.0),
         Param("goal_x_m", NAV_GOAL[0], "goal x [m] (start at the origin, heading +x)", lo=5.5, hi=8.5),
     ],
@@ -160,23 +232,27 @@ def obstacle_navigation(ctx):
     at x = 4.0 m across the straight line, the goal at (goal_x_m, 0). Goal reached: the vehicle (crank
     origin) ends within ``goal_tolerance`` + 0.2 m (a stopping distance, chosen) of the goal.
 
-    Drive: ``motor`` stays the default. With ``drive=legs`` (the ch. 3 pedalling, 6 revolutions of
-    the Fig. 3.16 schedule at Δt = 0.8 s × 0.25) the robot perceives the wall, steers around it
-    (min clearance 0.13 m, 0.88 m to the side, arms by the IK) at ≈0.17 m/s and passes the goal at
-    ≈50 s (x = 8.14 m, y = −0.03 m) — but cannot stop there: the legs run the schedule, an offline
-    plan turning the crank forward by a fixed number of revolutions, and take no crank-rate input,
-    so Eq. 4.18's ω_c^ref from the dynamic window (0 at the goal) never reaches them. At 60 s it is
-    1.77 m past the goal at 0.15 m/s: reached = 0 and final_speed_mps = 0.15 fail, the clearance and
-    costmap checks hold (sim 60 s, wall 20 s). Following ẋ^ref with the legs needs a rate-driven
-    crank schedule (Eq. 4.22's crank target, as :class:`LeadPedal` does for the small obstacle) —
-    not done here."""
+    Drive: ``legs`` (default, the thesis's method): the navigator's ω_c^ref (Eq. 4.18) drives the
+    legs through Eq. 4.22 — every Δt = 0.8 s the crank target θ_c^ref = θ_c + Δt ω_c^ref from the
+    measured angle (method (a)), approached linearly and held when ω_c^ref = 0; both soles are placed
+    on the pedals there by the whole-body IK under the leg impedance with 150 N (:class:`LeadPedal`,
+    as in ``humanoid.small-obstacle``; the active leg of Eq. 3.19's role table is the one whose
+    downstroke pushes — no passive-leg acquisition as in ch. 3), the hip sitting on the saddle. The
+    robot perceives the wall, steers around it (min clearance 0.19 m, 0.90 m to the side) at
+    ≈0.39 m/s while cruising (the DWA's v_max is 0.4 m/s; the crank lags its target by ≤ 20°, the
+    soles stay within 5.4 cm of the pedal centres, the saddle keeps ≥ 186 N), and stops 0.20 m from the
+    goal at 22.4 s by holding the crank (final speed 0.011 m/s): all four checks hold (wall 11 s).
+    ``motor``: a crank motor follows ω_c^ref instead (stand-in; reached 0.18 m from the goal at
+    47.5 s, min clearance 0.13 m). The ch. 3 Fig. 3.16 schedule of the other scenarios cannot
+    be used here: it turns the crank forward by a fixed number of revolutions, blind to ω_c^ref,
+    so with it the robot avoided the wall but passed the goal and ended 1.77 m beyond it."""
     p = ctx.params
     check_drive(p)
     t_wall = time.perf_counter()
     body = build_ch4([WALL], hip="contact", crank_motor=p["drive"] == "motor")
     goal = (p["goal_x_m"], 0.0)
     nav = Navigator(body, goal)
-    rider, movers = drive_modules(body, p["drive"], legs_revolutions=6.0)
+    rider, movers = drive_modules(body, p["drive"])
     loop = Loop(body, [nav, *movers])
     wall_geom = body.id("geom", WALL.name)
     others = vehicle_geoms(body.model)
@@ -190,8 +266,12 @@ def obstacle_navigation(ctx):
             path.append(vehicle_pose2d(body))
             ctx.recorder.record(snap["t"], x=path[-1][0], y=path[-1][1], yaw=path[-1][2],
                                 theta_h_ref=snap["ref:theta_h"], handle=snap["q:handle"],
-                                clearance=clearance[-1], trunk_roll=trunk_roll(snap))
+                                clearance=clearance[-1], trunk_roll=trunk_roll(snap), crank=snap["q:crank"],
+                                crank_target=snap["ref:crank_target"], foot_off=foot_off_pedal(body),
+                                hip_z=body.contact_force("waist")[2],
+                                xdot_ref=nav.command[0], speed=float(np.hypot(*body.data.qvel[dof:dof + 2])))
 
+    dof = body.model.joint("tricycle_root").dofadr[0]
     video = video_of(ctx, body, distance=4.0, elevation=-35.0)
     try:
         n = int(round(p["max_s"] / body.dt))
@@ -209,7 +289,6 @@ def obstacle_navigation(ctx):
             video.close()
     path = np.array(path)
     final = vehicle_pose2d(body)
-    dof = body.model.joint("tricycle_root").dofadr[0]
     dist_goal = float(np.hypot(*(final[:2] - goal)))
     i, j = nav.costmap.cell(np.array([[WALL.pos[0], WALL.pos[1]]]))
     metrics = {
@@ -225,9 +304,18 @@ def obstacle_navigation(ctx):
         "overturned": int(overturned(body)),
         "rider_unreachable_solves": rider.unreachable,
         "drive_time_s": float(body.t),
-        "note": MOTOR_NOTE if p["drive"] == "motor" else LEGS_NOTE,
+        "note": MOTOR_NOTE if p["drive"] == "motor" else LEAD_NOTE,
         "planner_wall_time_s": float(loop.timing["navigator"].total_s),
     }
+    rec = ctx.recorder
+    if p["drive"] == "legs":  # how the legs turned the crank (the motor tracks its rate by itself)
+        lag = rec.values("crank_target") - rec.values("crank")
+        metrics.update({"max_crank_lag_deg": float(np.max(np.abs(lag)) / DEG),
+                        "max_foot_off_pedal_m": float(np.max(rec.values("foot_off"))),
+                        "min_saddle_force_n": float(np.min(rec.values("hip_z")))})
+    speed, xdot = rec.values("speed"), rec.values("xdot_ref")
+    cruising = xdot > 0.5 * NAVIGATION.v_max
+    metrics["mean_speed_cruising_mps"] = float(np.mean(speed[cruising])) if cruising.any() else 0.0
     ctx.sim_time_s = float(body.t)
     ctx.progress(0.98, "plots")
     _plot_navigation(ctx, nav, path, goal)
@@ -297,7 +385,9 @@ def ride_straight(ctx, prefix: str, posture: bool, p, until_x: float, video=None
             if k % 5 == 0:
                 rec.record(snap["t"], **{f"{prefix}trunk_roll": trunk_roll(snap), f"{prefix}vehicle_roll": vehicle_roll(body),
                                          f"{prefix}x": vehicle_pose2d(body)[0],
-                                         f"{prefix}chest_roll_ref": snap["ref:chest_roll"]})
+                                         f"{prefix}chest_roll_ref": snap["ref:chest_roll"],
+                                         f"{prefix}foot_fz": max(rider.forces(snap, f"{s}_ankle")[2] for s in "lr"),
+                                         f"{prefix}crank_lag": snap["ref:crank_target"] - snap["q:crank"]})
             if vehicle_pose2d(body)[0] >= until_x or overturned(body):
                 break
     finally:
@@ -311,7 +401,8 @@ def ride_straight(ctx, prefix: str, posture: bool, p, until_x: float, video=None
     source="seed 000 §4.3.3, §7.3.1, Eqs. 4.8–4.11, Fig. 7.2",
     summary="Driving over two 10 mm steps with and without the chest posture control running in parallel",
     params=[
-        Param("drive", "motor", "who turns the crank: motor (stand-in) or legs (ch. 3 pedalling)", choices=DRIVES),
+        Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
+              choices=DRIVES),
         Param("k_c", POSTURE_K_C, "posture feedback gain k_C of Eq. 4.8 [1/s] (not in the thesis)", lo=0.1, hi=50.0),
         Param("t_c", POSTURE_T_C, "time constant T_C of Eq. 4.8 [s] (not in the thesis)", lo=0.05, hi=10.0),
         Param("max_s", 40.0, "give up after this much driving [s]", lo=5.0, hi=200.0),
@@ -331,21 +422,28 @@ def posture_steps(ctx):
     shifted by the 0.6 m from crank to back axle). Both runs meet the same floor; trunk roll = the
     chest IMU roll (φ_C), measured after the first second.
 
-    Drive: ``motor`` stays the default. With ``drive=legs`` (the ch. 3 pedalling after the passive
-    foot fix, the Fig. 3.16 schedule at Δt = 0.8 s × 0.25) the tricycle rolls at ≈0.17 m/s (the
-    schedule asks 0.34 m/s) and reaches x ≈ 1.54 m at ≈9 s — exactly where the rear-left tyre
-    meets the first 10 mm step's edge (axle at 1.6 m less √(2 r h) ≈ 5 cm) — and stalls there: the
-    legs' 150 N pedalling cannot lift a rear wheel onto a 10 mm step, the crank loses its phase and
-    the tricycle rolls back to x ≈ 0.5 m, then wanders between 0.4 and 0.9 m until 40 s, in both
-    runs: steps_crossed_with = 0 (fail); trunk roll 1.15° with vs 2.16° without (that check held),
-    no overturn; 124 s wall. (The same pedalling drives the flat floor of
-    ``humanoid.obstacle-navigation`` for 60 s without stalling.) The motor's 0.3 m/s velocity servo
-    climbs the step; the legs would need the §4.4.3 power detection (``humanoid.small-obstacle``),
-    which is not part of §7.3.1's combination."""
+    Drive: ``legs`` (default): the legs pedal as in ``humanoid.obstacle-navigation`` — the cruise
+    command ω_c^ref (Eq. 4.18 of ẋ^ref = 0.3 m/s) becomes Eq. 4.22's crank target, both soles placed on
+    the pedals there under the leg impedance with 150 N (:class:`LeadPedal`). Both runs cross both
+    steps (21.3 s); the trunk roll is 1.38° with the posture control against 2.53° without (RMS 0.36°
+    vs 1.21°; vehicle roll 1.58°), no overturn (sim 42.7 s for both runs, wall 8 s). At each step the
+    tricycle slows to ≈0.18 m/s, the crank lags its target by up to 25° and the impedance pushes
+    harder (the larger ankle f_z averages ≈200 N over that second, against ≈160 N on the flat); with
+    the momentum of 0.3 m/s the rear wheel climbs. No pedalling-power detection is involved: §7.3.1
+    combines only device manipulation and posture control, "without interrupting the driving", and
+    PPDM's back-pedalling (§4.4.3) would interrupt it. The crossing depends on the speed (runs with
+    STEPS_SPEED changed): 0.25 and 0.4 m/s cross; at 0.2 m/s (and 0.15) the rear-left tyre stalls at
+    the first step's edge (x ≈ 1.54 m) and the soles then leave the pedals — method (a) measures the
+    crank from the feet, so the Eq. 4.22 target runs on with them while the crank stays. The thesis
+    gives no speed or force for §7.3.1 (its ch. 3 pedalling was far slower, T_2π = 57.6 s).
+
+    Before this drive, ``legs`` meant the ch. 3 Fig. 3.16 schedule (Δt = 0.8 s × 0.25, ≈0.17 m/s):
+    it stalled at the same edge, lost the crank's phase and rolled back (steps_crossed_with = 0).
+    ``motor``: the 0.3 m/s velocity servo (stand-in) climbs both steps too."""
     p = ctx.params
     check_drive(p)
     until = STEPS[1].pos[0] + STEPS[1].half[0] + TRICYCLE.crank_to_back + 0.5
-    metrics = {"note": MOTOR_NOTE if p["drive"] == "motor" else LEGS_NOTE}
+    metrics = {"note": MOTOR_NOTE if p["drive"] == "motor" else LEAD_NOTE}
     for prefix, posture in (("with_", True), ("without_", False)):
         body, rider = ride_straight(ctx, prefix, posture, p, until, video=posture)
         ctx.progress(0.5 if posture else 0.95, prefix.strip("_"))
@@ -357,6 +455,11 @@ def posture_steps(ctx):
         metrics[f"max_vehicle_roll_{name}_deg"] = float(np.abs(rec.values(f"{prefix}vehicle_roll")[late]).max() / DEG)
         metrics[f"rms_trunk_roll_{name}_deg"] = float(np.sqrt(np.mean(rec.values(f"{prefix}trunk_roll")[late] ** 2)) / DEG)
         metrics[f"steps_crossed_{name}"] = int(vehicle_pose2d(body)[0] >= until)
+        if p["drive"] == "legs":  # how hard the legs pushed (the motor turns the crank by itself)
+            fz = rec.values(f"{prefix}foot_fz")[late]  # the larger ankle f_z (peaks: pedal impacts)
+            metrics[f"mean_foot_fz_{name}_n"] = float(fz.mean())
+            metrics[f"p95_foot_fz_{name}_n"] = float(np.percentile(fz, 95))
+            metrics[f"max_crank_lag_{name}_deg"] = float(np.abs(rec.values(f"{prefix}crank_lag")[late]).max() / DEG)
         metrics[f"overturned_{name}"] = int(overturned(body))
         metrics[f"rider_unreachable_{name}"] = rider.unreachable
         metrics[f"sim_time_{name}_s"] = float(body.t)
@@ -659,59 +762,6 @@ BOARD_THICKNESS = 0.014  # m, the 14 mm wooden board (Fig. 4.22)
 # ≈0.5 m, 75° of crank); crossed = the back axle 0.2 m beyond its far edge.
 BOARD = Obstacle("board", (0.15, 0.7, BOARD_THICKNESS / 2), (1.35, 0.0, BOARD_THICKNESS / 2), (0.7, 0.55, 0.35, 1.0))
 SMALL_SPEED = 0.3  # m/s, ẋ^ref
-LEAD_DT = DELTA_T  # s: Eq. 4.22's Δt for the legs' crank target (the thesis's transition time Δt = 0.8 s)
-
-
-class CrankEstimate:
-    """θ_c by method (a) from both feet (§3.4.4), unwrapped; evaluated once per snapshot time."""
-
-    def __init__(self, body):
-        from shintai.humanoid.hrp2_limbs import riding_limbs
-        self.feet = riding_limbs(body, "foot")
-        self.t, self.angle = None, None
-
-    def __call__(self, snapshot) -> float:
-        from shintai.humanoid.switching import estimate_crank_angle, wrap_pi
-        from shintai.humanoid.tricycle_scenarios import pedal_axles
-        from shintai.humanoid.vehicles.tricycle import crank_centre
-        if snapshot["t"] != self.t:
-            measured = estimate_crank_angle(pedal_axles(self.feet, snapshot), crank_centre())
-            self.angle = measured if self.angle is None else self.angle + wrap_pi(measured - self.angle)
-            self.t = snapshot["t"]
-        return self.angle
-
-    def fz(self, snapshot) -> dict:
-        return {side[0]: float(limb.force(snapshot)[2]) for side, limb in self.feet.items()}
-
-
-class LeadPedal(Module):
-    """The legs turn the crank (``drive=legs`` here): every Δt a new target θ_c^ref = θ_c + (2π Δt / D_c)
-    ẋ^ref (Eq. 4.22, θ_c measured by method (a)), approached linearly over the sample; both soles are
-    placed on the pedals there under the leg impedance, the foot on the downstroke pushing the crank.
-    ``extra_active`` adds force to the active (stepping) leg of the §3.5.2 role table — PPDM's "push
-    harder"."""
-
-    def __init__(self, name: str, crank: CrankEstimate, speed: float, extra_active: float = 0.0):
-        super().__init__(name, CONTROL_PERIOD)
-        self.crank, self.speed, self.extra = crank, speed, extra_active
-
-    def reset(self, snapshot) -> None:
-        self.start = self.crank(snapshot)
-        self.t_k, self.theta_k = float(snapshot["t"]), self.start
-
-    def update(self, snapshot):
-        from shintai.humanoid.navigation import crank_reference
-        from shintai.humanoid.switching import active_leg
-        t, theta = float(snapshot["t"]), self.crank(snapshot)
-        if t - self.t_k >= LEAD_DT:  # a new sample: Eq. 4.22 from the measured angle
-            self.t_k, self.theta_k = t, theta
-        # reached linearly over the sample (the transition Δt of Fig. 3.16), then held
-        frac = min((t - self.t_k) / LEAD_DT, 1.0)
-        target = self.theta_k + frac * (crank_reference(self.theta_k, self.speed, LEAD_DT) - self.theta_k)
-        out = {"ref:crank_target": target}
-        if self.extra:
-            out[f"ref:foot_fz_{active_leg(theta, DELTA_C)[0]}"] = self.extra
-        return out
 
 
 class BackPedal(Module):
@@ -763,7 +813,7 @@ def small_obstacle_run(ctx, prefix: str, ppdm: bool, p, video: bool = False) -> 
         modules = [rider, cr.CrankMotor(), drive]
         switcher = None
     else:
-        rider = Rider(body, feet=True, crank_of=lambda s: s["ref:crank_target"], base_fz=150.0)
+        rider = Rider(body, feet=True, crank_of=lambda s: s["ref:crank_target"], base_fz=LEGS_FZ)
         drive = LeadPedal("drive", crank, SMALL_SPEED)
         if ppdm:
             detector = PedalLoadDetector(CONTROL_PERIOD)
@@ -868,8 +918,8 @@ def small_obstacle(ctx):
     push there until, after ≈20 s, the soles slide off the pedals (crossed_without = 0). With it the
     force rise is detected at 2.4 s, the crank goes back to θ_c^init − π = −70° (the left leg, active
     there by §3.5.2, 20° past the top), pushes with 300 N and the front wheel climbs the board; the
-    back wheels stall at it near the other dead centre, the method repeats (6 detections in all), and
-    the back wheels cross at ≈14.7 s. With ``freewheel=0`` (a fixed gear) back-pedalling rolls the
+    back wheels stall at it near the other dead centre, the method repeats (7 detections in all), and
+    the back wheels cross at ≈15.1 s. With ``freewheel=0`` (a fixed gear) back-pedalling rolls the
     tricycle back ≈1 m, and pushing forward again brings the crank to the board at the same dead-centre
     angle: 14 detections, the tricycle ends 1.6 m behind its start, the board is not crossed — the
     method presupposes that back-pedalling does not move the vehicle."""
