@@ -47,15 +47,14 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module
-from shintai.humanoid import fill_keyframe, ik, quat_axis
+from shintai.humanoid import ik, quat_axis
 from shintai.humanoid.active import grip_plan
 from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
-                                        GRIP_BAR_OFFSET,
                                         IMPEDANCE, TRICYCLE)
 from shintai.humanoid.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.navigation import OBSTACLE_GROUP
 from shintai.humanoid.passive import ActiveImpedance
-from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, HOLD, HOLD_BAR, LEG, SOLE, WRIST_FT, hold_here,
+from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, LEG, SOLE, WRIST_FT, hold_riding_pose,
                                      riding_posture, riding_spec)
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.vehicles.tricycle import pedal_position, steer_axis
@@ -160,15 +159,7 @@ def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_mo
         mujoco.mju_rotVecQuat(turned, p, rot)
         qpos[adr:adr + 3] = turned + [start[0], start[1], 0.0]
         mujoco.mju_mulQuat(qpos[adr + 3:adr + 7], rot, q)
-    fill_keyframe(model, "ride", qpos)
-    data = mujoco.MjData(model)
-    data.qpos[:] = qpos
-    mujoco.mj_kinematics(model, data)
-    hold_here(model, data, HIP_SADDLE)
-    for side in SIDES:
-        hold_here(model, data, HOLD[side], HAND[side])
-        if riding_options.get("grasp") == "grip":
-            hold_here(model, data, HOLD_BAR[side], HAND[side], GRIP_BAR_OFFSET)
+    hold_riding_pose(model, qpos, riding_options.get("grasp", "weld"))
     body = Ch4Body(model, substeps=round(CONTROL_PERIOD / model.opt.timestep), keyframe="ride")
     body.set_equality(HIP_SADDLE, hip == "weld")
     return body

@@ -189,7 +189,12 @@ def build_riding(theta_h: float = 0.0, theta_c: float = 0.0, held=("l", "r"), gr
     """
     model = riding_spec(grasp, held, crank_damping, crank_friction, handle_error, crank_error,
                         grip_error, rake_error).compile()
-    qpos = riding_posture(model, theta_h, theta_c)
+    hold_riding_pose(model, riding_posture(model, theta_h, theta_c), grasp)
+    return MujocoBody(model, substeps=substeps, keyframe="ride")
+
+
+def hold_riding_pose(model: mujoco.MjModel, qpos: np.ndarray, grasp: str) -> None:
+    """Store ``qpos`` as keyframe ``ride`` and set the hip and grasp equalities to hold it as it is."""
     fill_keyframe(model, "ride", qpos)
     data = mujoco.MjData(model)
     data.qpos[:] = qpos
@@ -199,4 +204,3 @@ def build_riding(theta_h: float = 0.0, theta_c: float = 0.0, held=("l", "r"), gr
         hold_here(model, data, HOLD[side], HAND[side])
         if grasp == "grip":
             hold_here(model, data, HOLD_BAR[side], HAND[side], GRIP_BAR_OFFSET)
-    return MujocoBody(model, substeps=substeps, keyframe="ride")
