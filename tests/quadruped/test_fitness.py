@@ -6,8 +6,10 @@ import time
 import numpy as np
 
 from shintai.quadruped import constants as C
+from shintai.quadruped import episode as E
 from shintai.quadruped import fitness as F
 from shintai.quadruped import networks as N
+from shintai.quadruped import robot as R
 from shintai.quadruped import swing_order as S
 from shintai.quadruped import world as W
 from shintai.quadruped.episode import Episodes, GenomePolicy, rollout
@@ -97,3 +99,23 @@ def test_free_gait_rollout_uses_the_swing_order_policy():
     assert np.array_equal(ep.orders[:, 0], policy(zr, command))
     value = F.action_fitness(straight_walker(), envs, policy)
     assert value == F.action_fitness(straight_walker(), envs, policy) and np.isfinite(value)
+
+
+def test_commands_are_clipped_to_the_displacement_range_of_seed_5_1():
+    low, high = (np.array(r) for r in C.COMMAND_RANGE)
+    assert np.allclose(low, [-0.1, 0.15, np.radians(-15)]) and np.allclose(high, [0.1, 0.35, np.radians(15)])
+    envs = W.EnvBatch.of([W.scenario_52()])
+    crab = lambda x, rows: np.tile([0.13, 0.0, 0.4], (len(rows), 1))  # noqa: E731  sideways, turning
+    ep = rollout(envs, crab, max_cycles=3)
+    assert np.allclose(ep.commands[0, 0], [0.1, 0.15, np.radians(15)])  # what the robot executed
+    free = rollout(envs, crab, max_cycles=3, command_range=None)
+    assert np.allclose(free.commands[0, 0], [0.13, 0.0, 0.4])
+
+
+def test_path_inputs_are_the_inputs_along_straight_lines_to_the_destinations():
+    envs = W.EnvBatch.of([W.scenario_421(), W.scenario_52()])
+    x = E.path_inputs(envs, offsets=(0.0,), steps=3)
+    assert x.shape == (6, 24)
+    start = E.action_inputs(R.CrawlState.initial(2), np.full(2, C.ZR_NOMINAL), envs)
+    assert np.allclose(x[:2], start)  # t = 0: the start of each environment
+    assert np.allclose(x[4:, 21:23], 0.0)  # t = 1: at the destination

@@ -7,7 +7,9 @@ import pytest
 
 from shintai.evolve import ProcessExecutor, SerialExecutor, load_checkpoint
 from shintai.quadruped import constants as C
+from shintai.quadruped import episode as E
 from shintai.quadruped import fitness as F
+from shintai.quadruped import networks as N
 from shintai.quadruped import training as T
 from shintai.quadruped import world as W
 
@@ -68,6 +70,8 @@ def test_the_free_stage_starts_from_the_fixed_order_population(whole):
 def test_training_arguments_are_checked_with_one_line_errors(tmp_path):
     with pytest.raises(ValueError, match="environments must be in"):
         T.TrainSettings(environments=0)
+    with pytest.raises(ValueError, match="init must be one of"):
+        T.TrainSettings(init="zeros")
     with pytest.raises(ValueError, match="'free' needs"):
         T.train(tmp_path, TINY, SerialExecutor(), stages=("free",))
     with pytest.raises(FileNotFoundError, match="quadruped.train"):
@@ -94,3 +98,22 @@ def test_shipped_set_records_the_default_settings():
         assert settings == T.TrainSettings().__dict__
         assert len(best) == T.TrainSettings().generations_of(stage) and np.all(np.diff(best) <= 0)
         assert np.all(mean >= best)
+
+
+def test_the_first_population_has_its_centres_on_data_and_depends_on_the_seed_only():
+    first = T.initial_population(TINY)
+    assert np.array_equal(first, T.initial_population(TINY)) and first.shape == (TINY.population, F.ACTION_NET.size)
+    assert not np.array_equal(first, T.initial_population(dataclasses.replace(TINY, seed=8)))
+    assert T.initial_population(dataclasses.replace(TINY, init="uniform")) is None
+    centres = F.ACTION_NET.decode(first)[0]
+    data = N.scale_action_inputs(E.path_inputs(T.training_envs(TINY.environments)))  # the run's environments
+    assert np.all(np.min(np.abs(centres[0][:, None] - data[None]).max(-1), axis=1) < 1e-12)
+
+
+def test_the_default_training_starts_where_the_shipped_networks_started():
+    """Bit-for-bit reproduction of the shipped set, checked on its first generation (the whole default
+    run takes about 20 min on 2 cores): the same first population and the same eq. (9) values."""
+    best, _, _ = T.load_curve(None, "action")
+    first = T.run_stage("action", dataclasses.replace(T.TrainSettings(), generations=1), SerialExecutor(), None,
+                        resume=False)
+    assert first.best[0] == best[0]

@@ -115,12 +115,44 @@ ORDER_INPUTS, ORDER_OUTPUTS = 4, 24  # seed §5
 # Hidden units of the swing-order network: chosen (not printed, §7.17) as 4 x 24 outputs, the same
 # "about 4 x" rule the paper found best for the action network.
 ORDER_HIDDEN = 96
-# Initial/allowed ranges of the action network's genes: chosen (§7.17). Centres span the range of
-# the inputs they compare with (feet, Zr, obstacle features incl. sentinels, destination error);
-# widths and weights are sized so that one hidden unit can command a whole step (~0.25 m, ~15 deg).
-ACTION_CENTRE_RANGE = (-1.0, 2.5)  # [m] or [rad]; the destination y error reaches 2.2 m
-ACTION_SIGMA_RANGE = (0.05, 3.0)
-ACTION_WEIGHT_RANGE = (-0.5, 0.5)  # outputs are ΔXr, ΔYr [m] and Δθr [rad]
+# Input normalisation of the action network: chosen (§6.3, §7.10: the paper feeds raw metres and gives
+# no scaling). Each input is mapped affinely from its span below to [-1, 1] before eq. (7), because
+# with isotropic Gaussian units on raw inputs the destination's y error (0-2.2 m) dominates every
+# distance while the one input that tells the wall's side, z_max (0.06-0.12 m vs 0.3 m), hardly
+# counts (training.py: with it, and with COMMAND_RANGE and centres on data, the GA finds the walk
+# through the gap). Spans [m, rad], in the order of the 24 inputs (episode.action_inputs): feet
+# (x, y) x 4, Zr (the teacher range of seed §5.1), right and left (x_max, x_min, y_max, y_min, z_max,
+# z_min), (x_de, y_de, θ_de). They cover what the robot meets (sentinels ±1 m included); values
+# outside simply map beyond ±1.
+ACTION_NORMALISE = True
+_FOOT_SPAN, _OBSTACLE_SPANS = ((-0.5, 0.5), (-0.5, 0.5)), ((-1.0, 1.0),) * 2 + ((-1.0, 1.2),) * 2 + ((0.0, 0.3),) * 2
+ACTION_INPUT_SPANS = (_FOOT_SPAN * 4 + ((0.300, 0.370),) + _OBSTACLE_SPANS * 2
+                      + ((-0.5, 0.5), (0.0, 2.2), (-0.5, 0.5)))
+# Initial/allowed ranges of the action network's genes: chosen (§7.17). With normalised inputs the
+# centres span the scaled input box, the widths run from units that see a few inputs' worth of
+# difference to units wider than the box (a 24-dimensional box of side 2 has a diagonal of 9.8), and
+# the weights per output are of the order of one cycle's step (ΔXr, ΔYr [m], Δθr [rad]) so that a
+# few active units command a whole step.
+ACTION_CENTRE_RANGE = (-1.0, 1.0)
+ACTION_SIGMA_RANGE = (0.5, 8.0)
+ACTION_WEIGHT_RANGE = ((-0.3, 0.3), (-0.4, 0.4), (-0.3, 0.3))  # (lo, hi) of ΔXr, ΔYr, Δθr weights
+# Initial population of the action network's GA (stage ``action``): chosen (§7.17: initialisation not
+# printed), RBF centres on data, the usual RBF practice: every centre is the (scaled) input of a
+# state the robot could meet, drawn at random from the body on straight lines from the start to each
+# training destination at the lateral offsets INIT_PATH_OFFSETS [m] (INIT_PATH_STEPS poses each, the
+# body height by the body-raise rule); widths uniform in ACTION_INIT_SIGMA_RANGE, so that each unit
+# answers to a neighbourhood of such states; weights uniform in ±ACTION_INIT_WEIGHT (ΔXr, ΔYr [m],
+# Δθr [rad]), smaller than their GA range so that the first networks do not all saturate. Uniform
+# centres in the whole input box (``init="uniform"``) leave most units far from every input.
+INIT_PATH_OFFSETS = (-0.3, -0.15, 0.0, 0.15, 0.3)
+INIT_PATH_STEPS = 12
+ACTION_INIT_SIGMA_RANGE = (0.7, 4.0)
+ACTION_INIT_WEIGHT = (0.05, 0.1, 0.05)
+# The same for raw inputs (ACTION_NORMALISE = False, as the paper feeds them): centres span the raw
+# inputs (the destination y error reaches 2.2 m), one range for every output.
+ACTION_RAW_CENTRE_RANGE = (-1.0, 2.5)  # [m] or [rad]
+ACTION_RAW_SIGMA_RANGE = (0.05, 3.0)
+ACTION_RAW_WEIGHT_RANGE = (-0.5, 0.5)  # outputs are ΔXr, ΔYr [m] and Δθr [rad]
 ORDER_CENTRE_RANGE = (-1.2, 1.2)  # the order network's inputs are scaled to [-1, 1] (see networks.py)
 ORDER_SIGMA_RANGE = (0.05, 2.0)
 SIGMA_FLOOR = 1e-6  # |σ| is floored so that eq. (7) stays finite for any genome
@@ -133,10 +165,12 @@ GA_CROSSOVER_RATE = 0.6  # uniform crossover
 FITNESS_PENALTY = 10.0  # eqs. (10), (11)
 # Mutation and generations: not printed (§3.2, §7.17). Chosen: each gene mutated with probability
 # GA_MUTATION_RATE by Gaussian noise of GA_MUTATION_SIGMA x its range (the shared GA's operator), and
-# generation counts that keep the default training run (all three stages) well under an hour on 2 cores.
+# generation counts that keep the default training run (all three stages) well under an hour on 2 cores
+# (about 21 min on 2 shared cores). With 120 generations the fixed-order network still failed in 5 of
+# the 96 environments (joint limits); by 165 it reached all 96.
 GA_MUTATION_RATE = 0.02
 GA_MUTATION_SIGMA = 0.1
-GA_GENERATIONS = 150  # action network, fixed crawl order (seed §4.1.2)
+GA_GENERATIONS = 180  # action network, fixed crawl order (seed §4.1.2)
 GA_ORDER_GENERATIONS = 100  # swing-order network (seed §5.1)
 GA_FREE_GENERATIONS = 50  # action network re-trained with the swing-order network (seed §6.1)
 
@@ -146,6 +180,15 @@ TEACHER_DX = (-0.100, 0.100)  # [m]
 TEACHER_DY = (0.150, 0.350)  # [m]
 TEACHER_DTHETA = (math.radians(-15.0), math.radians(15.0))  # [rad]
 TEACHER_PER_ORDER = 20
+# The robot's displacement per walking cycle: the network's output (eq. 8) is clipped to the ranges
+# over which seed §5.1 varies the displacement to build the swing-order teacher data (ΔXr ±100 mm,
+# ΔYr 150-350 mm, Δθr ±15°). Chosen, because the paper gives no output scaling (§7.10) but does state
+# this range of the robot's actions, and its swing-order network (which takes the action network's
+# output as input, Fig. 29) is only defined on it; every cycle of Tables 3, 6 and 7 lies inside it.
+# Without it the GA finds walks outside this range that the paper's robot never makes: crab walks
+# (ΔYr ≈ 0, ΔXr ≈ ±130 mm, a steady turn) around the obstacles' outer ends (training.py).
+# ``None`` lets the network command any displacement.
+COMMAND_RANGE = ((TEACHER_DX[0], TEACHER_DY[0], TEACHER_DTHETA[0]), (TEACHER_DX[1], TEACHER_DY[1], TEACHER_DTHETA[1]))
 PAPER_OPTIMAL_ORDERS = 19  # 19 x 20 = 380 patterns
 # Samples drawn to label the teacher set: chosen so that rare optimal orders still get 20 samples
 # after local resampling (the paper's "adjusted step" is not reproducible exactly, §7.18).

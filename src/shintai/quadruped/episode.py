@@ -5,7 +5,8 @@ Per walking cycle k of every active episode (all batched):
 1. perceive: the known obstacles (simulation, seed §4) in the body frame as the features of §2.3,
    the sentinels for an obstacle the robot has passed;
 2. body-raise rule (rule-based, not the network): :func:`robot.body_height`;
-3. action network: (ΔXr, ΔYr, Δθr) from the 24 inputs;
+3. action network: (ΔXr, ΔYr, Δθr) from the 24 inputs, clipped to the robot's displacement range
+   (``constants.COMMAND_RANGE``: the ranges of seed §5.1, chosen);
 4. swing order: the crawl order 4→2→3→1, or a swing-order policy;
 5. one crawl cycle; the walk stops at a collision, a joint-limit violation or lost stability (the
    cycle is not executed, the robot stays where it was), when the CoG is within 0.2 m of the
@@ -57,6 +58,23 @@ def action_inputs(state: R.CrawlState, zr: np.ndarray, envs: W.EnvBatch) -> np.n
     return np.column_stack([feet, zr, features, destination_error(state.pose, envs.destination)])
 
 
+def path_inputs(envs: W.EnvBatch, offsets=C.INIT_PATH_OFFSETS, steps: int = C.INIT_PATH_STEPS) -> np.ndarray:
+    """Action inputs ``(len(offsets) * steps * E, 24)`` of states the robot could meet: the body at
+    ``steps`` poses on the straight line from (offset, 0) to each destination, heading +y, feet at
+    the initial stance on the floor, body height by the body-raise rule (the data the initial
+    population's RBF centres are drawn from, constants ``INIT_PATH_*``)."""
+    n = len(envs)
+    rows = []
+    for offset in offsets:
+        for t in np.linspace(0.0, 1.0, steps):
+            pose = np.column_stack([offset + t * (envs.destination[:, 0] - offset), t * envs.destination[:, 1],
+                                    np.zeros(n)])
+            feet = np.concatenate([R.to_world(pose, np.repeat(R.NOMINAL_FEET[None], n, 0)), np.zeros((n, 4, 1))], -1)
+            zr = R.body_height(pose, feet, envs)
+            rows.append(action_inputs(R.CrawlState(pose, zr, feet), zr, envs))
+    return np.vstack(rows)
+
+
 @dataclass(frozen=True)
 class GenomePolicy:
     """Action networks of ``k`` genomes driving ``k x E`` episodes (row ``i * E + e`` is genome i in
@@ -96,8 +114,10 @@ class Episodes:
 
 
 def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPolicy | None = None,
-            max_cycles: int = C.MAX_CYCLES, record: bool = False) -> Episodes:
-    """Run one episode per environment row in lock-step (module docstring)."""
+            max_cycles: int = C.MAX_CYCLES, record: bool = False,
+            command_range: tuple | None = C.COMMAND_RANGE) -> Episodes:
+    """Run one episode per environment row in lock-step (module docstring); the action policy's
+    commands are clipped to ``command_range`` ``(low, high)`` (``None``: not clipped)."""
     n = len(envs)
     state = R.CrawlState.initial(n)
     active = np.ones(n, dtype=bool)
@@ -113,6 +133,8 @@ def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPo
         st, env = state.take(rows), envs.take(rows)
         zr = R.body_height(st.pose, st.feet, env)
         command = np.asarray(action_policy(action_inputs(st, zr, env), rows), dtype=float)
+        if command_range is not None:
+            command = np.clip(command, *command_range)
         order = np.full(len(rows), CRAWL) if order_policy is None else np.asarray(order_policy(zr, command))
         out = R.crawl_cycle(st, command, ORDERS[order], zr, env)
         _store(ep, k, rows, out, command, order, record)

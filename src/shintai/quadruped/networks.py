@@ -5,9 +5,13 @@ per hidden unit, linear outputs, no bias.
 
 * The **action network** (24 → 100 → 3) maps the state of seed §4 — feet (x, y) in the body frame,
   Zr, the right and left obstacle features, and the destination error (x_de, y_de, θ_de) — to the
-  cycle's body displacement (ΔXr, ΔYr, Δθr). Inputs are fed raw in metres and radians as in the
-  paper (its sentinels are in metres); outputs are metres and radians. Its genome is every design
-  parameter: ``[centres (100 x 24), widths (100), weights (100 x 3)]`` (seed §4.1.2).
+  cycle's body displacement (ΔXr, ΔYr, Δθr) in metres and radians. The paper feeds the inputs raw
+  (its sentinels are in metres); here each is scaled to [-1, 1] over its span
+  (``constants.ACTION_INPUT_SPANS``, chosen) before eq. (7), so that the few inputs that tell the
+  wall's side weigh as much in ||x - c_i|| as the destination's 2 m (``normalise=False`` feeds them
+  raw). Its genome is every design parameter: ``[centres (100 x 24), widths (100), weights
+  (100 x 3)]`` (seed §4.1.2); :meth:`ActionNetwork.genomes_on_data` draws the GA's first population
+  with the centres on inputs the robot meets.
 * The **swing-order network** (4 → ORDER_HIDDEN → 24) maps (Zr, ΔXr, ΔYr, Δθr), each scaled to
   [-1, 1] over the teacher ranges of seed §5.1 (chosen: the paper gives the ranges but mixes mm and
   deg), to one output per order of Table 2; the order is the unit whose output is closest to 1. The
@@ -47,13 +51,52 @@ def as_genomes(genomes, size: int, name: str) -> np.ndarray:
     return g
 
 
+def scale_inputs(x: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """Inputs mapped affinely so that ``low`` goes to -1 and ``high`` to +1 (per input)."""
+    return 2 * (np.asarray(x, dtype=float) - low) / (high - low) - 1
+
+
+class _GenomeBounds:
+    """Per-gene ``(lo, hi)`` of a network's flat genome from its parts ``(count, (lo, hi))``."""
+
+    def parts(self) -> list[tuple[int, tuple]]:
+        raise NotImplementedError
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per-gene ``(lo, hi)`` for initialising and mutating a population (ranges in constants)."""
+        parts = self.parts()
+        lo = np.concatenate([np.broadcast_to(np.asarray(r[0], dtype=float), (k,)) for k, r in parts])
+        hi = np.concatenate([np.broadcast_to(np.asarray(r[1], dtype=float), (k,)) for k, r in parts])
+        return lo, hi
+
+    def random_genomes(self, rng: np.random.Generator, k: int) -> np.ndarray:
+        """``k`` genomes uniform in :meth:`bounds`."""
+        lo, hi = self.bounds()
+        return rng.uniform(lo, hi, size=(k, lo.size))
+
+
+ACTION_LOW = np.array([r[0] for r in C.ACTION_INPUT_SPANS])
+ACTION_HIGH = np.array([r[1] for r in C.ACTION_INPUT_SPANS])
+
+
+def scale_action_inputs(x: np.ndarray) -> np.ndarray:
+    """The 24 action inputs [m, rad] → [-1, 1] over ``ACTION_INPUT_SPANS``."""
+    return scale_inputs(x, ACTION_LOW, ACTION_HIGH)
+
+
 @dataclass(frozen=True)
-class ActionNetwork:
-    """The action RBF network of seed §4 (24 → 100 → 3) over flat genomes."""
+class ActionNetwork(_GenomeBounds):
+    """The action RBF network of seed §4 (24 → 100 → 3) over flat genomes.
+
+    With ``normalise`` (the default, ``ACTION_NORMALISE``) eq. (7) compares centres with the inputs
+    scaled to [-1, 1] over ``ACTION_INPUT_SPANS``; without it, with the raw inputs as the paper feeds
+    them (the gene ranges follow: ``ACTION_*_RANGE`` or ``ACTION_RAW_*_RANGE``).
+    """
 
     n_in: int = C.ACTION_INPUTS
     n_hidden: int = C.ACTION_HIDDEN
     n_out: int = C.ACTION_OUTPUTS
+    normalise: bool = C.ACTION_NORMALISE
 
     @property
     def size(self) -> int:
@@ -73,20 +116,28 @@ class ActionNetwork:
     def forward(self, genomes, x: np.ndarray) -> np.ndarray:
         """Eq. (8): outputs ``(k, N, 3)`` (ΔXr [m], ΔYr [m], Δθr [rad]) for inputs ``x (k, N, 24)``."""
         centres, sigmas, weights = self.decode(genomes)
+        x = scale_action_inputs(x) if self.normalise else x
         return np.einsum("kNm,kmo->kNo", rbf_hidden(centres, sigmas, x), weights)
 
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Per-gene ``(lo, hi)`` for initialising and mutating a population (ranges in constants)."""
-        m, n = self.n_hidden, self.n_in
-        parts = [(m * n, C.ACTION_CENTRE_RANGE), (m, C.ACTION_SIGMA_RANGE), (m * self.n_out, C.ACTION_WEIGHT_RANGE)]
-        lo = np.concatenate([np.full(k, r[0]) for k, r in parts])
-        hi = np.concatenate([np.full(k, r[1]) for k, r in parts])
-        return lo, hi
+    def genomes_on_data(self, rng: np.random.Generator, k: int, inputs: np.ndarray) -> np.ndarray:
+        """``k`` genomes with their centres on rows of ``inputs (N, 24)`` (unscaled; drawn with
+        replacement), widths uniform in ``ACTION_INIT_SIGMA_RANGE`` and weights uniform in
+        ±``ACTION_INIT_WEIGHT`` (the initial population of constants), clipped to :meth:`bounds`."""
+        m = self.n_hidden
+        points = scale_action_inputs(inputs) if self.normalise else np.asarray(inputs, dtype=float)
+        centres = points[rng.integers(0, len(points), size=(k, m))]
+        sigmas = rng.uniform(*C.ACTION_INIT_SIGMA_RANGE, size=(k, m))
+        weights = rng.uniform(-1.0, 1.0, size=(k, m, self.n_out)) * np.array(C.ACTION_INIT_WEIGHT)
+        genomes = np.concatenate([centres.reshape(k, -1), sigmas, weights.reshape(k, -1)], axis=1)
+        return np.clip(genomes, *self.bounds())
 
-    def random_genomes(self, rng: np.random.Generator, k: int) -> np.ndarray:
-        """``k`` genomes uniform in :meth:`bounds`."""
-        lo, hi = self.bounds()
-        return rng.uniform(lo, hi, size=(k, self.size))
+    def parts(self) -> list[tuple[int, tuple]]:
+        m, n = self.n_hidden, self.n_in
+        centre, sigma = ((C.ACTION_CENTRE_RANGE, C.ACTION_SIGMA_RANGE) if self.normalise
+                         else (C.ACTION_RAW_CENTRE_RANGE, C.ACTION_RAW_SIGMA_RANGE))
+        weight = np.tile(np.array(C.ACTION_WEIGHT_RANGE, dtype=float).T, (1, m)) if self.normalise \
+            else C.ACTION_RAW_WEIGHT_RANGE
+        return [(m * n, centre), (m, sigma), (m * self.n_out, weight)]
 
 
 ORDER_LOW, ORDER_HIGH = S.TEACHER_LOW, S.TEACHER_HIGH
@@ -94,11 +145,11 @@ ORDER_LOW, ORDER_HIGH = S.TEACHER_LOW, S.TEACHER_HIGH
 
 def scale_order_inputs(x: np.ndarray) -> np.ndarray:
     """(Zr [m], ΔXr [m], ΔYr [m], Δθr [rad]) → [-1, 1] over the teacher ranges of seed §5.1."""
-    return 2 * (np.asarray(x, dtype=float) - ORDER_LOW) / (ORDER_HIGH - ORDER_LOW) - 1
+    return scale_inputs(x, ORDER_LOW, ORDER_HIGH)
 
 
 @dataclass(frozen=True)
-class SwingOrderNetwork:
+class SwingOrderNetwork(_GenomeBounds):
     """The swing-order RBF network of seed §5 (4 → h → 24); genome = centres and widths."""
 
     n_hidden: int = C.ORDER_HIDDEN
@@ -129,15 +180,8 @@ class SwingOrderNetwork:
         """Outputs ``(k, N, 24)`` at ``x`` with the weights fitted to ``teacher``."""
         return self.hidden(genomes, x) @ self.fit_weights(genomes, teacher)
 
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        m, n = self.n_hidden, self.n_in
-        lo = np.concatenate([np.full(m * n, C.ORDER_CENTRE_RANGE[0]), np.full(m, C.ORDER_SIGMA_RANGE[0])])
-        hi = np.concatenate([np.full(m * n, C.ORDER_CENTRE_RANGE[1]), np.full(m, C.ORDER_SIGMA_RANGE[1])])
-        return lo, hi
-
-    def random_genomes(self, rng: np.random.Generator, k: int) -> np.ndarray:
-        lo, hi = self.bounds()
-        return rng.uniform(lo, hi, size=(k, self.size))
+    def parts(self) -> list[tuple[int, tuple]]:
+        return [(self.n_hidden * self.n_in, C.ORDER_CENTRE_RANGE), (self.n_hidden, C.ORDER_SIGMA_RANGE)]
 
     def trained(self, genome, teacher: S.TeacherSet) -> SwingOrderPolicy:
         """The network of one genome with its fitted weights, as a swing-order policy."""

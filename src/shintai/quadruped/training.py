@@ -17,19 +17,37 @@ crossover with probability 0.6 (``GAConfig.seed004``); mutation and generations 
 and are chosen in ``constants`` (``GA_*``). Every stage uses the run's seed; the result is
 bit-identical for one seed on every executor (serial, process pool, Ray).
 
-What the GA learns (the shipped set, seed 0, default settings; 17 min on 2 shared cores): all 96
-training environments are reached without failure, in 24-29 cycles (mean 26.4; the paper shows 9-11
-in its examples) with final errors of 0.10-0.20 m (paper 0.023-0.073 m). Every run converges to the
-same kind of gait: a crab walk with a steady turn (ΔXr ≈ 100 mm sideways, ΔYr ≈ 0, Δθr ≈ 7° per
-cycle) whose arc passes outside the obstacles' outer ends, one near-constant command that avoids all
-96 layouts without telling the wall's side. Tried against it, none reached fewer cycles: 150 instead
-of 40 generations (eq. 9 from 1.68 to 1.13), mutation 0.01 x 0.03 of the range instead of 0.02 x
-0.1, centres drawn per input over the span of that input (instead of [-1, 2.5] m for all), and
-centres placed on inputs the robot meets (RBF centres on data) — the last two were far behind after
-40 generations. Fewer cycles need the paper's walk through the gap, a better optimum of eq. (9)
-(scenarios.py, ``quadruped.avoid-known``) that the population does not reach: steps that end in a
-failure cost 10 (x_dc² + y_dc²) per environment (eqs. 10-11), and with isotropic Gaussian units in
-24 inputs the network hardly sees which side the wall is on.
+Why the GA used to find only crab walks, and what changed (§7.10, §7.17). With the network free to
+command any displacement, raw inputs and centres uniform over [-1, 2.5] m, every run converged to a
+crab walk — ΔYr ≈ 0, ΔXr ≈ ±130 mm, a steady turn of ~7° per cycle — whose arc passes outside the
+obstacles' outer ends: one near-constant command that avoids all 96 layouts without telling the
+wall's side (27 cycles in §4.2.1, 0.195 m). The paper's walk through the gap is a far better optimum
+of eq. (9) (a simple reactive rule through the gap reaches all 96 environments with eq. (9) = 0.005
+against the crab's 1.1), but it lies behind a valley of failing walks (10 (x_dc² + y_dc²) ≈ 25 per
+environment, eqs. 10-11): even on two environments, and with normalised inputs and centres on data,
+the GA only found walks around the obstacles. The root cause is the action space, not eq. (9): the
+paper's robot never makes those steps. Seed §5.1 states the range of its displacement per cycle
+(ΔXr ±100 mm, ΔYr 150-350 mm, Δθr ±15°, the domain of the swing-order network that takes the action
+network's output, Fig. 29), and every cycle of Tables 3, 6 and 7 lies in it; the command is now
+clipped to it (``constants.COMMAND_RANGE``). Forward motion is then forced, the robot has to pass
+between the obstacles, and the GA finds the paper's behaviour: shift towards the low obstacle, climb
+it with the legs of that side while the others pass the wall on the ground. Two further choices
+help it find that walk: the inputs are scaled to [-1, 1] (``constants.ACTION_INPUT_SPANS``), and the
+first population has its RBF centres on inputs the robot meets (``init="data"``,
+:func:`initial_population`). On two environments (§4.2.1, §5.2), 60 generations: centres on data
+passed between the obstacles in 4 of 4 seeds (12-14 cycles), uniform centres reached the goal in
+both only in 1 of 2 seeds.
+
+What the GA learns (the shipped set, seed 0, default settings; about 21 min on 2 shared cores): the
+fixed-order network reaches all 96 training environments without failure (from generation 165; at
+120 it still failed in 5) in 11-15 cycles (mean 13.3; the paper shows 9-11 in its examples) with
+final errors of 0.13 m on average (paper 0.023-0.073 m). It walks at the range's smallest forward
+step, 150 mm, in every cycle: slow walks leave more cycles for the lateral shift, and eq. (12)
+rewards a cycle less only by (x_dc² + y_dc²)/50, so the population sits where the clip is flat (the
+raw ΔYr output is about -0.06 m) and does not come back. Hence more cycles than the paper: 2 m at
+150 mm per cycle is 13-14 cycles, the paper's 9 need ~240 mm. The re-training with the free gait
+(stage ``free``) starts at eq. (9) = 562 (the fixed-order population under the swing-order
+network's orders) and ends at 0.466 (fixed order: 0.475), all 96 reached in 13.3 cycles on average.
 
 Trained weights are ``.npz`` files: ``genome`` (and for the swing-order network its ``centres``,
 ``sigmas`` and fitted ``weights``), the learning curve (``best``, ``mean`` per generation) and the
@@ -56,10 +74,11 @@ from shintai.evolve import Executor, GAConfig, GeneticAlgorithm, load_checkpoint
 from shintai.quadruped import constants as C
 from shintai.quadruped import fitness as F
 from shintai.quadruped import world as W
-from shintai.quadruped.episode import Episodes, GenomePolicy, OrderPolicy, rollout
+from shintai.quadruped.episode import Episodes, GenomePolicy, OrderPolicy, path_inputs, rollout
 from shintai.quadruped.networks import SwingOrderPolicy
 
 STAGES = ("action", "order", "free")
+INITS = ("data", "uniform")  # initial population of stage ``action`` (constants ``INIT_*``)
 FILES = {"action": "action_fixed.npz", "order": "swing_order.npz", "free": "action_free.npz"}
 TRAINED_DIR = Path(__file__).parent / "trained"
 
@@ -78,10 +97,13 @@ class TrainSettings:
     population: int = C.GA_POPULATION
     environments: int = 96
     seed: int = 0
+    init: str = "data"
 
     def __post_init__(self):
         if not 1 <= self.environments <= 96:
             raise ValueError(f"environments must be in [1, 96], got {self.environments}")
+        if self.init not in INITS:
+            raise ValueError(f"init must be one of {INITS}, got {self.init!r}")
 
     def config(self, generations: int) -> GAConfig:
         """``GAConfig.seed004`` with this run's population, generations and mutation."""
@@ -114,6 +136,16 @@ class StageResult:
         return len(self.best)
 
 
+def initial_population(settings: TrainSettings) -> np.ndarray | None:
+    """Stage ``action``'s first population: with ``init="data"`` RBF centres on the inputs of
+    :func:`episode.path_inputs` in the run's training environments (constants ``INIT_*``), drawn
+    from the run's seed; ``None`` (uniform in the gene bounds, drawn by the GA) with ``"uniform"``."""
+    if settings.init == "uniform":
+        return None
+    rng = np.random.default_rng([settings.seed, 1])  # not the GA's generator (seeded with the seed alone)
+    return F.ACTION_NET.genomes_on_data(rng, settings.population, path_inputs(training_envs(settings.environments)))
+
+
 def _fitness(stage: str, settings: TrainSettings, order: SwingOrderPolicy | None):
     """The stage's picklable batch fitness."""
     if stage == "order":
@@ -128,6 +160,8 @@ def run_stage(stage: str, settings: TrainSettings, executor: Executor, checkpoin
     """One GA run of a stage (module docstring); ``order`` is the swing-order policy of stage ``free``."""
     net = F.ORDER_NET if stage == "order" else F.ACTION_NET
     lo, hi = net.bounds()
+    if stage == "action" and initial is None:
+        initial = initial_population(settings)
     ga = GeneticAlgorithm(_fitness(stage, settings, order), lo, hi, settings.config(settings.generations_of(stage)),
                           seed=settings.seed, executor=executor, checkpoint=checkpoint, batch=True, initial=initial)
     report = None if progress is None else partial(progress, stage)

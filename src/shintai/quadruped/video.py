@@ -32,27 +32,18 @@ LEG_COLOURS = ("0.12 0.47 0.71 1", "0.84 0.15 0.16 1", "0.09 0.75 0.81 1", "0.89
 
 
 def _leg_xml(i: int) -> str:
+    """Leg ``i``: the chain hip (θ0) → thigh (θ1) → shank (knee) → foot (ankle), one capsule per link."""
     x, y = C.SHOULDER_XY[i]
-    rgba = LEG_COLOURS[i]
-    capsule = f'type="capsule" size="{LINK_RADIUS}" rgba="{rgba}"'
-    return f"""
-      <body name="hip{i}" pos="{x} {y} {C.SHOULDER_DZ}">
-        <joint name="theta0_{i}" axis="0 0 1"/>
-        <geom {capsule} fromto="0 0 0 {C.L0} 0 0"/>
-        <body name="thigh{i}" pos="{C.L0} 0 0">
-          <joint name="theta1_{i}" axis="0 -1 0"/>
-          <geom {capsule} fromto="0 0 0 {C.L1} 0 0"/>
-          <body name="shank{i}" pos="{C.L1} 0 0">
-            <joint name="knee_{i}" axis="0 -1 0"/>
-            <geom {capsule} fromto="0 0 0 {C.L2} 0 0"/>
-            <body name="foot{i}" pos="{C.L2} 0 0">
-              <joint name="ankle_{i}" axis="0 -1 0"/>
-              <geom {capsule} fromto="0 0 0 {C.L3} 0 0"/>
-              <geom type="sphere" size="0.02" pos="{C.L3} 0 0" rgba="0.1 0.1 0.1 1"/>
-            </body>
-          </body>
-        </body>
-      </body>"""
+    capsule = f'type="capsule" size="{LINK_RADIUS}" rgba="{LEG_COLOURS[i]}"'
+    chain = (("hip", "theta0", "0 0 1", f"{x} {y} {C.SHOULDER_DZ}", C.L0),
+             ("thigh", "theta1", "0 -1 0", f"{C.L0} 0 0", C.L1),
+             ("shank", "knee", "0 -1 0", f"{C.L1} 0 0", C.L2),
+             ("foot", "ankle", "0 -1 0", f"{C.L2} 0 0", C.L3))
+    xml = f'<geom type="sphere" size="0.02" pos="{C.L3} 0 0" rgba="0.1 0.1 0.1 1"/>'
+    for body, joint, axis, pos, length in reversed(chain):
+        xml = (f'<body name="{body}{i}" pos="{pos}"><joint name="{joint}_{i}" axis="{axis}"/>'
+               f'<geom {capsule} fromto="0 0 0 {length} 0 0"/>{xml}</body>')
+    return xml
 
 
 def _obstacle_xml(k: int, obstacle: W.Obstacle) -> tuple[str, str]:
@@ -147,15 +138,18 @@ def render(records: list[R.CycleRecord], env: W.Environment, path, width: int = 
     body = MujocoBody(titan_mjcf(env))
     envs = W.EnvBatch.of([env])
     start = R.CrawlState.initial(1)
-    qpos = joint_qpos(start.pose[0], C.ZR_NOMINAL, start.feet[0], None)
-    body.data.qpos[:] = qpos
-    body.forward()
+    qpos = _show(body, joint_qpos(start.pose[0], C.ZR_NOMINAL, start.feet[0], None), 0.0)
     with VideoRecorder(body, path, fps=FPS, width=width, height=height, track="trunk", distance=2.4,
                        azimuth=60, elevation=-30) as video:
         for n, (pose, zr, feet) in enumerate(key_frames(records, envs), 1):
-            qpos = joint_qpos(pose, zr, feet, qpos)
-            body.data.qpos[:] = qpos
-            body.data.time = n / FPS
-            body.forward()
+            qpos = _show(body, joint_qpos(pose, zr, feet, qpos), n / FPS)
             video.capture()
         return video.frames
+
+
+def _show(body, qpos: np.ndarray, time: float) -> np.ndarray:
+    """Put the model at ``qpos`` and time ``time`` (kinematics only: ``mj_forward``); returns ``qpos``."""
+    body.data.qpos[:] = qpos
+    body.data.time = time
+    body.forward()
+    return qpos
