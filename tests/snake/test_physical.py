@@ -146,6 +146,30 @@ def test_shift_control_moves_the_curve_toward_the_head():
     assert abs(shift.angles(DOOR.shift_period)[-1] - phi[-1]) < DOOR.shift_amplitude
     rates = [shift.rates(k * 0.05, 0.05) for k in range(40)]
     assert phi + 0.05 * np.sum(rates, axis=0) == pytest.approx(shift.angles(2.0))
+    assert shift.angles(shift.duration) == pytest.approx(shift.angles(shift.duration + 10.0))  # used up
+    assert not np.allclose(shift.angles(shift.duration - DOOR.shift_period), shift.angles(shift.duration))
+
+
+def test_door_shift_phase_puts_every_wheel_on_the_floor():
+    """§3.4.3 phase 3: shift control is planar, every wheel on the floor: the operator sends the shift's yaw
+    rates as a planar command, so the pitch joints lower the raised head part (and any wheel phase 2 lifted)."""
+    geometry = door_geometry()
+    p_h, R_h, psi = door_start()
+    body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
+                       scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
+    body.place(p_h, R_h, psi)
+    operator = DoorOperator(body, geometry)
+    snapshot = body.snapshot()
+    operator.enter("shift", 0.0)
+    operator.shift = ShiftControl(snapshot["phi"])
+    for k in range(40):
+        command = operator.command(k * body.dt, body.snapshot())
+        assert "psi_dot" not in command and np.asarray(command["grounded"]).all()
+        body.apply(command)
+        body.step()
+    assert np.abs(psi[1::2]).max() >= DOOR.raise_pitch
+    assert np.abs(body.snapshot()["psi"][1::2]).max() < 0.05  # the raised head part is down
+    assert body.mj.site_pos("head")[2] < 0.5 * p_h[2]  # the hook came down from the knob's height
 
 
 def test_base_candidates_follow_the_rules():
