@@ -114,3 +114,30 @@ def test_seat_slip_builds_with_driving_and_restarts_after_lift(monkeypatch):
     seated["fz"] = 300.0
     slip({"t": 4.0})
     assert slip.force == pytest.approx(10.0)  # built up again from zero
+
+
+def _seat_gaps(body, dy: float) -> dict:
+    """Gap of each sit bone above the saddle with the robot moved ``dy`` sideways (no roll)."""
+    import mujoco
+    m, d = body.model, body.data
+    adr = m.joint("root").qposadr[0]
+    d.qpos[adr + 1] += dy
+    mujoco.mj_forward(m, d)
+    ft = np.zeros(6)
+    return {s: mujoco.mj_geomDistance(m, d, m.geom(f"sit_bone_{s}").id, m.geom("saddle_seat").id, 0.2, ft)
+            for s in ("l", "r")}
+
+
+def test_hip_sits_on_both_sit_bones_on_a_crowned_saddle():
+    """§4.3.1–4.3.2 (the seat model): both sit bones touch the crowned saddle in the riding pose, and
+    a sideways slide of the hip without roll lifts the outer bone off the crown — to sit on both the
+    pelvis must roll toward the slide, so the y translation shows as an x rotation."""
+    from shintai.humanoid.constants import SADDLE_CROWN_RADIUS, SIT_BONE_Y
+    body = cr.build_ch4(hip="contact")
+    level = _seat_gaps(body, 0.0)
+    assert all(abs(g) < 1e-3 for g in level.values())
+    slid = _seat_gaps(body, 0.03)  # 3 cm to +y (left)
+    assert slid["r"] < 1e-3 < slid["l"]
+    # the roll that puts both bones down again is of the order of the crown geometry's d / R
+    roll = math.atan2(slid["l"] - slid["r"], 2 * SIT_BONE_Y)
+    assert 0.5 * 0.03 / SADDLE_CROWN_RADIUS < roll < 2 * 0.03 / SADDLE_CROWN_RADIUS

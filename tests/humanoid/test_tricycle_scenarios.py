@@ -114,6 +114,26 @@ def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force():
     assert m["unreachable_ticks"] == 0 and math.isfinite(m["both_active_force_rms_error_n"])
     assert m["passive_force_min_n"] > 0.0  # the passive foot never leaves its pedal
     assert m["max_sole_slip_mm"] < 10.0  # level soles do not creep along the pedals
+    # §3.5.3 diagnostics: near BDC the active foot drives the pedal along the tangent by friction
+    assert math.isfinite(m["active_force_cos_rank_corr"]) and m["active_fx_dead_centre_n"] > 0.0
+    assert 0.0 < m["active_friction_use_dead_centre"] < 1.0  # inside the μ = 1 friction cone
+
+
+def test_active_samples_take_the_active_foots_axis_after_the_swap_transient():
+    """active_samples: only ticks where the foot is active and settled, f_z or f_x, with 1/|cos θ_c|."""
+    from shintai.core.recorder import Recorder
+    from shintai.humanoid.tricycle_scenarios import active_samples
+
+    rec = Recorder()
+    for k in range(6):  # left active for ticks 0-2, right for 3-5; wait = 1 tick
+        left = k < 3
+        rec.record(float(k), crank_true=k * 0.5, active_left=float(left), active_right=float(not left),
+                   fz_left=100.0 + k, fz_right=200.0 + k, fx_left=-k, fx_right=k)
+    fz, inv_cos = active_samples(rec, "", 1.0)
+    assert fz.tolist() == [101.0, 102.0, 204.0, 205.0]
+    assert inv_cos == pytest.approx(1 / np.abs(np.cos([0.5, 1.0, 2.0, 2.5])))
+    fx, _ = active_samples(rec, "", 1.0, "fx")
+    assert fx.tolist() == [-1.0, -2.0, 4.0, 5.0]
 
 
 def test_steering_short_run_swaps_at_0_and_reaches_both_limits():

@@ -4,9 +4,11 @@ ch. 4 corrections feed.
 
 Model (:func:`build_ch4`, on top of :func:`shintai.humanoid.riding.riding_spec`):
 
-* **hip–saddle contact** (Table 4.2: unilateral): a capsule under the waist lying along x on a
-  saddle box — a line contact, free to roll about x and to slide in y against friction, because
-  the saddle "is thin in y" and roll and y translation dominate the seat displacement (§4.3.1).
+* **hip–saddle contact** (Table 4.2: unilateral): two sit bones (capsules along x) under the
+  waist on a saddle crowned across y (:func:`add_seat`) — free to roll about x and to slide in y
+  against friction, because the saddle "is thin in y" and y translation and x rotation dominate
+  the seat displacement (§4.3.1, Fig. 4.4); on the crown a sideways slide drops the outer sit
+  bone, so the translation shows as a roll (the assumption of §4.3.2's detection).
   ``hip="weld"`` keeps :mod:`~shintai.humanoid.riding`'s hip weld switched on (the §3.3.2
   assumption), ``hip="contact"`` switches it off so the robot only sits.
 * **obstacles**: static boxes in geom group :data:`~shintai.humanoid.navigation.OBSTACLE_GROUP`,
@@ -50,7 +52,8 @@ from shintai.core.runtime import Module
 from shintai.humanoid import ik, quat_axis
 from shintai.humanoid.active import grip_plan
 from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
-                                        IMPEDANCE, TRICYCLE)
+                                        IMPEDANCE, SADDLE_CROWN_RADIUS, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH,
+                                        SIT_BONE_RADIUS, SIT_BONE_Y, TRICYCLE)
 from shintai.humanoid.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.navigation import OBSTACLE_GROUP
 from shintai.humanoid.passive import ActiveImpedance
@@ -65,10 +68,7 @@ SOLE_BIT, WHEEL_BIT = 2, 4
 REFS = ("ref:theta_h", "ref:crank_rate", "ref:chest_roll", "ref:com_shift", "ref:hip_lift", "ref:foot_fz",
         "ref:foot_fz_l", "ref:foot_fz_r", "ref:crank_target")
 CRANK_MOTOR = "crank_motor"
-# Chosen: the hip pad — a capsule of radius 4 cm, 0.16 m long (x), its underside at the hip cover;
-# saddle friction 0.5 (vinyl on the robot's plastic cover).
-HIP_PAD_RADIUS = 0.04
-HIP_PAD_HALF_LENGTH = 0.08
+# Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover). Seat geometry: constants.py.
 SADDLE_FRICTION = 0.5
 PEDAL_FRICTION = 1.5  # chosen: a studded pedal under a rubber sole
 # Chosen: the rider's whole-body IK runs at 50 Hz (every 5th control period); the servos hold
@@ -116,15 +116,7 @@ class Ch4Body(MujocoBody):
 def ch4_spec(obstacles: Sequence[Obstacle] = (), crank_motor: bool = True, **riding_options) -> mujoco.MjSpec:
     """The riding scene plus hip pad, saddle contact, obstacles and (optionally) the crank motor."""
     spec = riding_spec(**riding_options)
-    waist, saddle = spec.body("waist"), spec.body("saddle")
-    from shintai.humanoid.constants import HRP2_LINKS
-    z = -HRP2_LINKS.hip_cover + HIP_PAD_RADIUS
-    waist.add_geom(name="hip_pad", type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[HIP_PAD_RADIUS, 0, 0],
-                   fromto=[-HIP_PAD_HALF_LENGTH, 0, z, HIP_PAD_HALF_LENGTH, 0, z], contype=SEAT, conaffinity=0,
-                   rgba=[0.3, 0.3, 0.3, 0.0], mass=0.0, friction=[SADDLE_FRICTION, 0.005, 0.0001])
-    saddle.add_geom(name="saddle_seat", type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.11, 0.10, 0.025], pos=[-0.02, 0, -0.025],
-                    contype=0, conaffinity=SEAT, rgba=[0.1, 0.1, 0.1, 0.0], mass=0.0,
-                    friction=[SADDLE_FRICTION, 0.005, 0.0001])
+    add_seat(spec)
     for side in ("l", "r"):  # studded pedals (chosen): soles hold on them while pushing hard (PPDM, STAND)
         spec.geom(f"pedal_{side}").friction = [PEDAL_FRICTION, 0.005, 0.0001]
     for ob in obstacles:
@@ -137,6 +129,34 @@ def ch4_spec(obstacles: Sequence[Obstacle] = (), crank_motor: bool = True, **rid
         act.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
         act.forcerange = [-CRANK_MOTOR_TORQUE, CRANK_MOTOR_TORQUE]
     return spec
+
+
+def crowned_saddle(n: int = 21) -> np.ndarray:
+    """Vertices of the saddle's collision hull (saddle frame, top at z = 0): a block 0.22 m long,
+    :data:`SADDLE_HALF_WIDTH` wide either side, 5 cm deep, its top an arc of radius
+    :data:`SADDLE_CROWN_RADIUS` across y (a crowned saddle, §4.3.1)."""
+    r = SADDLE_CROWN_RADIUS
+    ys = np.linspace(-SADDLE_HALF_WIDTH, SADDLE_HALF_WIDTH, n)
+    arc = [(y, np.sqrt(r * r - y * y) - r) for y in ys] + [(SADDLE_HALF_WIDTH, -0.05), (-SADDLE_HALF_WIDTH, -0.05)]
+    return np.array([(x, y, z) for x in (-0.13, 0.09) for y, z in arc])
+
+
+def add_seat(spec: mujoco.MjSpec) -> None:
+    """The hip–saddle contact (Table 4.2, unilateral): two sit-bone capsules along x under the waist,
+    ±:data:`SIT_BONE_Y` apart, on the crowned saddle hull; placed so that both touch the crown in the
+    ``ride`` keyframe (waist origin :attr:`~Hrp2Links.hip_cover` above the saddle top)."""
+    from shintai.humanoid.constants import HRP2_LINKS
+    friction = [SADDLE_FRICTION, 0.005, 0.0001]
+    r, rc = SIT_BONE_RADIUS, SADDLE_CROWN_RADIUS
+    z = -HRP2_LINKS.hip_cover - rc + np.sqrt((rc + r) ** 2 - SIT_BONE_Y ** 2)
+    for side, y in (("l", SIT_BONE_Y), ("r", -SIT_BONE_Y)):
+        spec.body("waist").add_geom(
+            name=f"sit_bone_{side}", type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[SIT_BONE_RADIUS, 0, 0],
+            fromto=[-SIT_BONE_HALF_LENGTH, y, z, SIT_BONE_HALF_LENGTH, y, z], contype=SEAT, conaffinity=0,
+            rgba=[0.3, 0.3, 0.3, 0.0], mass=0.0, friction=friction)
+    spec.add_mesh(name="saddle_hull", uservert=crowned_saddle().ravel().tolist())
+    spec.body("saddle").add_geom(name="saddle_seat", type=mujoco.mjtGeom.mjGEOM_MESH, meshname="saddle_hull",
+                                 contype=0, conaffinity=SEAT, rgba=[0.1, 0.1, 0.1, 0.0], mass=0.0, friction=friction)
 
 
 def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_motor: bool = True,

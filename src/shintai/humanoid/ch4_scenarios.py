@@ -637,7 +637,8 @@ def sitting_run(ctx, prefix: str, with_recovery: bool, p, video: bool = False) -
     source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.15",
     summary="A seat slip accumulating with driving: driving ⇄ interrupt-type sitting recovery (Switcher) vs driving alone",
     params=[
-        Param("drive", "motor", "who turns the crank: motor (stand-in) or legs (ch. 3 pedalling)", choices=DRIVES),
+        Param("drive", "legs", "who turns the crank: legs (ch. 3 pedalling, the thesis) or motor (stand-in)",
+              choices=DRIVES),
         Param("grasp", "grip", "hands on the grips: grip (hold the bar, can turn in it) or weld (6-DoF, Table 3.1)",
               choices=("grip", "weld")),
         Param("slip_rate_n_per_s", 5.0, "growth of the lateral hip–saddle slip force per second of driving [N/s] (ours)",
@@ -674,29 +675,26 @@ def sitting_recovery(ctx):
     2 × 320 N (F_hip_z → 0), SHIFT moves the CoM by Eq. 4.3, RESEAT returns to 150 N and driving
     resumes; after it model A and model B agree again, pelvis included (Fig. 7.16-II).
 
-    What happens (drive=motor, defaults; the with-recovery run does NOT reproduce): without recovery
-    the hip slides across the saddle (17 cm) and the rig overturns to the slipped side at 25.3 s
-    (fail-4 reproduces). With the Switcher the first recovery runs at 12.1 s (θ_roll = −1.2°, hip
-    4.0 cm out): with the gripping hands STAND now works as Table 7.6 says — the feet reach ≈540 N
-    together and the saddle force drops to 0 (the hip leaves the saddle; with the welded hands the
-    feet reached only ≈110–300 N) — RESEAT sits down and driving resumes (4.4 m driven after it),
-    ρ = y_g(n) held. But the hip does not go back: Eq. 4.3's shift from a 1.2° roll is
-    L sin θ_roll = 0.22 m × 0.021 ≈ 5 mm, and the unloaded body stays ≈5 cm out although the limbs'
-    references restart, because the displacement has propagated into the contacts (Problem 3 of
-    §4.3.1): the soles slid 1.4 cm across the pedals before STAND and ≈4 cm while pushing with
-    320 N, the hands 1 cm with the handle. The slip then builds up again from 5 cm; the roll stays
-    below 1° until the hip is 13.5 cm out, the second recovery fires at 31.5 s at the saddle's edge
-    (half width 10 cm), and lifting the hip with the CoM that far out lets the body fall to +y: the
-    rig overturns at ≈32.7 s. The root cause, as far as we can tell: in our model the seat slip is a
-    *translation* of the hip that hardly shows as trunk roll (|θ_roll| ≤ 1.3° up to a 10 cm slip:
-    the two-hand grasp on a bar across y and the stiff arm servos hold the trunk's roll), while the
-    thesis's detection and Eq. 4.3 assume it shows as a large roll (§4.3.2: the y translation
-    "contributes to" the x rotation; Fig. 4.3 shows a large lean and a loaded wrist *roll* joint).
-    ``grasp=weld`` happens to pass all four checks, but not by the recovery: the hip leaves the
-    saddle at ≈26.5 s before any recovery, the robot hangs on its welded hands and feet, and the
-    recoveries (29.0 s, 36.8 s) run with the hip already off the seat. The sign of θ_roll follows
-    our plant's response (see :func:`lean_left`). Checks not tuned; the slip profile and the 1°
-    threshold are ours."""
+    Seat (:func:`~shintai.humanoid.ch4_riding.add_seat`): the hip sits on two sit bones on a saddle
+    crowned across y, so a sideways slide drops the outer bone and rolls the pelvis — the y
+    translation "contributes to" the x rotation, as §4.3.2's detection assumes. (Before, one hip
+    line on a flat saddle: the slip was a pure translation, |θ_roll| ≤ 1.3° up to 10 cm; the rig
+    overturned with recovery at 32.7 s.)
+
+    What happens (drive=legs, defaults; all four checks pass): without recovery the hip slides
+    21 cm across the saddle and the rig overturns to the slipped side at 30.2 s (fail-4). With the
+    Switcher the one recovery runs at 21.5 s (θ_roll = −1.4°, hip 7.4 cm out; largest |θ_roll|
+    2.8°): STAND as Table 7.6 — the feet reach ≈520 N together, the saddle force drops to 0 —
+    the unloaded body, servoed to its reference pose, brings the hip to 3.3 cm, RESEAT sits it
+    down at 2.1 cm and the crown centres it (0.2 cm at 29.5 s); the legs pedal on, 3.4 m driven
+    after it; by 45 s the slip has built up again to 3.9 cm (θ_roll −1.0°, no second trigger).
+    Honestly: the correction comes from leaving the saddle and re-sitting on the crown, not from
+    Eq. 4.3 — its shift from −1.4° is L sin θ_roll = 0.22 m × 0.024 ≈ 5 mm; the roll still grows
+    only ≈0.2°/cm of slip, so the 1° trigger fires late. drive=motor passes too (3 recoveries at
+    −1.2°, hip ≤ 1.6 cm; overturns at 28.9 s without). With sit bones ±4 cm apart (instead of ±5)
+    the rig overturns with recovery as well (see constants.py). ``grasp=weld`` is not re-run. The
+    sign of θ_roll follows our plant's response (see :func:`lean_left`). Checks not tuned; the
+    slip profile, the seat geometry and the 1° threshold are ours."""
     p = ctx.params
     check_drive(p)
     metrics = {"note": MOTOR_NOTE if p["drive"] == "motor" else LEGS_NOTE}

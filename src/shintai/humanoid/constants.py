@@ -404,6 +404,11 @@ KENSHIRO_ON_PEDAL_M = 0.02
 # vertical f^trg = (0, 0, 150) N (Table 3.4) then had a 40 % component along the tilted pedal,
 # and the sole crept down the pedal (≈6 mm/s) until the passive foot fell off at θ_c ≈ 200°.
 PEDAL_SOLE_PITCH = 0.0  # rad, sole pitch about the crank axis relative to the vehicle frame
+# Chosen (evaluation only, E4 §3.5.3): the active foot's force is summarised "near the crank
+# horizontal" (|cos θ_c| ≥ cos 30°) and "near the dead centres" (|cos θ_c| ≤ sin 30°), a third of
+# the circle each, so that both bands hold several 10° command samples (the ±20 N per-sample ripple
+# averages out) while staying where the thesis's 1/|cos θ_c| is ≤ 1.15 and ≥ 2 respectively.
+PEDAL_FORCE_BAND = 30 * DEG
 
 # ------------------------------------------------------------------------------------------------
 # Ch. 4 corrections (§4.3–4.4, §7.3.1, §7.3.2, §7.4.1) — humanoid/corrections.py, navigation.py,
@@ -465,6 +470,22 @@ RECOVERY_CRANK_TOLERANCE = 5 * DEG
 RECOVERY_PUSH_N = 320.0  # N per foot, Table 7.6 (f_trg = (0, 0, 320)^T)
 RECOVERY_LIFT_M = 0.02  # m, chosen: the hip rises this much above the saddle during STAND
 RECOVERY_PHASE_S = 1.0  # s, chosen duration of each of STAND, SHIFT, RESEAT (T1–T3 not given)
+
+# Hip–saddle contact geometry (§4.3.1, Fig. 4.4; the thesis gives no shape or size). Chosen: the hip
+# sits on two sit bones (capsules along x, radius 3 cm, 12 cm long) 5 cm either side of the hip's
+# mid-plane (human ischial spacing ≈ 10–13 cm), on a saddle whose top is crowned across y with a
+# 15 cm radius over its 0.20 m width, as bicycle saddles are. Why: a pelvis sliding sideways on a
+# crowned saddle drops its outer sit bone, i.e. the y translation shows as an x rotation, as §4.3.2
+# assumes for the detection (Fig. 4.4: y translation and x rotation dominate). With the earlier flat
+# saddle and one central hip line the slip was a pure translation (≤ 1.3° of trunk roll up to 10 cm).
+# Values picked before any run with them. Sensitivity (sitting-recovery, drive=motor, measured on a
+# first version whose crown was an unbounded cylinder): R = 0.10, 0.20 m and spacing ±6 cm pass
+# alike; spacing ±4 cm overturns with recovery too (at 41.9 s, after 4 recoveries).
+SIT_BONE_Y = 0.05  # m, half the sit-bone spacing
+SIT_BONE_RADIUS = 0.03  # m
+SIT_BONE_HALF_LENGTH = 0.06  # m, along x
+SADDLE_CROWN_RADIUS = 0.15  # m, radius of the saddle top across y
+SADDLE_HALF_WIDTH = 0.10  # m, the saddle's half width (its visual box, vehicles/tricycle.py)
 
 # Real-time chest posture control (§4.3.3, Eq. 4.8): k_C, T_C not given. Chosen k_C = 4 1/s,
 # T_C = 1 s: a 0.25 s response and a slow return of the correction.
