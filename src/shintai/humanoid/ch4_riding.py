@@ -60,7 +60,7 @@ from shintai.humanoid.passive import ActiveImpedance
 from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, LEG, SOLE, WRIST_FT, hold_riding_pose,
                                      riding_posture, riding_spec)
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
-from shintai.humanoid.vehicles.tricycle import pedal_position, steer_axis
+from shintai.humanoid.vehicles.tricycle import DARK, pedal_position, steer_axis
 from shintai.sim.body import MujocoBody
 
 SEAT = 8  # collision bit: hip pad (contype) – saddle (conaffinity)
@@ -155,8 +155,12 @@ def add_seat(spec: mujoco.MjSpec) -> None:
             fromto=[-SIT_BONE_HALF_LENGTH, y, z, SIT_BONE_HALF_LENGTH, y, z], contype=SEAT, conaffinity=0,
             rgba=[0.3, 0.3, 0.3, 0.0], mass=0.0, friction=friction)
     spec.add_mesh(name="saddle_hull", uservert=crowned_saddle().ravel().tolist())
-    spec.body("saddle").add_geom(name="saddle_seat", type=mujoco.mjtGeom.mjGEOM_MESH, meshname="saddle_hull",
-                                 contype=0, conaffinity=SEAT, rgba=[0.1, 0.1, 0.1, 0.0], mass=0.0, friction=friction)
+    saddle = spec.body("saddle")
+    for geom in saddle.geoms:  # the flat visual box of vehicles/tricycle.py: the hull is drawn instead
+        if geom.contype == 0 and geom.conaffinity == 0:
+            geom.rgba[3] = 0.0
+    saddle.add_geom(name="saddle_seat", type=mujoco.mjtGeom.mjGEOM_MESH, meshname="saddle_hull",
+                    contype=0, conaffinity=SEAT, rgba=DARK, mass=0.0, friction=friction)
 
 
 def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_motor: bool = True,
