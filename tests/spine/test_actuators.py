@@ -108,3 +108,12 @@ def test_tension_sensor_drift_biases_the_absolute_reading_not_the_relative_one()
     drifted = sensor.read(np.array([5.0, 6.0]))
     assert np.all(drifted - clean > 0.2)  # biased upwards
     assert (drifted[1] - drifted[0]) == pytest.approx(clean[1] - clean[0], rel=0.2)  # the step survives
+
+
+def test_tension_sensor_slope_falls_with_tension():
+    """Fig. 3.34: high resolution at low tension — the calibration's slope is steepest at zero."""
+    s = TensionSensor(CLA.sensor)
+    slopes = s.slope_counts_n(np.array([0.0, 10.0, 50.0, 200.0]))
+    assert slopes[0] == pytest.approx(s.zero_slope_counts_n, rel=1e-3)
+    assert np.all(np.diff(slopes) < 0)
+    assert s.adc(10.0) - s.adc(9.0) == pytest.approx(float(s.slope_counts_n(9.5)), abs=1.0)

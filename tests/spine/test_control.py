@@ -3,10 +3,13 @@
 import numpy as np
 import pytest
 
+from shintai.spine.actuators import TensionSensor
 from shintai.spine.control import (
-    RECOMMENDED, Gains, Mode, MuscleControl, encoder_targets, interference_modes, law_L, law_LL, law_S, law_T,
-    software_spring, table_4_6_gains, unified_duty,
+    RECOMMENDED, CountSpring, Gains, Mode, MuscleControl, encoder_targets, interference_modes, law_L, law_LL,
+    law_S, law_T, software_spring, table_4_6_gains, unified_duty,
 )
+
+from shintai.spine.robots import CLA
 
 G = Gains(K_Pl=2000.0, K_Il=1.0e4, K_Dl=3.0, K_Pt=0.1, K_Dt=1e-3, T_t=0.5, T_l=10.0, k_s=3000.0, T_r=9.8)
 
@@ -130,3 +133,56 @@ def test_benchmark_reference_matches_the_vectorised_tick():
         fast = controls[0].duty(l, T, 1e-3)
         slow = naive_tick(controls[1], l, T, 1e-3)
         assert np.abs(fast - slow).max() <= 0.5 / 255 + 1e-12
+
+
+SENSOR = TensionSensor(CLA.sensor)
+SPRING = CountSpring(SENSOR, pulse_m=1e-5, fixed_point=50.0)  # hand-calculation scale
+
+
+def test_count_spring_hand_calculation():
+    """Eq. 4.36 in counts (§4.5.2): k_s = 100 counts/pulse over 50, stretched 20 pulses → 40 counts,
+    read back as the tension whose ADC count is 40; slack by 20 pulses → −40 counts, linear."""
+    assert SPRING.counts(-2e-4, 0.0, 100.0) == pytest.approx(40.0)
+    T_r = SPRING.reference(-2e-4, 0.0, 100.0)
+    assert T_r == pytest.approx(np.interp(40.0, SENSOR.table_adc, SENSOR.table_tension))
+    assert SENSOR.adc(T_r) == 40.0
+    assert SPRING.reference(2e-4, 0.0, 100.0) == pytest.approx(-40.0 / SENSOR.zero_slope_counts_n)
+    # law S on that reference (≈ 1.35 N): measured 0.5 N, outside the 0.5 N dead band, o = −K_Pt (0.5 − T_r)
+    g = Gains(K_Pt=0.1, K_Dt=1e-3, T_t=0.5, k_s=100.0)
+    assert law_S(0.5, -2e-4, 0.0, 0.0, g, SPRING) == pytest.approx(-0.1 * (0.5 - T_r))
+
+
+def test_count_spring_hardens_in_newtons():
+    """Linear in counts, so through the saturating calibration (Fig. 3.34) the newton stiffness rises
+    with tension; secant and local stiffness agree."""
+    k = SPRING.stiffness_n_m(np.array([0.0, 5.0, 20.0, 50.0, 100.0]), 100.0)
+    assert np.all(np.diff(k) > 0) and k[-1] > 10 * k[0]
+    stretch = np.linspace(0.0, 2e-3, 201)
+    T = SPRING.reference(-stretch, 0.0, 100.0)
+    assert np.all(np.diff(np.diff(T)) > -1e-9)  # convex: hardening
+    mid = 100
+    assert (T[mid + 1] - T[mid - 1]) / (stretch[mid + 1] - stretch[mid - 1]) == pytest.approx(
+        SPRING.stiffness_n_m(T[mid], 100.0), rel=0.02)
+
+
+def test_count_spring_matching_scale_is_the_newton_law_at_rest():
+    """The chosen firmware scale: linearised at l = l_0 the count law equals k_s × (N/m per unit)."""
+    spring = CountSpring.matching(SENSOR, CLA.motors[0].encoder_step_m, 30.0)
+    assert spring.stiffness_n_m(0.0, 400.0) == pytest.approx(400.0 * 30.0)
+    assert spring.reference(-20e-6, 0.0, 400.0) == pytest.approx(software_spring(-20e-6, 0.0, 12000.0), rel=0.02)
+    assert spring.reference(-2e-3, 0.0, 400.0) > 2 * software_spring(-2e-3, 0.0, 12000.0)  # hardened
+
+
+def test_controller_tick_with_count_spring_equals_law_S():
+    rng = np.random.default_rng(5)
+    ctl = MuscleControl(6, G, spring=SPRING)
+    ctl.set_modes(Mode.S)
+    l_0 = rng.normal(0, 1e-4, 6)
+    ctl.set_targets(l_0=l_0)
+    l0, T0 = rng.normal(0, 1e-4, 6), rng.uniform(0, 15, 6)
+    ctl.reset({"encoder": l0, "tension": T0})
+    l1, T1 = l0 + rng.normal(0, 2e-6, 6), T0 + rng.normal(0, 0.5, 6)
+    o = ctl.duty(l1, T1, 1e-3)
+    expected = law_S(T1, l1, l_0, (T1 - T0) / 1e-3, G, SPRING)
+    assert np.abs(o - np.clip(expected, -1, 1)).max() <= 0.5 / 255 + 1e-12
+    assert np.allclose(ctl.spring_reference(l1), SPRING.reference(l1, l_0, G.k_s))

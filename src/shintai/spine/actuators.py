@@ -107,6 +107,16 @@ class TensionSensor:
         self.table_adc = self.full_scale * f / (f + spec.fsr_half_n)
         self.drift_counts = 0.0
 
+    @property
+    def zero_slope_counts_n(self) -> float:
+        """The calibration's slope at zero tension [counts/N] (its steepest)."""
+        return float((self.table_adc[1] - self.table_adc[0]) / (self.table_tension[1] - self.table_tension[0]))
+
+    def slope_counts_n(self, tension_n) -> np.ndarray:
+        """The calibration's local slope dcount/dT [counts/N] at a tension (falls as it saturates)."""
+        slope = np.diff(self.table_adc) / np.diff(self.table_tension)
+        return np.interp(np.maximum(tension_n, 0.0), self.table_tension[:-1], slope)
+
     def fsr_force(self, tension_n) -> np.ndarray:
         """Force on the pressure sensor f for wire tension F (eq. 3.3)."""
         return np.interp(np.maximum(tension_n, 0.0), self.table_tension, self.table_f)

@@ -15,6 +15,14 @@ converts model lengths into it, and every equation is used exactly as printed:
     S  (4.39): (4.38) with T_r = k_s (l_0 − l)                                  (4.36)
     LL (4.40): (4.37)  if T < T_l, else 0
 
+S mode's spring (4.36) is in the firmware's units when the controller has a :class:`CountSpring`:
+"T is the tension sensor's value" (4.38) and k_s is "the ratio of the tension sensor's AD count to
+the motor encoder's pulse count" (§4.5.2), so T_r is an ADC count, linear in encoder pulses; read
+through the sensor's saturating calibration (Fig. 3.34) it is a hardening spring in newtons.
+Without one, k_s is in N/m and the spring is linear in newtons (the earlier law, kept for
+comparison). T mode's fixed point T = T_r is the same in counts or newtons (the calibration is
+monotone); only its gains, which the thesis does not give, would be rescaled, so it stays in N.
+
 :func:`unified_duty` is eq. 4.41 (with 4.42) for checking; as the thesis advises (§4.6.5) the
 controller runs one routine per mode, selected per muscle. Chosen where the thesis is silent:
 the output saturates to [−1, 1] (spec §2.6); the length integral is clamped so that its term
@@ -30,7 +38,7 @@ from enum import IntEnum
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.actuators import pwm_duty
+from shintai.spine.actuators import TensionSensor, pwm_duty
 from shintai.spine.robots import KGF
 
 
@@ -61,7 +69,7 @@ class Gains:
     K_Dt: float = 1.0e-3  # s/N
     T_t: float = 0.05 * KGF  # N, dead band
     T_l: float = 1.0 * KGF  # N, LL limit tension
-    k_s: float = 1000.0  # N/m, software spring
+    k_s: float = 1000.0  # N/m, software spring; ADC counts per encoder pulse with a CountSpring
     T_r: float = 1.0 * KGF  # N, T-mode target tension
 
 
@@ -81,9 +89,52 @@ def software_spring(l, l_0, k_s) -> np.ndarray:
     return k_s * (l_0 - l)
 
 
-def law_S(T, l, l_0, dT, g: Gains) -> np.ndarray:
-    """Eq. 4.39: the tension law (4.38) tracking the software spring (4.36)."""
-    return law_T(T, software_spring(l, l_0, g.k_s), dT, g)
+@dataclass(frozen=True)
+class CountSpring:
+    """Eq. 4.36 as the thesis writes it (§4.5.2): T_r [ADC counts] = k_s (l_0 − l) [encoder
+    pulses] / ``fixed_point``, k_s in counts per pulse (50 … 400 in Figs. 4.14–4.17).
+
+    ``fixed_point`` is the firmware's scale of k_s, not in the text (with k_s = 100 read literally,
+    one pulse = 17 µm of wire would ask 100 counts ≈ 3 N at low tension, ~180 kN/m). The controller
+    works in the SI units of the rest of the model, so the count reference is turned back into
+    newtons through ``sensor``'s calibration table (the same read-back as the measured T, so
+    T = T_r ⇔ count = count_r); below zero counts (a slack spring) it continues linearly with
+    the table's zero-tension slope, as the count error of (4.38) would; above the sensor's range
+    (the table's top count) the reference is the table's top tension, unreachable: full duty.
+    """
+
+    sensor: TensionSensor  # its calibration table only (the firmware knows no drift)
+    pulse_m: float  # wire per encoder pulse (MotorSpec.encoder_step_m, Table 3.2)
+    fixed_point: float  # thesis k_s units per (count / pulse)
+
+    @classmethod
+    def matching(cls, sensor: TensionSensor, pulse_m: float, n_m_per_unit: float) -> CountSpring:
+        """The scale that makes the spring, linearised at its rest point (l = l_0, T_r = 0), as
+        stiff as ``n_m_per_unit`` N/m per thesis unit: the earlier newton-linear law is then this
+        law's small-displacement limit."""
+        return cls(sensor, pulse_m, 1.0 / (n_m_per_unit * pulse_m * sensor.zero_slope_counts_n))
+
+    def counts(self, l, l_0, k_s) -> np.ndarray:
+        """The reference ADC count for wire length l (eq. 4.36 in counts and pulses)."""
+        return k_s * (np.asarray(l_0) - np.asarray(l)) / self.pulse_m / self.fixed_point
+
+    def reference(self, l, l_0, k_s) -> np.ndarray:
+        """The reference count as a tension [N] through the calibration table."""
+        c = self.counts(l, l_0, k_s)
+        s = self.sensor
+        return np.where(c >= 0.0, np.interp(c, s.table_adc, s.table_tension), c / s.zero_slope_counts_n)
+
+    def stiffness_n_m(self, tension_n, k_s) -> np.ndarray:
+        """The spring's local stiffness in newtons at a tension: (k_s / fixed_point / pulse) divided
+        by the sensor's local slope dcount/dT — rises with tension as the sensor saturates."""
+        return k_s / self.fixed_point / self.pulse_m / self.sensor.slope_counts_n(tension_n)
+
+
+def law_S(T, l, l_0, dT, g: Gains, spring: CountSpring | None = None) -> np.ndarray:
+    """Eq. 4.39: the tension law (4.38) tracking the software spring (4.36), in counts with a
+    :class:`CountSpring`, else linear in newtons."""
+    T_r = software_spring(l, l_0, g.k_s) if spring is None else spring.reference(l, l_0, g.k_s)
+    return law_T(T, T_r, dT, g)
 
 
 def law_LL(l, l_r, integral, dl, T, g: Gains) -> np.ndarray:
@@ -163,10 +214,12 @@ class MuscleControl(Module):
     scalars or (m,) arrays. Each tick's duty, and the modes, are kept as ``last_duty``.
     """
 
-    def __init__(self, m: int, gains: Gains | None = None, period: float = 1e-3, name: str = "muscles"):
+    def __init__(self, m: int, gains: Gains | None = None, period: float = 1e-3, name: str = "muscles",
+                 spring: CountSpring | None = None):
         super().__init__(name, period)
         self.m = m
         self.gains = gains or Gains()
+        self.spring = spring  # S mode in ADC counts (k_s in counts / pulse), or None: in N/m
         self.l_r = np.zeros(m)
         self.T_r = np.full(m, self.gains.T_r, dtype=float)
         self.l_0 = np.zeros(m)
@@ -197,6 +250,12 @@ class MuscleControl(Module):
         """Change gains at run time (Table 4.6: all are dynamically adjustable)."""
         self.gains = replace(self.gains, **changes)
 
+    def spring_reference(self, l) -> np.ndarray:
+        """S mode's reference tension [N] at wire length l (eq. 4.36, see :func:`law_S`)."""
+        if self.spring is None:
+            return software_spring(l, self.l_0, self.gains.k_s)
+        return self.spring.reference(l, self.l_0, self.gains.k_s)
+
     def reset(self, snapshot: Snapshot) -> None:
         self.state.l_prev = np.asarray(snapshot["encoder"], dtype=float).copy()
         self.state.T_prev = np.asarray(snapshot["tension"], dtype=float).copy()
@@ -204,7 +263,7 @@ class MuscleControl(Module):
     def duty(self, l, T, dt: float) -> np.ndarray:
         """One control tick for all muscles: the per-mode laws, saturated and PWM-quantised.
 
-        The same laws as :func:`law_L`, :func:`law_T`, :func:`software_spring` and :func:`law_LL`
+        The same laws as :func:`law_L`, :func:`law_T`, :func:`law_S` and :func:`law_LL`
         (a test checks the two agree), written with masks cached per mode set for the 1 ms loop."""
         g, s = self.gains, self.state
         if self._masks is None or self._masks[0] is not s.mode:
@@ -220,7 +279,7 @@ class MuscleControl(Module):
             s.integral = np.where(length_mode, integral, s.integral)
             o = np.where(length_mode, -g.K_Pl * err - g.K_Il * s.integral - g.K_Dl * ((l - s.l_prev) / dt), o)
         if tension_mode.any():
-            e = T - (np.where(is_s, g.k_s * (self.l_0 - l), self.T_r) if is_s.any() else self.T_r)
+            e = T - (np.where(is_s, self.spring_reference(l), self.T_r) if is_s.any() else self.T_r)
             tension_law = np.where(np.abs(e) >= g.T_t, -g.K_Pt * e - g.K_Dt * ((T - s.T_prev) / dt), 0.0)
             o = np.where(tension_mode, tension_law, o)
         s.l_prev, s.T_prev = l, T
