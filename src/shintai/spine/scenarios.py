@@ -463,7 +463,8 @@ def control_modes_scenario(ctx):
 
     (3) All-S-mid loses roll at −20° and L + S-mid at −30° (all-S-high and L + S-high hold ±30°
     since the reconstruction; with the symmetric clavicle points they fell too, which is what the
-    following was measured on). This is not an underdamped swing: with
+    following was measured on, with the newton-linear spring; not re-measured since). This is not an
+    underdamped swing: with
     the disc damping ten times larger (0.5 N m s/rad) all-S-high falls too, already at −30° roll
     (default: 27° peak deviation there, 30.4° on the way back at −20°, just over the 30° fall
     limit; tried). At −30° the hanging arms' gravity beats the software springs (k_s 12 kN/m): pitch
