@@ -64,12 +64,32 @@ class Segment:
         """Position, velocity, acceleration at time t (clamped to [0, T])."""
         t = min(max(t, 0.0), self.T)
         c = self.coeffs
+        if c.ndim == 2:  # (terms, dof): the same products as below, without tensordot's bookkeeping
+            k, k1, k1m1, k2k2m1, k2m2 = _powers(len(c))
+            n, dof = c.shape
+            x = np.dot((t ** k).reshape(1, n), c).reshape(dof)
+            v = np.dot((k1 * t ** k1m1).reshape(1, n - 1), c[1:]).reshape(dof)
+            a = (np.dot((k2k2m1 * t ** k2m2).reshape(1, n - 2), c[2:]).reshape(dof)
+                 if n > 2 else np.zeros_like(x))
+            return x, v, a
         k = np.arange(len(c))
         x = np.tensordot(t ** k, c, axes=1)
         v = np.tensordot(k[1:] * t ** (k[1:] - 1), c[1:], axes=1)
         a = (np.tensordot(k[2:] * (k[2:] - 1) * t ** (k[2:] - 2), c[2:], axes=1)
              if len(c) > 2 else np.zeros_like(x))
         return x, v, a
+
+
+_POWERS: dict[int, tuple] = {}
+
+
+def _powers(n: int) -> tuple:
+    """The integer exponent / factor arrays of :meth:`Segment.state` for ``n`` terms (cached)."""
+    hit = _POWERS.get(n)
+    if hit is None:
+        k = np.arange(n)
+        hit = _POWERS[n] = (k, k[1:], k[1:] - 1, k[2:] * (k[2:] - 1), k[2:] - 2)
+    return hit
 
 
 def hoff_arbib_jerk(x, v, a, xf, D: float) -> np.ndarray:

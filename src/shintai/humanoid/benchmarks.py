@@ -11,20 +11,33 @@ Each is compared with bare ``mujoco.mj_step`` on the same model for the same num
 steps (from the same seated keyframe, the servos holding it). The ratio is the controller + IK +
 logging overhead; ``sim_per_wall`` is simulated seconds per wall second of the full run.
 
-Measured on the 2-core machine (loaded by other jobs, so ±25 % run to run): 2.9–3.8× for
-pedalling, 6.1–6.6× for driving (before the changes below: 3.5–4×, 10.5–11.5× in the same session);
-issue 6 aims at ≤ 1.5×, not met. Per 4 ms control tick of the pedalling run (timed without the
-profiler): physics ≈0.31 ms (four 1 ms mj_steps), the two feet's IK ≈0.34 ms (≈0.1–0.17 ms a
-solve: usually one damped-least-squares step and the check after it), everything else ≈0.33 ms
-(impedance laws, min-jerk players, method-(a) angle estimate, switching guard, logging) — so even a
-free IK would leave ≈2×: ≤ 1.5× needs the per-tick control loop out of Python, not a faster IK.
-What was done, with the trajectories unchanged (tricycle-pedaling: passive f_z 152.99 N, swaps at
-110.52°/290.52°, one revolution at 57.31 s, as before): the IK's Jacobian is formed (``mj_comPos``
-+ ``mj_jacSite`` into reused buffers) only when a step follows, not on the final convergence check;
-site ids cached; norms and the axis rows without ``np.linalg.norm``/``np.eye``; no limit
-bookkeeping when no joint is at a limit; the limbs read F/T force and FK by id, the vehicle frame
-is computed once per waist pose, and the handle model's zero directions once per model. Earlier:
-caching the IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
+Measured on the 2-core machine (loaded by other jobs, so ±25 % run to run, bare mj_step itself
+0.22–0.33 s), the code before and after the last round back to back, four pairs in two sessions:
+pedalling 2.8–4.1× → 1.9–2.65× (typically 3.2–3.4× → 2.55–2.65×), driving 4.0–6.8× → 3.2–5.8×
+(typically 5.2–5.3× → 4.1×); the controller runs' wall time 0.76–1.0 s → 0.60–0.64 s (pedalling,
+6.4 s simulated) and 1.12–1.5 s → 0.89–1.27 s (driving, 6 s). Earlier rounds: 3.5–4× → 2.9–3.8×
+and 10.5–11.5× → 6.1–6.6×. Issue 6 aims at ≤ 1.5×, not met. Per 4 ms control tick of the
+pedalling run (timed around the pieces, without the profiler): physics ≈0.15–0.18 ms (four 1 ms
+mj_steps), the two feet's IK ≈0.11–0.13 ms (≈55–65 µs a solve: usually one damped-least-squares step and the
+check after it, each a few dozen NumPy / MuJoCo binding calls of ~0.5 µs), everything else
+≈0.12–0.14 ms (impedance laws and min-jerk players ≈40 µs, method-(a) angle estimate + switching guard
+≈30 µs, the scenario's logging ≈20 µs, Loop / snapshot / apply ≈30 µs) — even a free IK would leave
+≈1.8×: ≤ 1.5× needs the per-tick control loop out of Python, not a faster IK. Driving runs four IK
+solves a tick (the hands' with the handle-angle estimate in their target).
+What was done, with the trajectories unchanged (tricycle-pedaling and tricycle-slalom: metrics and
+every ``log.npz`` array bit-identical before/after; passive f_z 152.98994838400301 N, swaps at
+110.52°/290.52°, one revolution at 57.308 s): last round — the IK forms a target's quaternion once
+per solve (not per iteration), takes damping² I from a per-size cache, keeps views of the scratch data's site rows, has a one-step fast path
+when no joint is at a limit and no posture is pursued (``np.minimum/np.maximum`` for ``np.clip``),
+``np.concatenate`` for ``np.vstack``; ``cross`` on Python floats (same IEEE products); method (a)
+takes the unit axis and the projected zero directions from a cache; ``Segment.state`` calls
+``np.dot`` on the shapes ``np.tensordot`` forms, with the exponent arrays cached; ``VehicleFrame``
+keeps views of the waist rows; the hands' target reuses the constant steering axis; ``LimbPair``
+and the scenario logs form their signal names once and read ids / data rows once; ``‖x‖`` as
+``√(x·x)`` (what ``np.linalg.norm`` computes). Earlier: the IK's Jacobian only when a step follows,
+site ids cached, no limit bookkeeping when no joint is at a limit, F/T and FK read by id, the
+vehicle frame once per waist pose, the handle model's zero directions once per model; caching the
+IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
 Both the controller runs and bare mj_step are the faster of two runs.
 """
 

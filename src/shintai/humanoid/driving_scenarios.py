@@ -78,25 +78,29 @@ class Ride:
         """Drive the whole schedule plus one sample to settle, logging every control tick under ``prefix``."""
         body, schedule = self.body, self.schedule
         wheel = body.id("body", "rear_l_wheel")
+        # data views and ids taken once (the log runs every control tick)
+        vehicle = body.id("body", "tricycle")
+        rot, pos, wheel_pos = body.data.xmat[vehicle].reshape(3, 3), body.data.xpos[vehicle], body.data.xpos[wheel]
+        side_keys = {side: (f"fz_{side}", f"leg_active_{side}", f"arm_active_{side}",
+                            f"legs:{side}-active", f"arms:{side}-active") for side in SIDES}
 
         def log(snap):
             now = schedule.at(snap["t"])
             sample = schedule.samples[now[0]] if now is not None else schedule.samples[-1]
-            rot = body.data.body("tricycle").xmat.reshape(3, 3)
-            pos = body.body_pos("tricycle")
             signals = {"handle_true": snap["q:handle"], "crank_true": snap["q:crank"],
                        "handle_cmd": sample.theta_h, "crank_cmd": sample.theta_c,
                        "handle_est": self.arm_diag.angle if self.arm_diag.angle is not None else np.nan,
                        "crank_est": self.leg_diag.angle if self.leg_diag.angle is not None else np.nan,
                        "x": pos[0], "y": pos[1], "yaw": np.arctan2(rot[1, 0], rot[0, 0]),
                        "tilt": np.arccos(np.clip(rot[2, 2], -1.0, 1.0)),
-                       "wheel_x": body.data.xpos[wheel][0], "wheel_y": body.data.xpos[wheel][1],
+                       "wheel_x": wheel_pos[0], "wheel_y": wheel_pos[1],
                        "internal": hand_forces(self.hands, snap)["internal"]}
             for side in SIDES:
-                signals[f"fz_{side}"] = self.feet[side].force(snap)[2]
-                signals[f"leg_active_{side}"] = float(self.legs.active == f"legs:{side}-active")
-                signals[f"arm_active_{side}"] = float(self.arms.active == f"arms:{side}-active")
-            rec.record(snap["t"], **{f"{prefix}{k}": v for k, v in signals.items()})
+                k_fz, k_leg, k_arm, legs_active, arms_active = side_keys[side]
+                signals[k_fz] = self.feet[side].force(snap)[2]
+                signals[k_leg] = float(self.legs.active == legs_active)
+                signals[k_arm] = float(self.arms.active == arms_active)
+            rec.record(snap["t"], **({f"{prefix}{k}": v for k, v in signals.items()} if prefix else signals))
 
         drive(body, [self.arms, self.legs], schedule.duration + 2 * schedule.phase, log, progress)
 

@@ -44,6 +44,8 @@ KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
 CRANK_AXIS_IN_SOLE = np.array([0.0, 1.0, 0.0])  # the pedal axle along the sole's y axis
 SOLE_IN_VEHICLE = R_y(PEDAL_SOLE_PITCH)  # the sole frame's orientation in the vehicle frame
+_GRIP_Y = np.array([0.0, 1.0, 0.0])  # the grip site's y axis (the bar) at θ_h = 0
+_STEER_AXIS = steer_axis()  # the nominal model's steering axis (constant)
 
 
 def waist_pose(body: MujocoBody) -> tuple[np.ndarray, np.ndarray]:
@@ -63,14 +65,17 @@ class VehicleFrame:
         p_v, r_v = body.body_pos("tricycle"), body.data.body("tricycle").xmat.reshape(3, 3)
         self.offset, self.rot_in_waist = r_w.T @ (p_v - p_w), r_w.T @ r_v
         self._key, self._pose = None, None
+        self._data = None
 
     def pose(self) -> tuple[np.ndarray, np.ndarray]:
         """(position, rotation) of the vehicle frame, world (read-only arrays: computed once per waist
         pose, which several limbs and laws ask for every tick)."""
-        d = self.body.data
-        key = (d.xpos[self.waist].tobytes(), d.xmat[self.waist].tobytes())
+        if self._data is not self.body.data:  # the waist's rows of the data, as views taken once
+            d = self._data = self.body.data
+            self._xpos, self._xmat = d.xpos[self.waist], d.xmat[self.waist]
+        key = (self._xpos.tobytes(), self._xmat.tobytes())
         if key != self._key:
-            p_w, r_w = d.xpos[self.waist], d.xmat[self.waist].reshape(3, 3)
+            p_w, r_w = self._xpos, self._xmat.reshape(3, 3)
             p, r = p_w + r_w @ self.offset, r_w @ self.rot_in_waist
             p.setflags(write=False), r.setflags(write=False)
             self._key, self._pose = key, (p, r)
@@ -140,7 +145,7 @@ class Hrp2Limb:
             return ik.Target(pos=self.frame.to_world(xi), rot=rot @ SOLE_IN_VEHICLE)
         theta_h = estimate_handle_angle({self.side: np.asarray(xi, dtype=float)})
         bar = np.zeros(3)  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
-        mujoco.mju_rotVecQuat(bar, np.array([0.0, 1.0, 0.0]), quat_axis(steer_axis(), theta_h))
+        mujoco.mju_rotVecQuat(bar, _GRIP_Y, quat_axis(_STEER_AXIS, theta_h))
         return ik.Target(pos=self.frame.to_world(xi), axis=(BAR_IN_HAND, -SIDES[self.side[0]] * rot @ bar))
 
     def solve(self, xi) -> ik.IKResult:

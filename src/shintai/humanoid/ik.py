@@ -83,6 +83,9 @@ class _Problem:
         self.dadr = model.jnt_dofadr[ids]
         self._jacp, self._jacr = np.zeros((3, model.nv)), np.zeros((3, model.nv))
         self._sites: dict[str, int] = {}
+        # views into the scratch data, taken once (each MjData attribute access builds a new array)
+        self.qpos, self.site_xpos, self.site_xmat = self.data.qpos, self.data.site_xpos, self.data.site_xmat
+        self._regs: dict = {}
         limited = model.jnt_limited[ids].astype(bool)
         self.lo = np.where(limited, model.jnt_range[ids, 0], -np.inf)
         self.hi = np.where(limited, model.jnt_range[ids, 1], np.inf)
@@ -108,8 +111,17 @@ class _Problem:
         return s
 
     def kinematics(self, qpos: np.ndarray) -> None:
-        self.data.qpos[:] = qpos
+        self.qpos[:] = qpos
         mujoco.mj_kinematics(self.model, self.data)
+
+    def reg(self, rows: int, damping: float) -> np.ndarray:
+        """damping² I (rows × rows), read-only, formed once per size and damping."""
+        key = (rows, damping)
+        r = self._regs.get(key)
+        if r is None:
+            r = self._regs[key] = damping**2 * np.eye(rows)
+            r.setflags(write=False)
+        return r
 
     def jacobian(self, site: int) -> tuple[np.ndarray, np.ndarray]:
         """(3×n translational, 3×n rotational) Jacobian of ``site`` for the moving joints (``mj_jacSite``
@@ -138,8 +150,12 @@ def _problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays). The products are taken
+    on Python floats (``tolist``): the same IEEE double arithmetic as on NumPy scalars, without
+    their per-element boxing."""
+    a0, a1, a2 = a.tolist() if isinstance(a, np.ndarray) else a
+    b0, b1, b2 = b.tolist() if isinstance(b, np.ndarray) else b
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
 def _prepared(target: Target) -> Target:
@@ -150,23 +166,44 @@ def _prepared(target: Target) -> Target:
     return Target(target.pos, target.rot, (local, world))
 
 
+class _Site:
+    """One target of a solve, prepared once: its site id, the :class:`Target` (axis pair as unit
+    vectors), the target orientation as a quaternion, and scratch quaternions."""
+
+    __slots__ = ("site", "target", "pos", "q_t", "axis", "q_c", "q_d", "rows", "xpos", "xmat", "xmat33")
+
+    def __init__(self, site: int, target: Target, problem: _Problem):
+        self.site, self.target, self.pos, self.axis = site, target, target.pos, target.axis
+        # the site's rows of the scratch data (views, valid for the problem's lifetime)
+        self.xpos, self.xmat = problem.site_xpos[site], problem.site_xmat[site]
+        self.xmat33 = self.xmat.reshape(3, 3)
+        self.q_t = None
+        if target.rot is not None:
+            self.q_t = np.zeros(4)
+            mujoco.mju_mat2Quat(self.q_t, np.ascontiguousarray(target.rot).ravel())
+        self.q_c, self.q_d = np.zeros(4), np.zeros(4)
+        self.rows = 3 * ((target.pos is not None) + (target.rot is not None) + (target.axis is not None))
+
+
 def _errors(problem: _Problem, site: int, target: Target):
     """Error rows and (position error, rotation error) of one target (its axis pair unit vectors,
     :func:`_prepared`)."""
-    d = problem.data
+    return _site_errors(problem, _Site(site, target, problem))
+
+
+def _site_errors(problem: _Problem, s: _Site):
     errors, pos_err, rot_err = [], 0.0, 0.0
-    if target.pos is not None:
-        e = target.pos - d.site_xpos[site]
+    if s.pos is not None:
+        e = s.pos - s.xpos
         errors.append(e)
         pos_err = math.sqrt(float(e @ e))
-    xmat = d.site_xmat[site].reshape(3, 3)
-    if target.rot is not None:
-        e = rotation_error(target.rot, xmat)
+    if s.q_t is not None:
+        e = _rotation_error_q(s.q_t, s.xmat, s.q_c, s.q_d)
         errors.append(e)
         rot_err = math.sqrt(float(e @ e))
-    if target.axis is not None:
-        local, world = target.axis
-        a = xmat @ local
+    if s.axis is not None:
+        local, world = s.axis
+        a = s.xmat33 @ local
         across = cross(a, world)
         errors.append(across)
         rot_err = max(rot_err, math.atan2(math.sqrt(float(across @ across)), float(a @ world)))
@@ -189,9 +226,15 @@ def _jacobian_rows(problem: _Problem, site: int, target: Target) -> list:
 
 def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     """World rotation vector taking orientation ``current`` to ``target`` (both 3×3)."""
-    q_t, q_c, q_d = np.zeros(4), np.zeros(4), np.zeros(4)
+    q_t = np.zeros(4)
     mujoco.mju_mat2Quat(q_t, np.ascontiguousarray(target).ravel())
-    mujoco.mju_mat2Quat(q_c, np.ascontiguousarray(current).ravel())
+    return _rotation_error_q(q_t, np.ascontiguousarray(current).ravel(), np.zeros(4), np.zeros(4))
+
+
+def _rotation_error_q(q_t: np.ndarray, current: np.ndarray, q_c: np.ndarray, q_d: np.ndarray) -> np.ndarray:
+    """:func:`rotation_error` with the target already a quaternion ``q_t`` and ``current`` the flat
+    (9,) matrix; ``q_c``, ``q_d`` scratch (4,) buffers (the target's quaternion is formed once per solve)."""
+    mujoco.mju_mat2Quat(q_c, current)
     mujoco.mju_negQuat(q_c, q_c)
     mujoco.mju_mulQuat(q_d, q_t, q_c)
     vel = np.zeros(3)
@@ -199,13 +242,15 @@ def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     return vel
 
 
-def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray) -> np.ndarray:
-    """Damped-least-squares step on the free columns."""
+def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray, reg: np.ndarray | None = None) -> np.ndarray:
+    """Damped-least-squares step on the free columns (``reg``: damping² I, if the caller has it)."""
+    if reg is None:
+        reg = damping**2 * np.eye(len(err))
     if free.all():
-        return jac.T @ np.linalg.solve(jac @ jac.T + damping**2 * np.eye(len(err)), err)
+        return jac.T @ np.linalg.solve(jac @ jac.T + reg, err)
     j = jac[:, free]
     step = np.zeros(jac.shape[1])
-    step[free] = j.T @ np.linalg.solve(j @ j.T + damping**2 * np.eye(len(err)), err)
+    step[free] = j.T @ np.linalg.solve(j @ j.T + reg, err)
     return step
 
 
@@ -233,10 +278,12 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
     if q0 is None:
         q0 = body_or_model.data.qpos if isinstance(body_or_model, MujocoBody) else model.qpos0
     problem = _problem(model, joints)
-    sites = {problem.site_id(name): _prepared(as_target(spec)) for name, spec in targets.items()}
+    sites = [_Site(problem.site_id(name), _prepared(as_target(spec)), problem) for name, spec in targets.items()]
+    reg = problem.reg(sum(s.rows for s in sites), damping)  # the DLS damping term, formed once
     rest = _posture_vector(problem, posture)
+    qadr = problem.qadr
     q = np.array(q0, dtype=float)
-    q[problem.qadr] = np.clip(q[problem.qadr], problem.lo, problem.hi)
+    q[qadr] = np.minimum(np.maximum(q[qadr], problem.lo), problem.hi)  # = np.clip
     best, converged, moved = (np.inf, q.copy(), (np.inf, np.inf)), None, np.inf
     for _ in range(max_iter):
         problem.kinematics(q)
@@ -249,9 +296,10 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
         elif score < best[0]:
             best = (score, q.copy(), residual)
         jac = _stack_jacobian(problem, sites)  # only when a step follows (not on the final check)
-        after = _limited_step(problem, q[problem.qadr], jac, err, rest, damping, max_step, posture_gain)
-        moved = float(np.abs(after - q[problem.qadr]).max())
-        q[problem.qadr] = after
+        current = q[qadr]
+        after = _limited_step(problem, current, jac, err, rest, damping, max_step, posture_gain, reg)
+        moved = float(np.abs(after - current).max())
+        q[qadr] = after
     if converged is not None:
         return IKResult(converged[0], True, converged[1])
     return IKResult(best[1], False, best[2])
@@ -268,31 +316,42 @@ def _posture_vector(problem: _Problem, posture: Mapping[str, float] | None) -> n
     return np.array([posture.get(n, np.nan) for n in names])
 
 
-def _stack_errors(problem: _Problem, sites: dict[int, Target]):
+def _stack_errors(problem: _Problem, sites: list[_Site]):
+    if len(sites) == 1:  # one limb: no running maxima to take
+        errors, pos_err, rot_err = _site_errors(problem, sites[0])
+        return np.concatenate(errors), (pos_err, rot_err)
     errors, pos_err, rot_err = [], 0.0, 0.0
-    for site, target in sites.items():
-        e, p, r = _errors(problem, site, target)
+    for s in sites:
+        e, p, r = _site_errors(problem, s)
         errors += e
         pos_err, rot_err = max(pos_err, p), max(rot_err, r)
     return np.concatenate(errors), (pos_err, rot_err)
 
 
-def _stack_jacobian(problem: _Problem, sites: dict[int, Target]) -> np.ndarray:
+def _stack_jacobian(problem: _Problem, sites: list[_Site]) -> np.ndarray:
     mujoco.mj_comPos(problem.model, problem.data)  # cdof and subtree CoMs, which mj_jacSite needs
     jacs = []
-    for site, target in sites.items():
-        jacs += _jacobian_rows(problem, site, target)
-    return np.vstack(jacs)
+    for s in sites:
+        jacs += _jacobian_rows(problem, s.site, s.target)
+    return np.concatenate(jacs)  # = np.vstack of these 2-D blocks
 
 
-def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max_step, posture_gain) -> np.ndarray:
+def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max_step, posture_gain,
+                  reg: np.ndarray | None = None) -> np.ndarray:
     """The moving joints after one DLS step (+ null-space posture pull), inside their limits: a joint
     at a limit that the step pushes further is frozen and the step recomputed without it."""
+    lo, hi = problem.lo, problem.hi
+    at_lo, at_hi = q <= lo, q >= hi
+    if rest is None and not (at_lo.any() or at_hi.any()):  # the usual tick: one plain DLS step
+        step = jac.T @ np.linalg.solve(jac @ jac.T + (damping**2 * np.eye(len(err)) if reg is None else reg), err)
+        biggest = float(np.abs(step).max())
+        if biggest > max_step:
+            step *= max_step / biggest
+        return np.minimum(np.maximum(q + step, lo), hi)  # = np.clip, without its dispatch
     free = np.ones(len(q), dtype=bool)
-    at_lo, at_hi = q <= problem.lo, q >= problem.hi
     at_limit = bool(at_lo.any() or at_hi.any())
     for _ in range(len(q)):
-        step = _dls_step(jac, err, damping, free)
+        step = _dls_step(jac, err, damping, free, reg)
         if rest is not None:
             pull = np.where(np.isnan(rest), 0.0, posture_gain * (rest - q))
             step += _null_step(jac, pull, free)
@@ -305,7 +364,7 @@ def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max
         if not blocked.any():
             break
         free &= ~blocked
-    return np.clip(q + step, problem.lo, problem.hi)
+    return np.clip(q + step, lo, hi)
 
 
 def reachable(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, TargetSpec],

@@ -23,6 +23,7 @@ contact force and its inverse kinematics to command channels.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
@@ -90,7 +91,7 @@ class OperationSchedule:
 
     def at(self, t: float) -> tuple[int, str] | None:
         """(sample index, "active" or "passive") at time t, or None after the last sample."""
-        k = int(np.floor(t / (2 * self.phase) + 1e-9))
+        k = math.floor(t / (2 * self.phase) + 1e-9)  # = int(np.floor(...)), without the NumPy scalar
         if k >= len(self.samples):
             return None
         return k, "active" if t - self.samples[k].t0 < self.phase - 1e-9 else "passive"
@@ -145,6 +146,7 @@ class LimbPair(Module):
         self.device, self.limbs, self.roles, self.plans = device, limbs, roles, plans
         self.schedule, self.gains, self.dt = schedule, gains, dt
         self.reachable = reachable or {}
+        self._keys = {side: (f"{limb.name}.x_ref", f"{limb.name}.xi") for side, limb in limbs.items()}
 
     def reset(self, snapshot) -> None:
         self._t = float(snapshot["t"])
@@ -166,22 +168,26 @@ class LimbPair(Module):
         starts = now is not None and now != self._phase and self.device in self.schedule.samples[now[0]].moves
         self._phase = now
         command = {}
+        dt = t - self._t
+        recorder = self.recorder
         for side, role in self.roles.items():
             limb, player = self.limbs[side], self.players[side]
             f_msr = limb.force(snapshot)
             if role == "active":
                 if starts and now[1] == "active":
                     self._move(player, self.plans[side](self.schedule.target(now[0], self.device)), t)
-                x_ref = player.advance(t - self._t)
+                x_ref = player.advance(dt)
                 xi = self.active_imp[side].step(x_ref, f_msr)
             else:
                 law = self.passive_fn[side]
                 law.step(f_msr, acquire=starts and now[1] == "passive")
                 if starts and now[1] == "passive":
                     self._move(player, law.xi_ref, t)
-                x_ref = player.advance(t - self._t)
+                x_ref = player.advance(dt)
                 xi = x_ref + law.displacement
-            self.log(t, **{f"{limb.name}.x_ref": x_ref, f"{limb.name}.xi": xi})
+            if recorder is not None:  # = self.log(...), the keys formed once
+                k_ref, k_xi = self._keys[side]
+                recorder.record(t, **{k_ref: x_ref, k_xi: xi})
             command.update(limb.command(xi, snapshot))
         self._t = t
         return command

@@ -42,17 +42,41 @@ def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> fl
     """
     a = np.asarray(axis_dir, dtype=float)
     a = a / np.linalg.norm(a)
+    zs = [_on_plane(np.asarray(z, dtype=float), a) for z in zero_dirs]
+    if len(zs) != len(points):
+        raise ValueError(f"fit_angle: {len(points)} points but {len(zs)} zero directions")
+    return _fit(points, zs, np.asarray(axis_point, dtype=float), a)
+
+
+def _on_plane(z: np.ndarray, a: np.ndarray) -> np.ndarray:
+    return z - a * (a @ z)
+
+
+def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) -> float:
+    """:func:`fit_angle` with the unit axis ``a`` and the projected θ = 0 directions ``zs`` given
+    (constant per model: the per-tick estimates take them from a cache)."""
     num = den = 0.0
-    for p, z in zip(points, zero_dirs, strict=True):
-        w = np.asarray(p, dtype=float) - np.asarray(axis_point, dtype=float)
+    for p, z in zip(points, zs):
+        w = np.asarray(p, dtype=float) - axis_point
         w = w - a * (a @ w)
-        z = np.asarray(z, dtype=float)
-        z = z - a * (a @ z)
         num += a @ cross(z, w)
         den += z @ w
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
+
+
+_CRANK_ZERO: dict = {}  # (leg, axis bytes) -> (unit axis, projected θ_c = 0 direction)
+
+
+def _crank_zero(leg: str, axis_dir) -> tuple[np.ndarray, np.ndarray]:
+    key = (leg, np.asarray(axis_dir, dtype=float).tobytes())
+    hit = _CRANK_ZERO.get(key)
+    if hit is None:
+        a = np.asarray(axis_dir, dtype=float)
+        a = a / np.linalg.norm(a)
+        hit = _CRANK_ZERO[key] = (a, _on_plane(v(PEDAL_PHASE_OFFSET[leg]), a))
+    return hit
 
 
 def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
@@ -61,23 +85,29 @@ def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
     At θ_c = 0 the left pedal points forward (φ = π/2) and the right one backward (module
     :mod:`shintai.humanoid.active`); θ_c turns about +y.
     """
-    zero = [v(PEDAL_PHASE_OFFSET[leg]) for leg in feet]
-    return float(np.mod(fit_angle(list(feet.values()), zero, crank_centre, axis_dir), 2 * np.pi))
+    zero = [_crank_zero(leg, axis_dir) for leg in feet]
+    if not zero:
+        raise ValueError("estimate_crank_angle: no foot points")
+    angle = _fit(list(feet.values()), [z for _, z in zero], np.asarray(crank_centre, dtype=float), zero[0][0])
+    return float(np.mod(angle, 2 * np.pi))
 
 
 def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
     """θ_h from the hand points on the grips (``{"left": p, "right": p}`` or one of them), in the
     vehicle frame, about the steering axis of the tricycle's nominal model."""
     axis_point, zero, axis = _handle_model(t)
-    return fit_angle(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
+    return _fit(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
 
 
 @functools.lru_cache(maxsize=8)
 def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
-    """The nominal steering axis point, each grip's θ_h = 0 direction from it, and the axis (constant:
-    computed once per tricycle model; :func:`estimate_handle_angle` runs every control tick)."""
+    """The nominal steering axis point, each grip's θ_h = 0 direction from it projected on the plane
+    normal to the axis, and the unit axis (constant: computed once per tricycle model;
+    :func:`estimate_handle_angle` runs every control tick)."""
     axis_point = steer_point(t)
-    return axis_point, {s: grip_position(0.0, s, t) - axis_point for s in ("l", "r")}, steer_axis(t)
+    a = steer_axis(t)
+    a = a / np.linalg.norm(a)
+    return axis_point, {s: _on_plane(grip_position(0.0, s, t) - axis_point, a) for s in ("l", "r")}, a
 
 
 def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:

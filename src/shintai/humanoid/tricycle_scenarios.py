@@ -63,14 +63,17 @@ def pedal_axles(feet: dict, snapshot) -> dict:
     sole normal (vehicle frame), so that method (a) sees points on the crank circle."""
     axles = {}
     for leg, limb in feet.items():
-        normal = limb.frame.rotate_to_vehicle(limb.body.site_xmat(limb.site)[:, 2])
+        site = getattr(limb, "_site_id", None)  # an Hrp2Limb's cached site id: read the data in place
+        xmat = limb.body.site_xmat(limb.site) if site is None else limb.body.data.site_xmat[site].reshape(3, 3)
+        normal = limb.frame.rotate_to_vehicle(xmat[:, 2])
         axles[leg] = limb.point(snapshot) - PEDAL_HALF_THICKNESS * normal
     return axles
 
 
 def crank_diagnostic(feet: dict) -> SwitchingDiagnostic:
     """Fig. 3.14 for the legs: θ_c by method (a) from both feet about the nominal crank centre."""
-    return SwitchingDiagnostic(lambda s: estimate_crank_angle(pedal_axles(feet, s), crank_centre()),
+    centre = crank_centre()  # the nominal model's (constant)
+    return SwitchingDiagnostic(lambda s: estimate_crank_angle(pedal_axles(feet, s), centre),
                                lambda a: active_leg(a, DELTA_C), SWITCH_HYSTERESIS)
 
 
@@ -111,20 +114,29 @@ def pedal_run(rec, prefix: str, body, module, feet, schedule, active_of, diag=No
     (true and estimated), each foot's f_z and f_x (vehicle frame) and whether it is active
     (``active_of(side)``)."""
     start = body.body_pos("tricycle")
+    # ids, data views and the logged names, looked up once (the log runs every control tick)
+    vehicle_xy = body.data.xpos[body.id("body", "tricycle")][:2]
+    start_xy = start[:2]
+    pedal_xpos = {side: body.data.site_xpos[body.id("site", PEDAL[side[0]])] for side in feet}
+    keys = {k: f"{prefix}{k}" for k in ("crank_true", "crank_est", "travel")}
+    side_keys = {side: tuple(f"{prefix}{k}_{side}" for k in ("fz", "fx", "active", "on_pedal")) for side in feet}
+    centre = crank_centre()
 
     def log(snap):
         est = diag.angle if diag is not None and diag.angle is not None else estimate_crank_angle(
-            pedal_axles(feet, snap), crank_centre())
-        signals = {"crank_true": snap["q:crank"], "crank_est": est,
-                   "travel": np.linalg.norm((body.body_pos("tricycle") - start)[:2])}
+            pedal_axles(feet, snap), centre)
+        travel = vehicle_xy - start_xy
+        signals = {keys["crank_true"]: snap["q:crank"], keys["crank_est"]: est,
+                   keys["travel"]: np.sqrt(travel.dot(travel))}  # = np.linalg.norm of the 2-vector
         for side, limb in feet.items():
+            k_fz, k_fx, k_active, k_on = side_keys[side]
             force = limb.force(snap)
-            signals[f"fz_{side}"] = force[2]
-            signals[f"fx_{side}"] = force[0]  # along the crank tangent at the dead centres
-            signals[f"active_{side}"] = float(active_of(side))
+            signals[k_fz] = force[2]
+            signals[k_fx] = force[0]  # along the crank tangent at the dead centres
+            signals[k_active] = float(active_of(side))
             # evaluation only: where the sole sits on its pedal (the pedal's top site, vehicle frame)
-            signals[f"on_pedal_{side}"] = limb.point(snap) - limb.frame.to_vehicle(body.site_pos(PEDAL[side[0]]))
-        rec.record(snap["t"], **{f"{prefix}{k}": v for k, v in signals.items()})
+            signals[k_on] = limb.point(snap) - limb.frame.to_vehicle(pedal_xpos[side])
+        rec.record(snap["t"], **signals)
 
     drive(body, [module], schedule.duration + 2 * schedule.phase, log, progress)
 
@@ -390,9 +402,10 @@ def hand_forces(hands: dict, snapshot) -> dict:
     that turns it. f are the environment's forces on the hands (f^trg = 0 for both arms, Table 3.4)."""
     f_l, f_r = hands["left"].force(snapshot), hands["right"].force(snapshot)
     u = hands["left"].point(snapshot) - hands["right"].point(snapshot)
-    half = (f_l - f_r) / 2
-    return {"internal": float(np.linalg.norm(half)), "squeeze": float(half @ u / np.linalg.norm(u)),
-            "net": float(np.linalg.norm(f_l + f_r))}
+    half, net = (f_l - f_r) / 2, f_l + f_r
+    # ‖x‖ as np.linalg.norm forms it for a vector (√(x·x)), without its dispatch
+    return {"internal": float(np.sqrt(half.dot(half))), "squeeze": float(half @ u / np.sqrt(u.dot(u))),
+            "net": float(np.sqrt(net.dot(net)))}
 
 
 def steer_schedule(dt_transition: float, limit: float) -> OperationSchedule:
