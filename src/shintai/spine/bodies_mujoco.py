@@ -47,7 +47,8 @@ from shintai.spine.robots import DiscSpec, LigamentSpec, Load, SpineRobot
 
 PELVIS_HEIGHT_M = 0.45  # chosen: the pelvis stands on (rigid) legs; only the spine moves
 REEL_OFFSET_M = 0.08  # chosen: wire inside the block between the pull point and the reel at s = 0
-WRAP_RADIUS_M = 0.015  # chosen: Cla's vertebral body (Ø24 mm) + the wire and its clearance
+WRAP_RADIUS_M = 0.015  # chosen: our disc annulus Ø24 mm (robots.py, not a thesis number: §3.6.1 gives no Cla
+# vertebra sizes) + the wire and its clearance; the thesis does not model interference (§4.7.1, §4.4.1)
 HAND_SOLREF = (0.04, 1.0)  # chosen: a firm but not rigid human grip (time constant 40 ms)
 
 
