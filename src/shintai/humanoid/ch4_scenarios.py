@@ -692,7 +692,10 @@ def sitting_recovery(ctx):
     Eq. 4.3 — its shift from −1.4° is L sin θ_roll = 0.22 m × 0.024 ≈ 5 mm; the roll still grows
     only ≈0.2°/cm of slip, so the 1° trigger fires late. drive=motor passes too (3 recoveries at
     −1.2°, hip ≤ 1.6 cm; overturns at 28.9 s without). With sit bones ±4 cm apart (instead of ±5)
-    the rig overturns with recovery as well (see constants.py). ``grasp=weld`` is not re-run. The
+    the rig overturns with recovery as well (see constants.py). ``grasp=weld`` (6-DoF hands,
+    Table 3.1) with the legs: the welded hands hold the pelvis against the 120 N slip force (hip
+    ≤ 5 mm, |θ_roll| ≤ 0.55°), so no seat displacement builds up, no recovery runs and neither run
+    overturns (7.6 m each): three checks fail because the scenario's premise does not arise. The
     sign of θ_roll follows our plant's response (see :func:`lean_left`). Checks not tuned; the
     slip profile, the seat geometry and the 1° threshold are ours."""
     p = ctx.params
