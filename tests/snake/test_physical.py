@@ -59,13 +59,19 @@ def test_knob_moves_on_a_circle_about_the_hinge():
     assert knob_point(math.pi / 2)[1] < 0  # open 90°: the knob is on the robot's side of the hinge
 
 
-def test_door_phase_1_hooks_the_knob_and_starts_to_open_the_door():
-    """A short run of the §3.4.3 operator: the raised head reaches the knob, the hook engages, the door opens."""
+def door_snake():
+    """The door scene's snake placed at the operator's start pose (head raised, §3.4.3)."""
     geometry = door_geometry()
     p_h, R_h, psi = door_start()
     body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
                        scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
     body.place(p_h, R_h, psi)
+    return geometry, body
+
+
+def test_door_phase_1_hooks_the_knob_and_starts_to_open_the_door():
+    """A short run of the §3.4.3 operator: the raised head reaches the knob, the hook engages, the door opens."""
+    geometry, body = door_snake()
     body.settle(DOOR.settle)
     operator = DoorOperator(body, geometry)
     recorder = Recorder()
@@ -101,11 +107,7 @@ def test_door_plots_draw_wheels_paths_and_modes(tmp_path):
             fig.savefig(tmp_path / f"{name}.png")
             plt.close(fig)
 
-    geometry = door_geometry()
-    p_h, R_h, psi = door_start()
-    body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
-                       scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
-    body.place(p_h, R_h, psi)
+    geometry, body = door_snake()
     operator = DoorOperator(body, geometry)
     recorder = Recorder()
     Loop(body, [operator], recorder).run(1.0)
@@ -153,11 +155,8 @@ def test_shift_control_moves_the_curve_toward_the_head():
 def test_door_shift_phase_puts_every_wheel_on_the_floor():
     """§3.4.3 phase 3: shift control is planar, every wheel on the floor: the operator sends the shift's yaw
     rates as a planar command, so the pitch joints lower the raised head part (and any wheel phase 2 lifted)."""
-    geometry = door_geometry()
-    p_h, R_h, psi = door_start()
-    body = MujocoSnake([p_h[0], p_h[1], math.pi], DOOR.phi0, geometry,
-                       scene=door_scene(knob_height=p_h[2] - DOOR.knob_drop))
-    body.place(p_h, R_h, psi)
+    geometry, body = door_snake()
+    p_h, _, psi = door_start()
     operator = DoorOperator(body, geometry)
     snapshot = body.snapshot()
     operator.enter("shift", 0.0)
