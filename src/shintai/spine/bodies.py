@@ -10,7 +10,10 @@ stays convex in λ; ``k`` is the wire + sensor series stiffness):
 
 * L  — length control, ideal: T = k · max(0, λ − l_r) (the motor holds the wire's end).
 * T  — tension control, ideal: T = T_r while the muscle is taut.
-* S  — software spring: T = k_e · max(0, λ − l_0), k_e = k_s k / (k_s + k) (eq. 4.36 in series).
+* S  — software spring: T = k_e · max(0, λ − l_0), k_e = k_s k / (k_s + k) (eq. 4.36 in series),
+  with k_s in N/m: the small-tension limit of the MuJoCo body's default spring on the sensor's ADC
+  count (:class:`~shintai.spine.control.CountSpring`, §4.5.2), which hardens through the saturating
+  sensor curve. No scenario uses S on this body; the linear law keeps the energy quadratic.
 * LL — length control with limit: the L tension, capped at T_l (the motor yields, §4.6.4).
 
 Discs: a linear :class:`~shintai.spine.robots.DiscSpec` (rotational springs on θ), or Rabbit's

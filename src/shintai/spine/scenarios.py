@@ -461,17 +461,15 @@ def control_modes_scenario(ctx):
     small (mean 0.18–0.27 kgf in pitch), where the count spring is within ×1.1–1.2 of the linear
     one, so the change is modest; the 16 max-held cells agree in 10 either way.
 
-    (3) All-S-mid loses roll at −20° and L + S-mid at −30° (all-S-high and L + S-high hold ±30°
-    since the reconstruction; with the symmetric clavicle points they fell too, which is what the
-    following was measured on, with the newton-linear spring; not re-measured since). This is not an
-    underdamped swing: with
-    the disc damping ten times larger (0.5 N m s/rad) all-S-high falls too, already at −30° roll
-    (default: 27° peak deviation there, 30.4° on the way back at −20°, just over the 30° fall
-    limit; tried). At −30° the hanging arms' gravity beats the software springs (k_s 12 kN/m): pitch
-    and yaw drift away monotonically for ~1 s at low tension (≤ 1.5 kgf, duties near 0), then the
-    spine falls and bounces — the "sway" is the fall. §4.7.3 reports the same failure for modes 7
-    and 8 ("during roll the pitch posture became unstable and the spine fell forward or back"), but
-    not for all-S.
+    (3) All-S-mid loses roll at −20° (31.5° off during the move, 5.6° mean error in the window)
+    and L + S-mid at −30° (41.8° off); all-S-high and L + S-high hold ±30° roll (worst 3.4° and
+    2.9° off). Re-measured on the current model (reconstructed clavicle points, count spring): with
+    the disc damping ten times larger (0.5 N m s/rad) all-S-mid holds −20° (14.9° worst) but still
+    falls at −30° (50° off), L + S-mid still falls at −30° (41° off), all-S-high is unchanged — so
+    −20° is partly a swing of the lightly damped discs, −30° is a fall: the hanging arms' gravity
+    beats the 'mid' software springs (k_s 100 → 3 kN/m at rest). §4.7.3 reports the same failure
+    for modes 7 and 8 ("during roll the pitch posture became unstable and the spine fell forward or
+    back"), but not for all-S.
 
     (4) "Interference drives all-L's error" (spec §5.3.9, the spec's expectation, not a thesis
     claim) does not hold here. The thesis's interference (§4.7.1) is crossing muscles pressing on
