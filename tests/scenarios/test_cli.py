@@ -119,6 +119,24 @@ def test_report_lists_unfinished_scenarios(tmp_path):
     assert "1 of 2" in (tmp_path / "REPORT.md").read_text()
 
 
+def test_report_carries_each_scenarios_account(tmp_path):
+    """The explanation of what reproduces and what does not (the scenario's docstring) travels with
+    its metrics.json into REPORT.md and index.html."""
+    import inspect
+
+    from shintai.scenarios.registry import get
+    from shintai.scenarios.report import write_report
+
+    result = run_scenario("core.minjerk", tmp_path / "core.minjerk", quiet=True)
+    run = get("core.minjerk").run  # no docstring of its own: its module's account
+    notes = inspect.getdoc(run) or inspect.getdoc(inspect.getmodule(run))
+    assert result["notes"] == notes and notes
+    write_report(tmp_path, ["core.minjerk"])
+    assert "### core.minjerk (pass)" in (tmp_path / "REPORT.md").read_text()
+    assert notes.splitlines()[0] in (tmp_path / "REPORT.md").read_text()
+    assert "<details><summary>notes</summary>" in (tmp_path / "index.html").read_text()
+
+
 def test_bench_writes_json(tmp_path):
     assert main(["bench", "--only", "core.loop-overhead", "--out", str(tmp_path)]) == 0
     bench = json.loads((tmp_path / "bench.json").read_text())

@@ -60,6 +60,12 @@ def checks_text(result: dict[str, Any]) -> str:
                      f"(ours {fmt(c['value'])})" for c in result.get("checks", [])) or "no checks"
 
 
+def notes_text(result: dict[str, Any]) -> str:
+    """The scenario's account (``notes``) and what the run itself added (``extra.notes``)."""
+    extra = result.get("extra", {}).get("notes")
+    return "\n\n".join(t for t in (result.get("notes"), extra if isinstance(extra, str) else None) if t)
+
+
 def write_markdown(out: Path, results: list[dict[str, Any]], title: str) -> Path:
     passed = sum(status(r) == "pass" for r in results)
     lines = [f"# {title}", "", f"{passed} of {len(results)} scenarios pass all their checks.", "",
@@ -72,7 +78,12 @@ def write_markdown(out: Path, results: list[dict[str, Any]], title: str) -> Path
         lines.append(f"| [{r['scenario']}]({r['scenario']}/metrics.json) | {r['source']} | {thesis} | {ours} | "
                      f"{checks_text(r)} | {status(r)} |")
     lines += ["", "Thesis values are quoted, never used as our numbers: every 'ours' is computed from the "
-              "simulation. A ✗ is reported as it is; see each scenario's metrics.json for the basis of its checks."]
+              "simulation. A ✗ is reported as it is; see each scenario's metrics.json for the basis of its checks.",
+              "", "## Notes", "", "Per experiment, its model, what reproduces, and what does not and why (the scenario's "
+              "own account, also in its metrics.json `notes`)."]
+    for r in results:
+        if notes_text(r):
+            lines += ["", f"### {r['scenario']} ({status(r)})", "", notes_text(r)]
     path = out / "REPORT.md"
     path.write_text("\n".join(lines) + "\n")
     return path
@@ -92,14 +103,16 @@ def write_html(out: Path, results: list[dict[str, Any]], title: str) -> Path:
         ours = "<br>".join(e(f"{m}: {o}") for _, _, o, m in thesis_vs_ours(r) if m) or "—"
         checks = "<br>".join(e(c) for c in checks_text(r).split("; "))
         cls = status(r).lower()
+        notes = (f'<details><summary>notes</summary><pre>{e(notes_text(r))}</pre></details>'
+                 if notes_text(r) else "")
         rows.append(f'<tr class="{cls}"><td><a href="{e(sid)}/metrics.json">{e(sid)}</a><br><small>{e(r["source"])}'
-                    f'</small></td><td>{thesis}</td><td>{ours}</td><td>{checks}</td><td>{e(status(r))}</td>'
+                    f'</small>{notes}</td><td>{thesis}</td><td>{ours}</td><td>{checks}</td><td>{e(status(r))}</td>'
                     f"<td>{imgs}{video}</td></tr>")
     page = f"""<!doctype html><html><head><meta charset="utf-8"><title>{e(title)}</title>
 <style>body{{font-family:sans-serif;margin:1.5em}}table{{border-collapse:collapse}}
 td,th{{border:1px solid #ccc;padding:6px;vertical-align:top;font-size:13px}}
 tr.pass td:nth-child(5){{color:#080}}tr.fail td:nth-child(5),tr.error td:nth-child(5){{color:#b00;font-weight:bold}}
-img{{margin:2px;border:1px solid #ddd}}</style></head><body>
+img{{margin:2px;border:1px solid #ddd}}pre{{white-space:pre-wrap;max-width:38em;font-size:12px}}</style></head><body>
 <h1>{e(title)}</h1><p>{sum(status(r) == "pass" for r in results)} of {len(results)} scenarios pass all their checks.
 Thesis values are quoted beside ours; ours are computed from the simulation.</p>
 <table><tr><th>experiment</th><th>thesis value</th><th>ours</th><th>checks</th><th>status</th><th>pictures</th></tr>

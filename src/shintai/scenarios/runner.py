@@ -8,6 +8,7 @@ was logged and plotted before the failure is still written.
 
 from __future__ import annotations
 
+import inspect
 import json
 import math
 import os
@@ -116,6 +117,12 @@ def _jsonable(x: Any) -> Any:
     return x
 
 
+def scenario_notes(sc: Scenario) -> str:
+    """The scenario's own account — its model, what reproduces, what does not and why: the run
+    function's docstring, or its module's where the function has none."""
+    return inspect.getdoc(sc.run) or inspect.getdoc(inspect.getmodule(sc.run)) or ""
+
+
 def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dict[str, str] | None = None,
                  seed: int = 0, video: bool = False, quiet: bool = False) -> dict[str, Any]:
     """Run one scenario, write its outputs, and return the content of ``metrics.json``.
@@ -151,6 +158,7 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
                    for k, v in sc.thesis.items()},
         "sim_time_s": ctx.sim_time_s,
         "wall_time_s": wall,
+        "notes": scenario_notes(sc),
     }
     if ctx.extra:
         result["extra"] = ctx.extra
