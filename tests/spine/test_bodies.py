@@ -120,6 +120,29 @@ def test_disc_stiffness_changes_at_run_time(plain):
     assert k["j3_pitch"] == 8.0 and k["j3_yaw"] == 2.0 and k["CLA-RF:reel"] == 0.0
 
 
+def test_a_stiffer_disc_set_mid_run_holds_the_spine_straighter():
+    """Run-time stiffness change (issue: "run-time stiffness changes"): wires paid out (slack), the
+    discs alone carry the trunk and arms; stiffening them during the run lowers the forward sag,
+    softening them again brings it back."""
+    body = SpineBody(CLA, interference=False, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
+
+    def sag(k_bend: float) -> float:
+        """Mean whole-spine pitch over 1 s after 0.5 s (the lightly damped trunk still sways)."""
+        body.set_disc(k_bend)
+        pitch = []
+        for k in range(3000):
+            body.apply({"duty": np.full(CLA.m, -0.2)})
+            body.step()
+            if k >= 1000:
+                pitch.append(whole_spine(body.theta())[1])
+        assert body.wire_tension().max() == 0.0
+        return float(np.degrees(np.mean(pitch)))
+
+    soft, stiff, soft_again = sag(CLA.disc.k_bend_nm_rad), sag(4 * CLA.disc.k_bend_nm_rad), sag(CLA.disc.k_bend_nm_rad)
+    assert soft > 5.0 and 0.0 < stiff < soft / 2
+    assert soft_again == pytest.approx(soft, rel=0.05)
+
+
 def test_quasi_static_equal_tensions_cancel():
     """§4.6.2: all muscles at the same target tension cancel; only the discs hold the posture (no
     gravity, symmetric layout → upright). Pulling the two front muscles harder bends the spine

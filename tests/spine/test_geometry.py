@@ -117,6 +117,8 @@ def test_tension_distribution_with_an_empty_null_space_is_reported():
     pushing = -J.T @ np.array([20.0, -10.0, 20.0, 20.0, 20.0, 20.0])
     bad = distribute_tension(J, pushing)
     assert bad.null_dim == 0 and not bad.exact and bad.tension.min() >= 0.0 and bad.min_norm.min() < 0
+    assert ok.report().startswith("Z = 0") and "reproduces τ" in ok.report()
+    assert "no T ≥ t_min reproduces τ" in bad.report() and f"{bad.residual:.3g}" in bad.report()
 
 
 def test_tension_distribution_uses_the_null_space_for_non_negative_tensions():

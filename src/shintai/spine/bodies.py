@@ -2,8 +2,10 @@
 
 Each posture of the thesis's static experiments is "held several seconds" (§4.7.2); what a spine
 does there is the equilibrium −J_mᵀT + τ_disc + τ_grav + τ_ext = 0 (eq. 4.22 plus the forces of
-§4.5.2's list). :class:`QuasiStaticSpine` finds it by minimising the potential energy with scipy
-(L-BFGS-B with the analytic gradient), from the previous equilibrium, every step.
+§4.5.2's list). :class:`QuasiStaticSpine` finds it by minimising the potential energy from the
+previous equilibrium, every step: a damped Newton (Levenberg–Marquardt) descent on the analytic
+gradient within the joint limits (:meth:`QuasiStaticSpine.solve`) — a local minimiser on purpose,
+so the spine keeps the posture it settles in, as a physical one does.
 
 Muscle laws (each the derivative of a convex potential of the muscle length λ, so the energy
 stays convex in λ; ``k`` is the wire + sensor series stiffness):

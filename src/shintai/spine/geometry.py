@@ -316,6 +316,16 @@ class TensionDistribution:
     residual: float
     exact: bool
 
+    def report(self) -> str:
+        """One line on what the distribution could do: the co-contraction freedom and whether τ is met."""
+        if self.null_dim == 0:
+            freedom = "Z = 0 (rank J_m = m): the min-norm tension is the only exact one"
+        else:
+            freedom = f"Z has {self.null_dim} dims of co-contraction"
+        if self.exact:
+            return f"{freedom}; T ≥ t_min reproduces τ"
+        return f"{freedom}; no T ≥ t_min reproduces τ: least squares, residual {self.residual:.3g} N m"
+
 
 def distribute_tension(J, tau, t_min: float = 0.0) -> TensionDistribution:
     """Muscle tensions T ≥ t_min with −J_mᵀ T = τ (eqs. 4.23, 4.24).
@@ -324,9 +334,10 @@ def distribute_tension(J, tau, t_min: float = 0.0) -> TensionDistribution:
     for a vector ζ that is not defined (spec §6.5). We take the smallest total tension: minimise
     Σ T_j subject to −J_mᵀT = τ, T ≥ t_min (a linear programme; chosen, because it is the
     least co-contraction that satisfies the thesis's condition). When Z = 0 (rank J_m = m, e.g.
-    Cla's 8 × 15 J_m) the min-norm term is the only exact solution; it is returned if it is
-    non-negative. When no non-negative exact solution exists the least-squares T ≥ t_min is
-    returned with ``exact=False``.
+    Rabbit's 6 × 15 J_m; not Cla's, whose 8 block-to-block muscles give rank 6, robots.CLA) the
+    min-norm term is the only exact solution; it is returned if it is non-negative. When no
+    non-negative exact solution exists the least-squares T ≥ t_min is returned with
+    ``exact=False``; :meth:`TensionDistribution.report` says which case it was.
     """
     J = np.asarray(J, dtype=float)
     tau = np.asarray(tau, dtype=float)
