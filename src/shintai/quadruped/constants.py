@@ -109,6 +109,37 @@ UNSEEN_DEST_Y = (1.8, 2.2)  # [m]
 SENTINEL_RIGHT = (1.0, 0.99, -0.99, -1.0, 0.0, 0.0)
 SENTINEL_LEFT = (-0.99, -1.0, -0.99, -1.0, 0.0, 0.0)
 
+# --- Sensing (§1.4, eqs. 3–6; seed §3.1-3.3): the optional ultrasonic model (sensing.py) ------------
+# Forward and side NiCera T/R40-16 sensors on the foot tip of each front leg (legs 1 and 2), seed §3.1.
+SENSOR_RANGE = 0.5  # configured measuring range from the sensor [m], seed §3.3 (static ~1 m, moving ~0.6 m)
+# Height of the horizontal forward and side beams above the surface the foot stands on [m]: chosen,
+# because the paper only says the sensors sit at the foot tip (the 130 mm l3 carries them, seed §2.1);
+# 30 mm is below the lowest obstacle the paper uses (0.06 m), so a foot on the floor sees every one.
+BEAM_HEIGHT = 0.030
+# Largest angle of incidence (beam to surface normal) that still returns an echo [deg]: chosen. The
+# paper says only that the sensor measures correctly when the beam is "nearly perpendicular" (ほぼ垂直)
+# to the surface; 15° is an assumed order of magnitude for a specular target and a 40 kHz air
+# transducer, not a measured value (the scenario's ``incidence_deg`` varies it).
+INCIDENCE_LIMIT_DEG = 15.0
+# Shoulder-yaw sweep of a front leg at every four-leg-support phase (Fig. 7: θ0 turns the forward and
+# side beams): θ0 + δ for δ from -SWEEP_HALF_DEG to +SWEEP_HALF_DEG in steps of SWEEP_STEP_DEG, clipped
+# to the leg's θ0 range. Chosen: the paper gives no range. With the 15° incidence limit, ±30° lets a
+# beam meet at right angles any edge within ±45° of the stance beams (the paper's front edges are
+# slanted by up to 18.4°; its inner edges are within 10° of perpendicular to the stance side beams);
+# 5° steps put the hit points of a beam ~0.03-0.04 m apart along an edge 0.3-0.5 m away.
+SWEEP_HALF_DEG = 30.0
+SWEEP_STEP_DEG = 5.0
+# Height measurement by raising the leg until the echo stops (Fig. 8): the beam is raised in steps of
+# HEIGHT_STEP from BEAM_HEIGHT to BEAM_HEIGHT + RAISE_MAX above the foot's surface; the first height
+# without the echo is the obstacle's height estimate (quantised up: the error is in [0, HEIGHT_STEP)).
+# HEIGHT_STEP chosen (the paper: "approximate height"); RAISE_MAX chosen as the highest lift of a front
+# foot above the floor at its initial stance position that the joint limits allow with the body at
+# Zr = 300 mm (robot.leg_angles: 0.1148 m), rounded down to a whole step (tests/quadruped/test_sensing.py). An obstacle still echoing at the
+# top of the raise cannot be climbed (the paper's 乗り越え可否): its height feature is WALL_HEIGHT,
+# chosen, because the beam's top is only a lower bound and the network knows a wall only as 0.3 m.
+HEIGHT_STEP = 0.010
+RAISE_MAX = 0.110
+
 # --- Networks (§3, seed §4, §5) -----------------------------------------------------------------
 ACTION_INPUTS, ACTION_HIDDEN, ACTION_OUTPUTS = 24, 100, 3  # seed §4: m = 100
 ORDER_INPUTS, ORDER_OUTPUTS = 4, 24  # seed §5

@@ -3,7 +3,8 @@
 Per walking cycle k of every active episode (all batched):
 
 1. perceive: the known obstacles (simulation, seed §4) in the body frame as the features of §2.3,
-   the sentinels for an obstacle the robot has passed;
+   the sentinels for an obstacle the robot has passed; or, with a ``perception`` (e.g.
+   ``sensing.SensedObstacles``, the ultrasonic sensors of the real robot), its features;
 2. body-raise rule (rule-based, not the network): :func:`robot.body_height`;
 3. action network: (ΔXr, ΔYr, Δθr) from the 24 inputs, clipped to the robot's displacement range
    (``constants.COMMAND_RANGE``: the ranges of seed §5.1, chosen);
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -30,6 +32,16 @@ SENTINELS = np.array([C.SENTINEL_RIGHT, C.SENTINEL_LEFT])  # (2, 6)
 
 ActionPolicy = Callable[[np.ndarray, np.ndarray], np.ndarray]  # (inputs (n, 24), rows (n,)) -> (n, 3)
 OrderPolicy = Callable[[np.ndarray, np.ndarray], np.ndarray]  # (zr (n,), command (n, 3)) -> Table 2 numbers
+
+
+class Perception(Protocol):
+    """Obstacle features from something other than the known obstacles: ``reset(envs)`` when a
+    rollout over ``envs`` starts; ``(k, rows, state, envs)`` at cycle k (0-based) of the active rows,
+    with their state and environments, returns their features ``(n, 2, 6)`` as :func:`obstacle_features`."""
+
+    def reset(self, envs: W.EnvBatch) -> None: ...
+
+    def __call__(self, k: int, rows: np.ndarray, state: R.CrawlState, envs: W.EnvBatch) -> np.ndarray: ...
 
 
 def obstacle_features(pose: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
@@ -50,11 +62,13 @@ def destination_error(pose: np.ndarray, destination: np.ndarray) -> np.ndarray:
     return np.column_stack([e, np.arctan2(-e[:, 0], e[:, 1])])
 
 
-def action_inputs(state: R.CrawlState, zr: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
+def action_inputs(state: R.CrawlState, zr: np.ndarray, envs: W.EnvBatch,
+                  features: np.ndarray | None = None) -> np.ndarray:
     """The 24 inputs of seed §4 ``(E, 24)``: feet (x_f1, y_f1, ..., x_f4, y_f4) in the body frame, Zr,
-    right features, left features, (x_de, y_de, θ_de)."""
+    right features, left features, (x_de, y_de, θ_de). ``features (E, 2, 6)`` replace the known
+    obstacles' (:func:`obstacle_features`) when given."""
     feet = R.to_body(state.pose, state.feet[..., :2]).reshape(len(zr), 8)
-    features = obstacle_features(state.pose, envs).reshape(len(zr), 12)
+    features = (obstacle_features(state.pose, envs) if features is None else features).reshape(len(zr), 12)
     return np.column_stack([feet, zr, features, destination_error(state.pose, envs.destination)])
 
 
@@ -115,9 +129,12 @@ class Episodes:
 
 def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPolicy | None = None,
             max_cycles: int = C.MAX_CYCLES, record: bool = False,
-            command_range: tuple | None = C.COMMAND_RANGE) -> Episodes:
+            command_range: tuple | None = C.COMMAND_RANGE, perception: Perception | None = None) -> Episodes:
     """Run one episode per environment row in lock-step (module docstring); the action policy's
-    commands are clipped to ``command_range`` ``(low, high)`` (``None``: not clipped)."""
+    commands are clipped to ``command_range`` ``(low, high)`` (``None``: not clipped). ``perception``
+    supplies the obstacle features (``None``: the known obstacles, :func:`obstacle_features`)."""
+    if perception is not None:
+        perception.reset(envs)
     n = len(envs)
     state = R.CrawlState.initial(n)
     active = np.ones(n, dtype=bool)
@@ -132,7 +149,8 @@ def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPo
             break
         st, env = state.take(rows), envs.take(rows)
         zr = R.body_height(st.pose, st.feet, env)
-        command = np.asarray(action_policy(action_inputs(st, zr, env), rows), dtype=float)
+        features = None if perception is None else perception(k, rows, st, env)
+        command = np.asarray(action_policy(action_inputs(st, zr, env, features), rows), dtype=float)
         if command_range is not None:
             command = np.clip(command, *command_range)
         order = np.full(len(rows), CRAWL) if order_policy is None else np.asarray(order_policy(zr, command))
