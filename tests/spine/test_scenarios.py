@@ -1,6 +1,7 @@
 """Short runs of the spine scenarios: their outputs, and the behaviour each is about."""
 
 import json
+import math
 
 import pytest
 
@@ -122,3 +123,31 @@ def test_e11_hold_test_looks_at_the_whole_posture():
     assert out["collapsed"] == 1 and out["collapsed_window"] == 0
     assert out["mean_error_pitch_deg"] == pytest.approx(4.0 / 3) and out["mean_current_a"] == pytest.approx(0.1)
     assert out["mean_current_posture_a"] == pytest.approx(0.2)
+
+
+def test_inverse_model_short_run(tmp_path):
+    """§4.4.3 on a short training: the NN beats Jacobian integration (Cla's rank-6 J_m lands the
+    integration on another posture) and answers far faster; both networks and every metric report."""
+    result = run_scenario("spine.inverse-model", out=tmp_path, quiet=True,
+                          overrides={"iterations": "300", "test_postures": "10"})
+    m = result["metrics"]
+    assert m["nn_test_error_norm_deg"] < m["jacobian_test_error_norm_deg"]
+    assert math.isfinite(m["nn4_test_error_norm_deg"]) and m["nn_train_max_joint_error_deg"] < 5.0
+    assert m["nn_query_us"] * 1e-6 < m["jacobian_query_s"]
+
+
+def test_bebe_tracking_short_run(tmp_path):
+    """§4.8 on short runs: the target is mostly in the dead zone, pushes are recovered, and switching
+    off before on keeps few muscles on (the on-first ablation piles them up)."""
+    result = run_scenario("spine.bebe-tracking", out=tmp_path, quiet=True,
+                          overrides={"tracking_s": "4", "disturbance_s": "4", "forced_s": "3"})
+    m = result["metrics"]
+    assert "error" not in result
+    assert m["dead_zone_fraction"] > 0.5 and m["disturbance_dead_zone_fraction"] > 0.5
+    assert m["max_on_muscles"] < m["max_on_muscles_on_first"] / 2
+
+
+def test_sq43_design_short_run(tmp_path):
+    """§3.2.3: the four compass searches end at local optima within |a_i| ≤ 30°, the best reported."""
+    result = run_scenario("spine.sq43-design", out=tmp_path, quiet=True, overrides={"step_deg": "2"})
+    assert result["ok"], [c for c in result["checks"] if not c["ok"]]
