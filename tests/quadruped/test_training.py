@@ -79,6 +79,34 @@ def test_training_arguments_are_checked_with_one_line_errors(tmp_path):
     np.savez(tmp_path / "short.npz", genome=np.zeros(5))
     with pytest.raises(ValueError, match="not an action network"):
         T.load_action(tmp_path / "short.npz")
+    with pytest.raises(ValueError, match="order_hidden must be"):
+        T.TrainSettings(order_hidden=0)
+    with pytest.raises(ValueError, match="not a swing-order genome"):
+        T.order_policy(np.zeros(7))
+
+
+def test_the_swing_order_network_size_follows_the_settings_and_the_genome(whole):
+    folder, _ = whole
+    genome = np.load(folder / T.FILES["order"])["genome"]
+    assert genome.shape == (TINY.order_hidden * (C.ORDER_INPUTS + 1),)
+    wide = N.SwingOrderNetwork(n_hidden=7).random_genomes(np.random.default_rng(1), 1)[0]
+    assert T.order_policy(wide).centres.shape == (7, C.ORDER_INPUTS)
+
+
+def test_order_generalisation_measures_the_choice_against_the_exhaustive_search():
+    """A policy that always answers the crawl order is optimal exactly where the crawl order is, and
+    its Br is the crawl order's; the held-out accuracy is the share of crawl labels."""
+    from shintai.quadruped.swing_order import CRAWL, teacher_set
+
+    def crawl(zr, command):
+        return np.full(len(zr), CRAWL)
+
+    g = T.order_generalisation(crawl, draws=60, seed=3)
+    assert g["uniform_optimal_fraction"] == g["uniform_crawl_optimal_fraction"] < 1.0
+    assert g["uniform_infeasible_fraction"] >= 0.0
+    assert g["uniform_br_network_mm"] == g["uniform_br_crawl_mm"] >= g["uniform_br_best_mm"]
+    heldout = teacher_set(seed=C.ORDER_HELDOUT_SEED)
+    assert g["heldout_accuracy"] == pytest.approx(np.mean(heldout.label == CRAWL))
 
 
 def test_shipped_networks_load_and_walk_scenario_4_2_1_to_the_goal():
