@@ -44,6 +44,8 @@ def test_avoid_known_walks_the_shipped_network_to_the_goal(tmp_path):
     assert m["reached"] == 1 and m["collisions"] == 0 and m["limit_violations"] == 0
     assert m["min_stability_margin_m"] > 0 and m["final_error_m"] <= 0.2
     assert len(result["extra"]["cycles"]) == m["cycles"]
+    table = (tmp_path / "cycles.md").read_text().splitlines()
+    assert len([line for line in table if line.startswith("| ")]) == m["cycles"] + 1  # header + one row a cycle
     assert result["thesis"]["cycles"]["value"] == 9
     assert (tmp_path / "walk_path.png").exists() and (tmp_path / "walk_legs.png").exists()
 
