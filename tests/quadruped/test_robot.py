@@ -110,3 +110,39 @@ def test_a_step_into_the_wall_collides():
     state = out.state
     out = R.crawl_cycle(state, np.array([[-0.1, 0.25, 0.0]]), S.ORDERS[[S.CRAWL]], np.array([0.3]), envs)
     assert out.collided[0]
+
+
+def _one(right: W.Obstacle, left: W.Obstacle) -> W.EnvBatch:
+    return W.EnvBatch.of([W.Environment("test", right, left, (0.0, 2.0))])
+
+
+FAR = W.Obstacle(((3.0, 3.0), (3.3, 3.0), (3.3, 3.3), (3.0, 3.3)), 0.06)  # out of the way
+
+
+def test_the_trunk_collides_on_a_body_shift_only_with_what_is_taller_than_its_underside():
+    """The body-shift check (every key pose's move): a block between the legs, ahead, is hit by a
+    0.5 m forward shift when it is a wall, passed over when it is lower than the trunk's underside."""
+    start, end, zr = np.zeros((1, 3)), np.array([[0.0, 0.5, 0.0]]), np.array([0.3])
+    block = ((-0.1, 0.4), (0.1, 0.4), (0.1, 0.6), (-0.1, 0.6))
+    assert R.trunk_collides(start, end, zr, _one(W.Obstacle(block, 0.3), FAR))[0]
+    assert not R.trunk_collides(start, end, zr, _one(W.Obstacle(block, 0.06), FAR))[0]
+    assert not R.trunk_collides(start, start, zr, _one(W.Obstacle(block, 0.3), FAR))[0]  # not reached
+
+
+def test_a_swing_path_over_a_wall_collides_and_over_a_low_obstacle_lifts_the_foot():
+    a, b = np.array([[0.3, 0.0, 0.0]]), np.array([[0.3, 0.5, 0.0]])
+    block = ((0.2, 0.2), (0.4, 0.2), (0.4, 0.4), (0.2, 0.4))
+    apex, wall = R.swing_height(a, b, _one(W.Obstacle(block, 0.3), FAR))
+    assert wall[0]
+    apex, wall = R.swing_height(a, b, _one(W.Obstacle(block, 0.08), FAR))
+    assert not wall[0] and apex[0] == pytest.approx(0.08 + C.SWING_CLEARANCE)
+
+
+def test_a_step_beyond_the_legs_reach_violates_the_joint_limits():
+    """The joint limits are checked at the swing's key poses: 0.2 m steps are within reach, a 0.6 m
+    step is not (l1 + l2 = 0.355 m)."""
+    envs = W.EnvBatch.flat(2)
+    out = R.crawl_cycle(R.CrawlState.initial(2), np.array([[0.0, 0.2, 0.0], [0.0, 0.6, 0.0]]),
+                        S.ORDERS[[S.CRAWL, S.CRAWL]], np.full(2, C.ZR_NOMINAL), envs)
+    assert not out.limit[0] and out.limit[1]
+    assert not out.collided.any()
