@@ -454,14 +454,16 @@ def swing_order(ctx) -> dict:
     Why 8, not 19 (an audit against the Japanese text of §2.2, §3.2, §4, §5.1; nothing in the
     executor departs from it — Br, the body shift and the tie rule are not specified there): with
     the shortest shift into the support triangle the CoG often needs no shift, so different orders
-    trace the same body path and tie exactly (48-97 % of samples: 4→2→3→1 with 4→3→1→2, 3→1→4→2
-    with 3→4→2→1); any fixed tie rule folds each tied group into one order (5-10 orders for margins
-    0-50 mm or other turn timings). Counting every tied order gives 19-20 only with margin 0 and no
-    joint limits, where 97 % of samples tie — not a usable teacher. The paper's Br is 1.7-2.3× the
-    net displacement (ours 1.1-1.2×) and grows ≈ 19-26 mm per degree of turn (ours is flat), which
-    points to a larger sway in its executor; and Table 4 rows 6-7 (4→2→3→1 kept at Zr = 360 mm
-    where 3→1→4→2 would save ≈ 70 mm by the trend of rows 8-10) suggest 3→1→4→2 was infeasible
-    there (joint limits): our chosen shoulder positions and θ2 zero leave more reach. Exhaustive
+    trace the same body path and tie exactly (48 % of uniform draws,
+    ``network_uniform_tied_fraction``; e.g. 4→2→3→1 with 4→3→1→2, 3→1→4→2 with 3→4→2→1); any
+    fixed tie rule folds each tied group into one order (5-10 orders for margins 0-50 mm or other
+    turn timings, tried). Counting every tied order gives 19-20 only with margin 0 and no joint
+    limits, where 97 % of draws tie (tried) — not a usable teacher. The paper's Br is 1.7-2.3× the
+    net displacement (ours: median 1.09×, ``network_uniform_br_over_displacement_median``) and
+    grows ≈ 19-26 mm per degree of turn (ours is flat), which points to a larger sway in its
+    executor; and Table 4 rows 6-7 (4→2→3→1 kept at Zr = 360 mm where 3→1→4→2 would save ≈ 70 mm
+    by the trend of rows 8-10) suggest 3→1→4→2 was infeasible there (joint limits): our chosen
+    shoulder positions and θ2 zero leave more reach. Exhaustive
     choices agree with Table 4 in 6 of 10 rows.
     """
     env = W.scenario_52()

@@ -305,7 +305,9 @@ def order_generalisation(policy: SwingOrderPolicy, draws: int = C.ORDER_UNIFORM_
     (``teacher_set(seed=ORDER_HELDOUT_SEED)``), and on ``draws`` uniform draws of the teacher ranges
     (from the initial stance, as the teacher) the fractions of feasible draws where its order is
     optimal (ties counted), infeasible, and where the crawl order is optimal, with the mean Br [mm] of
-    its, the crawl and the best order over the draws where its and the crawl order are feasible."""
+    its, the crawl and the best order over the draws where its and the crawl order are feasible; and
+    the share of feasible draws where two or more orders tie for the least Br, and the median of the
+    least Br over the commanded displacement."""
     heldout = order_accuracy(policy, S.teacher_set(seed=C.ORDER_HELDOUT_SEED))
     x = np.random.default_rng(seed).uniform(S.TEACHER_LOW, S.TEACHER_HIGH, size=(draws, 4))
     br = S.body_movement(x[:, 0], x[:, 1:])
@@ -319,4 +321,8 @@ def order_generalisation(policy: SwingOrderPolicy, draws: int = C.ORDER_UNIFORM_
             "uniform_crawl_optimal_fraction": float(np.mean(br[ok, CRAWL] <= best[ok] + S.TIE)),
             "uniform_br_network_mm": float(1000 * mine[both].mean()),
             "uniform_br_crawl_mm": float(1000 * br[both, CRAWL].mean()),
-            "uniform_br_best_mm": float(1000 * best[both].mean())}
+            "uniform_br_best_mm": float(1000 * best[both].mean()),
+            # context of the teacher (swing-order docstring, "why 8, not 19"): draws whose best Br is
+            # shared by two or more orders, and the best Br over the commanded displacement |(ΔXr, ΔYr)|
+            "uniform_tied_fraction": float(np.mean(np.sum(br[ok] <= best[ok, None] + S.TIE, axis=1) > 1)),
+            "uniform_br_over_displacement_median": float(np.median(best[ok] / np.hypot(x[ok, 1], x[ok, 2])))}
