@@ -564,12 +564,11 @@ def free_gait(ctx) -> dict:
     the fixed-order network's 0.338, final errors 0.059 m against 0.106 m on average, 11.2 cycles
     against 12.1 (``train_*`` against ``train_baseline_*``); on 200 unseen environments
     (``quadruped.generalization --set network=free``) 0.092 m against 0.103 m, reached 82.5 %
-    against 83.5 %. In these
-    two walks the error falls in §6.2.2 (0.058 → 0.037 m; paper 0.073 → 0.023 m) but rises in
+    against 83.5 %. In these two walks the error falls in §6.2.2 (0.058 → 0.037 m; paper 0.073 → 0.023 m) but rises in
     §6.2.1 (0.139 → 0.150 m; paper 0.059 → 0.032 m), so that check fails: the GA lowers the sum
     over the 96 environments, and one environment's error can rise while it does. The orders look
-    like the paper's: in §6.2.1 3→1→4→2 for the first six cycles (the obstacle phase, Zr raised),
-    then 4→2→3→1 (paper, Table 6: 3→1→4→2 x5, 4→2→3→1 x5); in §6.2.2 4→2→3→1, 3→1→4→2 and
+    like the paper's: in §6.2.1 3→1→4→2 for the first six cycles, then 4→2→3→1 (paper, Table 6:
+    3→1→4→2 x5, 4→2→3→1 x5); in §6.2.2 4→2→3→1, 3→1→4→2 and
     2→4→3→1 (paper, Table 7: 4→2→3→1, 2→4→3→1 and 2→4→1→3). Legs 1 and 4 (§6.2.1) and 2 (§6.2.2)
     land on the obstacle. (With the earlier 96-unit swing-order network, which overfitted its
     teacher patterns, the re-trained network ended at eq. (9) 0.413, above the fixed order's, and
