@@ -211,3 +211,15 @@ def test_cla_routing_length_changes_agree_with_appendix_a(axis, sign, angle_deg)
     expected = np.array(CLA_APPENDIX_A_SIGNS[(axis, sign)])
     known = expected != 0
     assert np.array_equal(np.sign(delta[known]), expected[known]), dict(zip(CLA.muscle_names, 1e3 * delta))
+
+
+def test_hanzous_cam_sets_the_leaf_length_and_so_its_stiffness():
+    """§3.3.1: the cam angle is proportional to the leaf spring's effective length; a cantilever's
+    tip stiffness 3EI/L³ then falls with the cube of it (the cam softens the trunk)."""
+    from shintai.spine.robots import HANZOUS
+
+    lo, hi = HANZOUS.length_range_m
+    assert HANZOUS.effective_length_m([0.0, 90.0, 180.0, 270.0]) == pytest.approx([lo, (lo + hi) / 2, hi, hi])
+    k = HANZOUS.bending_stiffness_n_m([0.0, 180.0])
+    assert k[0] / k[1] == pytest.approx((hi / lo) ** 3)
+    assert HANZOUS.servos == HANZOUS.joints + 1
