@@ -37,6 +37,17 @@ def test_action_ga_is_deterministic_for_a_seed_on_every_executor(tmp_path, whole
     assert first.best_fitness == F.action_fitness(first.genome, T.training_envs(3))
 
 
+def test_action_ga_on_ray_gives_the_serial_result(tmp_path, whole):
+    """``--set executor=ray`` (README: training on a Ray cluster) changes where fitness runs, not
+    the result: a local Ray instance reproduces the serial run bit for bit."""
+    from shintai.evolve import make_executor
+
+    with make_executor("ray", workers=2) as ray:
+        on_ray = T.run_stage("action", TINY, ray, tmp_path / "r.npz", resume=False)
+    assert np.array_equal(on_ray.genome, whole[1]["action"].genome)
+    assert np.array_equal(on_ray.best, whole[1]["action"].best)
+
+
 class Interrupt(Exception):
     pass
 
