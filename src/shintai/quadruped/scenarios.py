@@ -587,7 +587,7 @@ def free_gait(ctx) -> dict:
             QV.render(records, env, ctx.video_path if key == "s621" else ctx.out / "video_s6.2.2.mp4")
         ctx.progress(0.5 * (i + 1))
     metrics["order_changes"] = metrics["s621_order_changes"] + metrics["s622_order_changes"]
-    train = W.EnvBatch.of(W.training_set())  # the same comparison over the 96 training environments
+    train = F.training_batch()  # the same comparison over the 96 training environments
     for key, ep in (("train", T.evaluate(free, train, order)), ("train_baseline", T.evaluate(fixed, train))):
         rates = outcome_rates(ep)
         metrics.update({f"{key}_{k}": rates[k] for k in ("success_rate", "mean_cycles", "mean_final_error_m")})

@@ -249,7 +249,11 @@ class SensedObstacles:
     incidence_deg: float = C.INCIDENCE_LIMIT_DEG
     seed: int | None = 0
     rng: np.random.Generator = field(init=False, repr=False)
-    _blocks: list = field(default_factory=list, init=False, repr=False)
+    points: np.ndarray = field(init=False, repr=False)
+    tops: np.ndarray = field(init=False, repr=False)
+    obstacle: np.ndarray = field(init=False, repr=False)
+    cycle: np.ndarray = field(init=False, repr=False)
+    _calls: int = field(default=0, init=False, repr=False)
     _log: list = field(default_factory=list, init=False, repr=False)
     _n: int = field(default=0, init=False, repr=False)
 
@@ -261,8 +265,11 @@ class SensedObstacles:
 
     def reset(self, envs: W.EnvBatch) -> None:
         """Forget every reading; a rollout over ``envs`` starts (and the noise restarts from the seed)."""
+        n = len(envs)
         self.rng = np.random.default_rng(self.seed)
-        self._blocks, self._log, self._n = [], [], len(envs)
+        self.points, self.tops = np.zeros((n, 2, 0, 2)), np.zeros((n, 2, 0))
+        self.obstacle, self.cycle = np.zeros((n, 2, 0), dtype=int), np.zeros((n, 2, 0), dtype=int)
+        self._calls, self._log, self._n = 0, [], n
 
     def __call__(self, k: int, rows: np.ndarray, state: R.CrawlState, envs: W.EnvBatch) -> np.ndarray:
         r = sense(state, envs, np.radians(self.incidence_deg), self.noise_std, self.rng)
@@ -273,26 +280,18 @@ class SensedObstacles:
         block["tops"][rows] = r.tops.reshape(len(rows), 2, s)
         block["obstacle"][rows] = r.obstacle.reshape(len(rows), 2, s)
         block["cycle"][rows] = k
-        self._blocks.append(block)
+        for key, values in block.items():  # every reading so far, (E, 2, P)
+            setattr(self, key, np.concatenate([getattr(self, key), values], axis=2))
+        self._calls += 1
         sensed = box_features(state.pose, self.points[rows], self.tops[rows])
         self._log.append((k, rows, obstacle_features(state.pose, envs), sensed))
         return sensed
-
-    def _stacked(self, key: str) -> np.ndarray:
-        if not self._blocks:
-            return np.zeros((self._n, 2, 0, 2) if key == "points" else (self._n, 2, 0))
-        return np.concatenate([b[key] for b in self._blocks], axis=2)
-
-    points = property(lambda self: self._stacked("points"))
-    tops = property(lambda self: self._stacked("tops"))
-    obstacle = property(lambda self: self._stacked("obstacle"))
-    cycle = property(lambda self: self._stacked("cycle"))
 
     @property
     def beam(self) -> np.ndarray:
         """Beam of every reading ``(E, 2, P)`` (FORWARD / SIDE), in the order of ``points``."""
         per_call = np.tile([FORWARD, SIDE], len(SWEEP))
-        return np.broadcast_to(np.tile(per_call, len(self._blocks)), (self._n, 2, len(per_call) * len(self._blocks)))
+        return np.broadcast_to(np.tile(per_call, self._calls), (self._n, 2, len(per_call) * self._calls))
 
     def _history(self, index: int) -> np.ndarray:
         out = np.full((self._n, max((k for k, *_ in self._log), default=-1) + 1, 2, 6), np.nan)
