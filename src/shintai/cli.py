@@ -96,8 +96,11 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
     from shintai.scenarios.report import write_report
 
     out.mkdir(parents=True, exist_ok=True)
-    jobs = [(sid, str(out / sid), seed, video and registry.SCENARIOS[sid].video and registry.SCENARIOS[sid].demo_video)
-            for sid in ids]
+    def films(sid):
+        sc = registry.SCENARIOS[sid]
+        return video and sc.demo_video and sc.films(sc.resolve())
+
+    jobs = [(sid, str(out / sid), seed, films(sid)) for sid in ids]
     t0 = time.perf_counter()
 
     def progress(done, total):

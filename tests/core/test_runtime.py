@@ -91,3 +91,97 @@ def test_recorder_roundtrip(tmp_path):
     rec.save(tmp_path / "log.npz")
     data = np.load(tmp_path / "log.npz")
     assert data["x"].shape == (3, 2) and data["y_t"].tolist() == pytest.approx([0, 0.1, 0.2])
+
+
+# --- composition rules (DESIGN.md): declared channels, set channels, stages, run(until=, every=) ---------------
+
+from shintai.core.runtime import ADD, SET, Channel, ChannelError, declare  # noqa: E402
+
+
+class Writes(Module):
+    """Contributes ``value`` to ``channel`` and remembers what it saw of ``reads``."""
+
+    def __init__(self, name, channel, value, reads=None, period=None):
+        super().__init__(name, period)
+        self.channel, self.value, self.reads, self.seen = channel, value, reads, []
+
+    def update(self, snapshot):
+        if self.reads is not None:
+            self.seen.append(None if self.reads not in snapshot else float(np.asarray(snapshot[self.reads])))
+        return {self.channel: self.value(snapshot) if callable(self.value) else self.value}
+
+
+def test_a_command_to_an_undeclared_channel_is_one_error_naming_it():
+    loop = Loop(NullBody(), [Writes("typo", "uu", 1.0)])
+    with pytest.raises(ChannelError, match="'typo' writes undeclared channel 'uu'.*body channels: u"):
+        loop.step()
+    with pytest.raises(ChannelError, match="base writes undeclared channel 'v'"):
+        Loop(NullBody(), [], base={"v": 1.0})
+
+
+def test_channel_declarations_are_checked():
+    with pytest.raises(ChannelError, match="kind must be"):
+        Channel("x", kind="max")
+    with pytest.raises(ChannelError, match="delay"):
+        Channel("x", delay=-1)
+    with pytest.raises(ChannelError, match="declared twice"):
+        Loop(NullBody(), [], channels=[Channel("u")])  # already a body channel
+    with pytest.raises(ValueError, match="not both"):
+        Loop(NullBody(), [Counter("a")], stages=[[Counter("b")]])
+
+
+def test_a_set_channel_takes_exactly_one_writer():
+    body = NullBody()
+    body.channels = {**declare("u"), **declare("mode", kind=SET)}
+    seen = []
+    body.apply = lambda command: seen.append(command["mode"].copy())
+    loop = Loop(body, [Writes("a", "mode", 2.0), Writes("b", "u", 1.0)])
+    loop.step()
+    assert seen[-1] == 2.0  # the writer's value, not a sum
+    two = Loop(body, [Writes("a", "mode", 2.0), Writes("b", "mode", 3.0)])
+    with pytest.raises(ChannelError, match="'mode' has two writers in one tick: 'a' and 'b'"):
+        two.step()
+    # a held (slow) writer still counts as the writer between its updates
+    held = Loop(body, [Writes("slow", "mode", 1.0, period=0.005), Writes("late", "mode", 1.0, period=0.005)])
+    with pytest.raises(ChannelError, match="two writers"):
+        held.step()
+
+
+def test_a_later_stage_sees_an_earlier_stages_set_point_in_the_same_tick():
+    body = NullBody(dt=0.001)
+    planner = Writes("planner", "ref", lambda s: 10.0 * s["t"])
+    controller = Writes("controller", "u", 0.0, reads="ref")
+    loop = Loop(body, stages=[[planner], [controller]], channels=[Channel("ref", SET)])
+    for _ in range(3):
+        loop.step()
+    assert controller.seen == pytest.approx([0.0, 0.01, 0.02])  # this tick's set-point, no delay
+    assert "ref" not in body.command  # loop channels never reach the body
+    # in the same stage the set-point is not yet there: stages carry the order, module order does not
+    same = Writes("controller", "u", 0.0, reads="ref")
+    Loop(NullBody(), [same, Writes("planner", "ref", 1.0)], channels=[Channel("ref", SET)]).step()
+    assert same.seen == [None]
+
+
+def test_a_declared_delay_shows_the_value_that_many_ticks_later():
+    body = NullBody(dt=0.001)
+    writer = Writes("writer", "ref", lambda s: round(s["t"] * 1000) + 1.0)
+    reader = Writes("reader", "u", 0.0, reads="ref")
+    loop = Loop(body, [writer, reader], channels=[Channel("ref", ADD, delay=2, default=0.0)])
+    for _ in range(5):
+        loop.step()
+    assert reader.seen == [0.0, 0.0, 1.0, 2.0, 3.0]
+
+
+def test_run_until_a_time_or_a_predicate_with_decimated_hooks():
+    body = NullBody(dt=0.01)
+    loop = Loop(body, [Counter("a")])
+    ticks = []
+    assert loop.run(until=0.1, every={3: lambda s: ticks.append(round(s["t"], 6))}) == 10
+    assert ticks == [0.0, 0.03, 0.06, 0.09]
+    assert body.t == pytest.approx(0.1)
+    # snapshots at t = 0.10, 0.11, ...: the sixth (0.15) is the first that holds; the run stops after its step
+    assert loop.run(1.0, until=lambda s: s["t"] >= 0.145) == 6
+    with pytest.raises(ValueError, match="at least one step"):
+        loop.run(0.1, every={0: print})
+    with pytest.raises(ValueError, match="duration or until"):
+        loop.run(until=lambda s: True)

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from shintai.core.scenarios import COUPLED_C, COUPLED_G, COUPLED_XD, run_control_index, run_learning_index
+from shintai.core.experiments.search_index import COUPLED_C, COUPLED_G, COUPLED_XD
+from shintai.core.linear_plant import run_control_index, run_learning_index
 from shintai.core.search_index import (
     MatrixGain,
     QuadraticCost,

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from shintai.core.runtime import Body, Loop
+from shintai.core.runtime import Body, Loop, declare
 from shintai.core.search_index import StabilityMonitor, estimate_sign_matrix, offline_index
 from shintai.humanoid.active import (
     R_y,
@@ -303,6 +303,7 @@ class QuasiStatic(Body):
         self.dt, self.t, self.k = dt, 0.0, k_contact
         self.theta, self.points_of, self.fit = theta, points_of, fit
         self.limbs = {side: p.copy() for side, p in points_of(theta).items()}
+        self.channels = declare(*self.limbs)
 
     def snapshot(self):
         snap = {"t": self.t, "theta": self.theta}

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from shintai.core import Body, Loop
+from shintai.core import Body, Loop, declare
 from shintai.spine import bebe
 
 # Four hand-made view shifts: right, up, left, and a 45° diagonal (right-up).
@@ -56,6 +56,8 @@ def test_forced_muscles_are_never_switched():
 
 class StillImage(Body):
     """A body whose target sits at a fixed image position; it records the valve commands."""
+
+    channels = declare("valve")
 
     def __init__(self, target_px, dt=bebe.CYCLE_S / 10):
         self.dt, self.t, self.target_px, self.valve = dt, 0.0, np.asarray(target_px, float), np.zeros(4)

@@ -6,12 +6,14 @@ import time
 
 import numpy as np
 
-from shintai.core.runtime import Body, Loop, Module, add_into
+from shintai.core.runtime import Body, Loop, Module, add_into, declare
 from shintai.scenarios.registry import benchmark
 
 
 class NullBody(Body):
     """A body that costs (almost) nothing, so the timing is the runtime's own."""
+
+    channels = declare("u")
 
     def __init__(self, dt=0.001):
         self.dt, self.t = dt, 0.0

@@ -50,6 +50,13 @@ class Recorder:
             out[name + "_t"] = self.times(name)
         return out
 
+    def merge(self, other: Recorder, prefix: str = "") -> None:
+        """Append every signal of ``other`` under ``prefix + name``."""
+        for name in other._values:
+            key = prefix + name
+            self._values.setdefault(key, []).extend(other._values[name])
+            self._times.setdefault(key, []).extend(other._times[name])
+
     def save(self, path: str | Path) -> None:
         """Write every signal into one compressed ``.npz`` (also when nothing was logged)."""
         np.savez_compressed(path, **self.arrays())

@@ -9,9 +9,20 @@ Two theses describe this architecture from two sides:
   once per sensor packet and modifies the command sent to the body.
 
 Here a :class:`Module` reads the snapshot and returns its *contribution* to the command (a dict of
-named arrays). The :class:`Loop` sums the contributions of all modules (parallel processing) and
-holds each module's last contribution between its updates (multi-rate, zero-order hold). A
-:class:`Switcher` is itself a module that runs exactly one of its children (switching processing).
+named arrays). The :class:`Loop` combines the contributions of all modules and holds each module's
+last contribution between its updates (multi-rate, zero-order hold). A :class:`Switcher` is itself a
+module that runs exactly one of its children (switching processing).
+
+Composition rules (DESIGN.md):
+
+* every command goes to a declared :class:`Channel` — the body's (``Body.channels``) or the loop's
+  own (``Loop(channels=...)``, set-points and references that modules pass to each other); anything
+  else is a :class:`ChannelError`, the one error type of channel misuse;
+* a channel is **additive** (contributions sum: corrections added to a trajectory, seed 000 §7.3) or
+  **set** (exactly one writer per tick: a wheel mask, a contact code, a chosen order);
+* modules run in **stages**: what an earlier stage writes to a loop channel is in the snapshot the
+  later stages see in the same tick, so a set-point feeds a controller without a hidden delay; a
+  loop channel with ``delay=d`` is seen ``d`` ticks later instead (a declared delay).
 """
 
 from __future__ import annotations
@@ -19,8 +30,10 @@ from __future__ import annotations
 import math
 import time
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Mapping, Sequence
+from collections import deque
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -29,16 +42,56 @@ from shintai.core.recorder import Recorder
 Snapshot = dict  # name -> np.ndarray (or float); always holds "t", the body time in seconds
 Command = dict  # channel name -> np.ndarray
 
+ADD, SET = "add", "set"
+
 
 class SimulationDiverged(RuntimeError):
     """The simulated state became non-finite or the physics engine reported an instability."""
 
 
+class ChannelError(ValueError):
+    """A command to an undeclared channel, a second writer of a set channel, or a bad declaration."""
+
+
+@dataclass(frozen=True)
+class Channel:
+    """A declared command channel.
+
+    ``kind``: :data:`ADD` (contributions of all writers sum) or :data:`SET` (exactly one writer per
+    tick). For a loop's own channels: ``delay`` ticks before readers see the value (0: later stages
+    of the same tick), and ``default``, what readers see while no module writes it (``None``: the
+    name is absent from the snapshot).
+    """
+
+    name: str
+    kind: str = ADD
+    delay: int = 0
+    default: Any = None
+    doc: str = ""
+
+    def __post_init__(self):
+        if self.kind not in (ADD, SET):
+            raise ChannelError(f"channel {self.name!r}: kind must be {ADD!r} or {SET!r}, got {self.kind!r}")
+        if int(self.delay) != self.delay or self.delay < 0:
+            raise ChannelError(f"channel {self.name!r}: delay must be a whole number of ticks >= 0, got {self.delay!r}")
+
+
+def declare(*names: str, kind: str = ADD, **options) -> dict[str, Channel]:
+    """Declare several channels of one kind: ``{name: Channel(name, kind, **options)}``."""
+    return {n: Channel(n, kind, **options) for n in names}
+
+
 class Body(ABC):
-    """A simulated robot: a sensor snapshot out, a command in, time advances by ``dt``."""
+    """A simulated robot: a sensor snapshot out, a command in, time advances by ``dt``.
+
+    ``channels`` declares the command channels the body takes (name -> :class:`Channel`); the
+    :class:`Loop` checks every contribution against it, so :meth:`apply` only ever sees declared
+    channels.
+    """
 
     dt: float
     t: float = 0.0
+    channels: Mapping[str, Channel] = {}
 
     @abstractmethod
     def snapshot(self) -> Snapshot:
@@ -46,7 +99,7 @@ class Body(ABC):
 
     @abstractmethod
     def apply(self, command: Command) -> None:
-        """Take the summed command of this tick (channels the body does not know are an error)."""
+        """Take the combined command of this tick (declared channels only)."""
 
     @abstractmethod
     def step(self) -> None:
@@ -102,10 +155,15 @@ def ticks_per_period(period: float | None, dt: float, name: str) -> int:
     """Number of body steps per module period; the period must be a whole multiple of ``dt``."""
     if period is None:
         return 1
-    ratio = period / dt
+    return whole_multiple(period, dt, f"module {name!r}: period")
+
+
+def whole_multiple(span: float, dt: float, what: str) -> int:
+    """``span / dt`` as an integer ≥ 1; a :class:`ValueError` naming ``what`` if it is not whole."""
+    ratio = span / dt
     n = int(round(ratio))
     if n < 1 or not math.isclose(ratio, n, rel_tol=1e-9, abs_tol=1e-9):
-        raise ValueError(f"module {name!r}: period {period} s is not a whole multiple of the body step {dt} s")
+        raise ValueError(f"{what} {span} s is not a whole multiple of the body step {dt} s")
     return n
 
 
@@ -138,7 +196,8 @@ class Switcher(Module):
     At each update the guards leaving the active child are tested in order; the first that holds
     moves control to its target, whose :meth:`Module.reset` is called (the inactive child's state,
     e.g. its ρ, is held, not run). Each transition is kept in ``self.transitions_log`` as
-    ``(t, from, to)``. Children run at the Switcher's own rate.
+    ``(t, from, to)``. Children run at the Switcher's own rate. A child with no transition leaving
+    it is a final phase.
     """
 
     def __init__(self, modules: Sequence[Module], transitions: Sequence[tuple[str, str, Callable]],
@@ -179,72 +238,174 @@ class Switcher(Module):
         return self.modules[self.active].update(snapshot)
 
 
-class Loop:
-    """Parallel processing (seed 000 §7.3, seed 003 §6.3.4): multi-rate modules, contributions add.
+Hook = Callable[[Snapshot], None]
 
-    Each body step: take the snapshot; run every module that is due (tick index a multiple of its
-    ticks-per-period); sum the latest contribution of *every* module (a slow module's contribution
-    is held between its updates); apply the sum; step the body. ``base`` is a command added to the
-    sum each tick (e.g. a posture the modules correct). Per-module wall time is kept in ``timing``.
+
+class Loop:
+    """Parallel processing (seed 000 §7.3, seed 003 §6.3.4): multi-rate modules in stages.
+
+    Each body step: take the snapshot (with the loop channels due to be seen, see :class:`Channel`);
+    for each stage, run its modules that are due (tick index a multiple of their ticks-per-period),
+    then combine the latest contribution of *every* module of the stage (a slow module's
+    contribution is held between its updates) into the command — additive channels sum, a set
+    channel takes its one writer's value — and show the stage's undelayed loop channels to the later
+    stages; apply the body's channels; step the body. ``base`` is a command added each tick (e.g. a
+    posture the modules correct). Per-module wall time is kept in ``timing``.
+
+    ``Loop(body, modules)`` runs the modules as one stage; ``Loop(body, stages=[[...], [...]])`` in
+    stages. ``channels``: the loop's own channels (set-points, references), never sent to the body.
     """
 
-    def __init__(self, body: Body, modules: Sequence[Module], recorder: Recorder | None = None,
-                 base: Command | None = None):
+    def __init__(self, body: Body, modules: Sequence[Module] | None = None, recorder: Recorder | None = None,
+                 base: Command | None = None, *, stages: Sequence[Sequence[Module]] | None = None,
+                 channels: Iterable[Channel] = ()):
+        if (modules is None) == (stages is None):
+            raise ValueError("loop: give the modules (one stage) or stages=, not both")
         self.body = body
-        self.modules = list(modules)
+        self.stages = [list(s) for s in stages] if stages is not None else [list(modules)]
+        self.modules = [m for stage in self.stages for m in stage]
         names = [m.name for m in self.modules]
         if len(set(names)) != len(names):
             raise ValueError(f"loop: module names must be unique, got {names}")
+        self.channels = self._declare(body, channels)
+        self.internal = {n: c for n, c in self.channels.items() if n not in body.channels}
         self.recorder = recorder
         self.base = {k: np.asarray(v, dtype=float) for k, v in (base or {}).items()}
+        for k in self.base:
+            self._channel(k, "base")
         self.every = [ticks_per_period(m.period, body.dt, m.name) for m in self.modules]
         self.held: list[Command | None] = [None] * len(self.modules)
         self.timing = {m.name: ModuleTiming() for m in self.modules}
         self.tick = 0
         self.command: Command = {}
+        self._bounds = np.cumsum([0] + [len(s) for s in self.stages]).tolist()
+        self._now = [c for c in self.internal.values() if c.delay == 0]
+        self._later = {n: deque([c.default] * c.delay, maxlen=c.delay) for n, c in self.internal.items() if c.delay}
         self._started = False
         for m in self.modules:
             m.attach(recorder)
 
+    @staticmethod
+    def _declare(body: Body, extra: Iterable[Channel]) -> dict[str, Channel]:
+        declared = getattr(body, "channels", None)
+        if declared is None:
+            raise ChannelError(f"{type(body).__name__} declares no command channels (Body.channels)")
+        table = dict(declared)
+        for c in extra:
+            if c.name in table:
+                raise ChannelError(f"loop channel {c.name!r} is declared twice (or is also a body channel)")
+            table[c.name] = c
+        return table
+
+    def _channel(self, name: str, writer: str) -> Channel:
+        c = self.channels.get(name)
+        if c is None:
+            body = ", ".join(sorted(self.body.channels)[:30]) or "none"
+            own = ", ".join(sorted(self.internal)) or "none"
+            raise ChannelError(f"{writer} writes undeclared channel {name!r} (body channels: {body}; "
+                               f"loop channels: {own})")
+        return c
+
+    def view(self, snapshot: Snapshot) -> Snapshot:
+        """The snapshot modules see at the start of a tick: the body's, plus the loop channels whose
+        (delayed) value is due and those with a default."""
+        if not self.internal:
+            return snapshot
+        view = dict(snapshot)
+        for c in self._now:
+            if c.default is not None:
+                view[c.name] = c.default
+        for name, queue in self._later.items():
+            value = queue[0]
+            if value is not None:
+                view[name] = value
+        return view
+
     def start(self) -> None:
-        snap = self.body.snapshot()
+        snap = self.view(self.body.snapshot())
         for m in self.modules:
             m.reset(snap)
         self._started = True
 
+    def _combine(self, command: Command, lo: int, hi: int, set_writers: dict) -> None:
+        for i in range(lo, hi):
+            part = self.held[i]
+            if not part:
+                continue
+            for channel, value in part.items():
+                c = self.channels.get(channel)
+                if c is None:
+                    self._channel(channel, f"module {self.modules[i].name!r}")
+                value = np.asarray(value, dtype=float)
+                if c.kind == SET:
+                    if channel in set_writers:
+                        raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
+                                           f"{set_writers[channel]!r} and {self.modules[i].name!r}")
+                    set_writers[channel] = self.modules[i].name
+                    command[channel] = value.copy()
+                elif channel in command:
+                    command[channel] = command[channel] + value
+                else:
+                    command[channel] = value.copy()
+
     def step(self) -> Snapshot:
-        """Run one body step; returns the snapshot the modules saw."""
+        """Run one body step; returns the snapshot the first stage saw (later stages also saw the
+        earlier stages' loop channels, written into it)."""
         if not self._started:
             self.start()
-        snap = self.body.snapshot()
-        for i, m in enumerate(self.modules):
-            if self.tick % self.every[i] == 0:
-                t0 = time.perf_counter()
-                self.held[i] = m.update(snap)
-                rec = self.timing[m.name]
-                rec.total_s += time.perf_counter() - t0
-                rec.calls += 1
+        snap = self.view(self.body.snapshot())
         command = {k: v.copy() for k, v in self.base.items()}
-        for part in self.held:
-            add_into(command, part)
+        set_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
+        for s in range(len(self.stages)):
+            lo, hi = self._bounds[s], self._bounds[s + 1]
+            for i in range(lo, hi):
+                if self.tick % self.every[i] == 0:
+                    m = self.modules[i]
+                    t0 = time.perf_counter()
+                    self.held[i] = m.update(snap)
+                    rec = self.timing[m.name]
+                    rec.total_s += time.perf_counter() - t0
+                    rec.calls += 1
+            self._combine(command, lo, hi, set_writers)
+            for c in self._now:
+                if c.name in command:
+                    snap[c.name] = command[c.name]
         self.command = command
+        if self.internal:
+            for name, queue in self._later.items():
+                queue.append(command.get(name, self.internal[name].default))
+            command = {k: v for k, v in command.items() if k not in self.internal}
         self.body.apply(command)
         self.body.step()
         self.tick += 1
         return snap
 
-    def run(self, duration: float, until: Callable[[Snapshot], bool] | None = None,
-            progress: Callable[[float], None] | None = None) -> int:
-        """Step for ``duration`` seconds of body time (or until ``until(snapshot)`` holds).
+    def run(self, duration: float | None = None, until: float | Callable[[Snapshot], bool] | None = None,
+            every: Mapping[int, Hook] | None = None, progress: Callable[[float], None] | None = None) -> int:
+        """Step for ``duration`` seconds of body time, or up to body time ``until`` (a number), and/or
+        until the predicate ``until(snapshot)`` holds after a step.
 
-        Returns the number of steps taken. :class:`SimulationDiverged` propagates; whatever the
-        recorder holds up to that point is kept.
+        ``every`` maps ``n`` to a hook called with the snapshot of every ``n``-th step of this run
+        (the 0th, the nth, ...), for decimated recording. Returns the number of steps taken.
+        :class:`SimulationDiverged` propagates; whatever the recorder holds up to then is kept.
         """
+        stop = until if callable(until) else None
+        if duration is None and until is not None and not callable(until):
+            duration = float(until) - self.body.t
+        if duration is None:
+            raise ValueError("loop.run: give a duration or until= (a time or a predicate with a duration)")
         n = int(round(duration / self.body.dt))
+        hooks = [(int(k), hook) for k, hook in (every or {}).items()]
+        for k, _ in hooks:
+            if k < 1:
+                raise ValueError(f"loop.run: every= needs periods of at least one step, got {k}")
         report_every = max(1, n // 100)
         for k in range(n):
             snap = self.step()
-            if until is not None and until(snap):
+            for period, hook in hooks:
+                if k % period == 0:
+                    hook(snap)
+            if stop is not None and stop(snap):
                 return k + 1
             if progress is not None and k % report_every == 0:
                 progress(k / n)

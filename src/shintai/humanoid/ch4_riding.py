@@ -48,7 +48,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Module
+from shintai.core.runtime import Module, declare
 from shintai.humanoid import ik, quat_axis
 from shintai.humanoid.active import grip_plan
 from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
@@ -94,6 +94,7 @@ class Ch4Body(MujocoBody):
     def __init__(self, *args, **kwargs):
         self.refs = {k: 0.0 for k in REFS}
         super().__init__(*args, **kwargs)
+        self.channels = {**self.channels, **declare(*REFS)}
 
     def apply(self, command: Mapping) -> None:
         self.refs = {k: 0.0 for k in REFS}

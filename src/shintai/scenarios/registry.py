@@ -1,12 +1,14 @@
 """The scenario and benchmark registries that body packages add to.
 
-A body package ``shintai.<body>`` registers its scenarios in ``shintai/<body>/scenarios.py`` and its
-benchmarks in ``shintai/<body>/benchmarks.py`` with the :func:`scenario` and :func:`benchmark`
-decorators; :func:`load_all` imports every such module, so a new body needs no change here.
+A body package ``shintai.<body>`` declares one scenario per file in ``shintai/<body>/experiments/``
+(:func:`experiment`, see :mod:`shintai.scenarios.experiment`), its account in
+``shintai/<body>/notes/<name>.md``, and its benchmarks in ``shintai/<body>/benchmarks.py``
+(:func:`benchmark`); :func:`load_all` imports every such module, so a new body needs no change here.
 
 A scenario is: an id, the thesis section it reproduces, parameters with defaults and allowed
-ranges, a run function that returns metrics computed from the simulation, checks with their basis,
-and thesis reference values (which go into ``metrics.json`` under ``thesis``, never ``metrics``).
+ranges, what it runs (a rig per variant, or a compute function) and the metrics computed from the
+simulation, checks with their basis and kind, and thesis reference values (which go into
+``metrics.json`` under ``thesis``, never ``metrics``).
 """
 
 from __future__ import annotations
@@ -15,8 +17,10 @@ import importlib
 import importlib.util
 import operator
 import pkgutil
-from collections.abc import Callable
+import sys
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import shintai
@@ -129,8 +133,15 @@ class Scenario:
     checks: tuple[Check, ...] = ()
     thesis: dict[str, ThesisValue] = field(default_factory=dict)
     demo: bool = False  # headline scenario of its body, part of `make demo`
-    video: bool = False  # can render an MP4 with --video (MuJoCo bodies)
+    video: bool | Callable[[dict], bool] = False  # can render an MP4 with --video (MuJoCo bodies), per parameters
     demo_video: bool = True  # the demo films it (False where only non-default parameters render)
+    constraints: tuple[tuple[Callable[[dict], bool], str], ...] = ()  # (holds(params), message) across parameters
+    plots: Callable | None = None  # plots(ctx, runs, params) after the metrics (declared experiments)
+    notes_path: Path | None = None  # the scenario's account, <body>/notes/<name>.md
+
+    def films(self, params: dict) -> bool:
+        """Whether ``--video`` can film this scenario with these parameters."""
+        return bool(self.video(params) if callable(self.video) else self.video)
 
     def param(self, name: str) -> Param:
         for p in self.params:
@@ -144,6 +155,9 @@ class Scenario:
         values = {p.name: p.default for p in self.params}
         for key, text in (overrides or {}).items():
             values[key] = self.param(key).parse(text)
+        for holds, message in self.constraints:
+            if not holds(values):
+                raise ParameterError(f"{self.id}: {message}")
         return values
 
 
@@ -158,15 +172,60 @@ SCENARIOS: dict[str, Scenario] = {}
 BENCHMARKS: dict[str, Benchmark] = {}
 
 
+def notes_file(scenario_id: str, module_file: str | None) -> Path | None:
+    """``<body>/notes/<name>.md`` beside the ``experiments/`` folder of the declaring file."""
+    if not module_file:
+        return None
+    return Path(module_file).resolve().parent.parent / "notes" / f"{scenario_id.split('.', 1)[-1]}.md"
+
+
+def _register(sc: Scenario) -> Scenario:
+    old = SCENARIOS.get(sc.id)
+    if old is not None and old.notes_path != sc.notes_path:
+        raise ValueError(f"scenario {sc.id!r} registered twice")
+    SCENARIOS[sc.id] = sc
+    return sc
+
+
+def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thesis=None,
+               rig: Callable | None = None, variants: Sequence[str] | Callable[[dict], Sequence[str]] = ("run",),
+               metrics: Callable | None = None, plots: Callable | None = None, compute: Callable | None = None,
+               filmed: Sequence[str] | Callable[[dict], Sequence[str]] | None = None, constraints=(),
+               demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True) -> Scenario:
+    """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
+
+    Either ``rig(params, variant) -> Rig`` with ``metrics(runs, params) -> dict`` (and optionally
+    ``plots(ctx, runs, params)``, ``variants``, ``filmed``), or ``compute(ctx) -> dict`` for an
+    experiment that is not one loop per run. ``constraints``: ``(holds(params), message)`` pairs
+    checked with the parameters (a violation is a parameter error, exit 2).
+    """
+    if (rig is None) == (compute is None):
+        raise ValueError(f"scenario {id!r}: declare rig= (with metrics=) or compute=, not both")
+    if rig is not None and metrics is None:
+        raise ValueError(f"scenario {id!r}: a rig needs metrics=")
+    run = compute
+    if rig is not None:
+        from shintai.scenarios.experiment import run_variants
+
+        def run(ctx):
+            names = list(variants(ctx.params) if callable(variants) else variants)
+            shot = filmed(ctx.params) if callable(filmed) else filmed
+            ctx.runs = run_variants(ctx, rig, names, shot)
+            return metrics(ctx.runs, ctx.params)
+
+    module_file = sys._getframe(1).f_globals.get("__file__")
+    return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
+                              demo_video, tuple(constraints), plots, notes_file(id, module_file)))
+
+
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
-             demo: bool = False, video: bool = False, demo_video: bool = True):
-    """Decorator registering ``run(ctx) -> metrics`` as a scenario."""
+             demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=()):
+    """Decorator registering ``compute(ctx) -> metrics`` as a scenario (:func:`experiment` with ``compute=``)."""
 
     def register(fn):
-        if id in SCENARIOS and SCENARIOS[id].run is not fn:
-            raise ValueError(f"scenario {id!r} registered twice")
-        SCENARIOS[id] = Scenario(id, source, summary, fn, tuple(params), tuple(checks),
-                                 dict(thesis or {}), demo, video, demo_video)
+        module_file = sys.modules[fn.__module__].__dict__.get("__file__") if fn.__module__ in sys.modules else None
+        _register(Scenario(id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
+                           demo_video, tuple(constraints), None, notes_file(id, module_file)))
         return fn
 
     return register
@@ -186,25 +245,36 @@ _LOADED = False
 LOAD_ERRORS: dict[str, str] = {}  # module -> one-line error, for packages whose scenarios failed to import
 
 
-def load_all() -> None:
-    """Import ``scenarios`` and ``benchmarks`` of every ``shintai`` subpackage (once).
+def experiment_modules() -> list[str]:
+    """Every module of every ``shintai.<body>.experiments`` package, and each body's ``benchmarks``."""
+    names = []
+    for pkg in pkgutil.iter_modules(shintai.__path__):
+        if not pkg.ispkg:
+            continue
+        spec = importlib.util.find_spec(f"shintai.{pkg.name}.experiments")
+        if spec is not None and spec.submodule_search_locations:
+            names += [f"shintai.{pkg.name}.experiments.{m.name}"
+                      for m in pkgutil.iter_modules(spec.submodule_search_locations) if not m.ispkg]
+        for leaf in ("scenarios", "benchmarks"):
+            if importlib.util.find_spec(f"shintai.{pkg.name}.{leaf}") is not None:
+                names.append(f"shintai.{pkg.name}.{leaf}")
+    return names
 
-    A body package that fails to import is recorded in :data:`LOAD_ERRORS` (the command line
-    reports it) instead of hiding every other body's scenarios.
+
+def load_all() -> None:
+    """Import every experiment file and benchmark module of every ``shintai`` subpackage (once).
+
+    A module that fails to import is recorded in :data:`LOAD_ERRORS` (the command line reports it)
+    instead of hiding every other body's scenarios.
     """
     global _LOADED
     if _LOADED:
         return
-    for pkg in pkgutil.iter_modules(shintai.__path__):
-        if not pkg.ispkg:
-            continue
-        for leaf in ("scenarios", "benchmarks"):
-            name = f"shintai.{pkg.name}.{leaf}"
-            try:
-                if importlib.util.find_spec(name) is not None:
-                    importlib.import_module(name)
-            except Exception as exc:  # noqa: BLE001 - reported, not swallowed
-                LOAD_ERRORS[name] = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    for name in experiment_modules():
+        try:
+            importlib.import_module(name)
+        except Exception as exc:  # noqa: BLE001 - reported, not swallowed
+            LOAD_ERRORS[name] = f"{type(exc).__name__}: {exc}".splitlines()[0]
     _LOADED = True
 
 

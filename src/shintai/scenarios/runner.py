@@ -71,6 +71,7 @@ class RunContext:
     recorder: Recorder = field(default_factory=Recorder)
     sim_time_s: float = 0.0
     extra: dict[str, Any] = field(default_factory=dict)  # extra JSON-able results (tables) for the report
+    runs: dict[str, Any] = field(default_factory=dict)  # a declared experiment's runs by variant
 
     def __post_init__(self):
         self.rng = np.random.default_rng(self.seed)
@@ -118,8 +119,10 @@ def _jsonable(x: Any) -> Any:
 
 
 def scenario_notes(sc: Scenario) -> str:
-    """The scenario's own account — its model, what reproduces, what does not and why: the run
-    function's docstring, or its module's where the function has none."""
+    """The scenario's own account — what it reproduces, what differs and why: ``notes/<name>.md``
+    (or, for a scenario not yet given one, its run function's or module's docstring)."""
+    if sc.notes_path is not None and sc.notes_path.is_file():
+        return sc.notes_path.read_text().strip()
     return inspect.getdoc(sc.run) or inspect.getdoc(inspect.getmodule(sc.run)) or ""
 
 
@@ -132,10 +135,11 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
     """
     sc = get(scenario_id)
     params = sc.resolve(overrides)
-    if video and not sc.video:
+    if video and not sc.films(params):
         from shintai.scenarios.registry import ParameterError
 
-        raise ParameterError(f"--video: {sc.id} has no MuJoCo body to render")
+        what = "with these parameters" if sc.video else "(no MuJoCo body to render)"
+        raise ParameterError(f"--video: {sc.id} has nothing to film {what}")
     out = Path(out) if out is not None else Path("out") / sc.id
     out.mkdir(parents=True, exist_ok=True)
     ctx = RunContext(sc, params, seed, out, video=video, quiet=quiet)
@@ -144,6 +148,8 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
     metrics: dict[str, Any] = {}
     try:
         metrics = dict(sc.run(ctx) or {})
+        if sc.plots is not None:
+            sc.plots(ctx, ctx.runs, params)
     except Exception as exc:  # a diverging simulation or a bug: keep what was computed
         error = f"{type(exc).__name__}: {exc}".splitlines()[0]
     wall = time.perf_counter() - t0

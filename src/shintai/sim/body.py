@@ -39,7 +39,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged, Snapshot
+from shintai.core.runtime import Body, SimulationDiverged, Snapshot, declare
 
 ModelSource = str | os.PathLike | mujoco.MjSpec | mujoco.MjModel
 
@@ -104,6 +104,7 @@ class MujocoBody(Body):
         self.data = mujoco.MjData(self.model)
         self.substeps = int(substeps)
         self.ids = {kind: self._name_ids(kind) for kind in _OBJ}
+        self.channels = declare("ctrl", *self.ids["actuator"])  # additive: the Loop sums into data.ctrl
         self.after_step: list[Callable[[], None]] = []
         self._contact_saved: dict[int, tuple[int, int]] = {}
         self._views, self._scalars = self._snapshot_layout()

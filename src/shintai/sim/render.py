@@ -46,6 +46,14 @@ def honour_mujoco_gl() -> None:
         importlib.reload(gl)
 
 
+def mujoco_of(body) -> MujocoBody | None:
+    """The MuJoCo body to film for a shintai Body: itself, or the MujocoBody it wraps (``body.mj``)."""
+    if isinstance(body, MujocoBody):
+        return body
+    inner = getattr(body, "mj", None)
+    return inner if isinstance(inner, MujocoBody) else None
+
+
 def make_renderer(model: mujoco.MjModel, width: int, height: int) -> mujoco.Renderer:
     """An offscreen renderer, growing the model's offscreen buffer if the image needs it."""
     global _gl_failure

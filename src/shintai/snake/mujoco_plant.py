@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Body
+from shintai.core.runtime import SET, Body, declare
 from shintai.sim.body import MujocoBody
 from shintai.sim.render import VideoRecorder
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, MUJOCO_SNAKE, MujocoSnakeSettings, SnakeGeometry
@@ -202,6 +202,7 @@ class MujocoSnake(Body):
     heading gets σ / marker_span rad); ``head_pose`` is ``"mocap"`` or ``"model"``."""
 
     CHANNELS = ("phi_dot", "psi_dot", "grounded")
+    channels = {**declare("phi_dot", "psi_dot"), **declare("grounded", kind=SET)}
 
     def __init__(self, w_h0, phi0, geometry: SnakeGeometry = CH3_ROBOT, dt: float = CH3_GAINS.dt,
                  settings: MujocoSnakeSettings = MUJOCO_SNAKE, scene: Scene = Scene(), mocap_noise: float = 0.0,

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged
+from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
 from shintai.snake.model import check_mode, configuration, constraint_terms
 
@@ -27,6 +27,7 @@ class KinematicSnake(Body):
     """Planar kinematic snake: snapshot ``t, w_h, phi, psi, grounded, slip``; command ``phi_dot, grounded``."""
 
     CHANNELS = ("phi_dot", "grounded")
+    channels = {**declare("phi_dot"), **declare("grounded", kind=SET)}
 
     def __init__(self, w_h0, phi0, geometry: SnakeGeometry = CH3_ROBOT, dt: float = CH3_GAINS.dt,
                  settings: PlantSettings = PLANT):

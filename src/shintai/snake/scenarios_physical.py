@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.path import Path as Polygon
 
-from shintai.core.runtime import Body, Module, SimulationDiverged
+from shintai.core.runtime import SET, Body, Module, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, MUJOCO_SNAKE, SnakeGeometry
 from shintai.snake.model import body_points, configuration
 from shintai.snake.model3d import (
@@ -192,6 +192,7 @@ class KinematicSpatial(Body):
     command ``psi_dot``, ``grounded``."""
 
     CHANNELS = ("psi_dot", "grounded")
+    channels = {**declare("psi_dot"), **declare("grounded", kind=SET)}
 
     def __init__(self, w_h, psi, geometry: SnakeGeometry, model: SpatialModel, dt: float = CH3_GAINS.dt):
         self.geometry, self.model, self.dt = geometry, model, float(dt)

@@ -48,7 +48,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from shintai.core.runtime import Body, Module, SimulationDiverged
+from shintai.core.runtime import SET, Body, Module, SimulationDiverged, declare
 from shintai.snake.constants import (
     CH4_ROBOT,
     TWO_PLANE,
@@ -585,6 +585,7 @@ class TwoPlaneSnake(Body):
     """
 
     CHANNELS = ("psi_dot", "contact")
+    channels = {**declare("psi_dot"), **declare("contact", kind=SET)}
 
     def __init__(self, world: TwoPlaneWorld, p_h, R_h, psi, contact, geometry: SnakeGeometry = CH4_ROBOT,
                  settings: TwoPlaneSettings = TWO_PLANE, link_radius: float = TWO_PLANE_SCENE.link_radius):

@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shintai.core import Body, Loop, Module, Recorder, SimulationDiverged
-from shintai.core.runtime import FunctionModule
+from shintai.core.runtime import FunctionModule, declare
 from shintai.spine.geometry import Chain, MuscleSet, SpineModel
 from shintai.spine.robots import BEBE
 
@@ -128,6 +128,8 @@ class BeBePlant(Body):
     Snapshot: ``t``, ``target_px`` (2, target minus image centre, x right / y up), ``theta`` (15 joint
     angles), ``valve``, ``pressure``.
     """
+
+    channels = declare("valve", "push")
 
     def __init__(self, params: BeBeParams = BeBeParams(), target=None, rng: np.random.Generator | None = None):
         self.prm = params

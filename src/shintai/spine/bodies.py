@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged, Snapshot
+from shintai.core.runtime import Body, SimulationDiverged, Snapshot, declare
 from shintai.spine.control import Mode
 from shintai.spine.geometry import MuscleSet, SpineModel
 from shintai.spine.robots import DiscSpec, G, RingDiscSpec, SpineRobot
@@ -74,6 +74,7 @@ class QuasiStaticSpine(Body):
     ``tension``, ``top`` (3,) the top link's origin, ``t``.
     """
 
+    channels = declare("length", "push")
     dt_default = 0.1  # s per equilibrium: a static posture "held for a while"
     max_iterations = 200
     max_step = 0.02  # rad (or m for a gap) per Newton step

@@ -40,6 +40,7 @@ import math
 import mujoco
 import numpy as np
 
+from shintai.core.runtime import declare
 from shintai.sim.body import MujocoBody
 from shintai.spine.actuators import DCMotorDrive, Encoder, TensionSensor, posture_from_accelerometers
 from shintai.spine.geometry import matrix_rpy, rpy_matrix
@@ -238,6 +239,7 @@ class SpineBody(MujocoBody):
         self.encoder = Encoder(robot.motors)
         self.sensor = TensionSensor(robot.sensor)
         super().__init__(build_spec(robot, loads, joint, interference, timestep, ligaments), substeps=substeps)
+        self.channels = {**self.channels, **declare("duty")}
         m = self.model
         names = robot.muscle_names
         self.tendon_ids = np.array([mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_TENDON, nm) for nm in names])

@@ -1,0 +1,49 @@
+"""Small geometry every body uses, in one place: elementary rotations, the cross-product matrix, angle
+wrapping and unwrapping."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def rot_x(a: float) -> np.ndarray:
+    """Rotation by ``a`` about x."""
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(a: float) -> np.ndarray:
+    """Rotation by ``a`` about y."""
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(a: float) -> np.ndarray:
+    """Rotation by ``a`` about z."""
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def skew(r) -> np.ndarray:
+    """[r]_× with [r]_× a = r × a."""
+    x, y, z = r
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
+def wrap(a):
+    """Angle(s) wrapped to [−π, π) (a float for a scalar, an array otherwise)."""
+    out = (np.asarray(a, dtype=float) + math.pi) % (2 * math.pi) - math.pi
+    return float(out) if out.ndim == 0 else out
+
+
+def wrap_pi(angle: float) -> float:
+    """An angle in (−π, π] (the other half-open convention, where +π stays +π)."""
+    return float(np.pi - np.mod(np.pi - angle, 2 * np.pi))
+
+
+def unwrap_from(angle, start: float) -> np.ndarray:
+    """A series of wrapped angles made continuous and shifted to begin at ``start``."""
+    u = np.unwrap(np.asarray(angle, dtype=float))
+    return u - u[0] + start

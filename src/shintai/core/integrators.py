@@ -1,0 +1,30 @@
+"""Fixed-step integrators shared by the kinematic models (one place each)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+
+def rk4_constant_rate(f: Callable, x, q, u, h: float, steps: int = 1, k1=None):
+    """RK4 of ẋ = f(x, q) while q moves at the constant rate u (q(t) = q + u t is exact).
+
+    ``steps`` sub-steps of ``h``; ``k1`` is f(x, q) if the caller already has it. Returns (x, q) after
+    ``steps · h``.
+    """
+    for i in range(steps):
+        if i or k1 is None:
+            k1 = f(x, q)
+        mid = q + 0.5 * h * u
+        k2 = f(x + 0.5 * h * k1, mid)
+        k3 = f(x + 0.5 * h * k2, mid)
+        k4 = f(x + h * k3, q + h * u)
+        x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        q = q + h * u
+    return x, q
+
+
+def midpoint(f: Callable[[np.ndarray], np.ndarray], x, h: float):
+    """One explicit midpoint step of ẋ = f(x): the rate at x + h/2·f(x), then the full step."""
+    return x + h * f(x + 0.5 * h * f(x))
