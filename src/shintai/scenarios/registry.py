@@ -84,11 +84,18 @@ OPS: dict[str, Callable[[Any, Any], bool]] = {
 }
 
 
+REPRODUCTION, CONSISTENCY = "reproduction", "consistency"
+
+
 @dataclass(frozen=True)
 class Check:
     """``metrics[metric] op threshold``; ``threshold`` may name another metric.
 
-    ``basis`` says why this threshold: a thesis value, a thesis claim, or derived.
+    ``basis`` says why this threshold: a thesis value, a thesis claim, or derived. ``kind``:
+    ``"reproduction"`` (it compares with a thesis result and its basis quotes where) or
+    ``"consistency"`` (a property of our own model or method, a value that follows from our own inputs).
+    Only reproduction checks decide whether an experiment reproduces (:mod:`shintai.scenarios.coverage`);
+    ``row`` names the coverage row a reproduction check is about when its scenario covers several.
     """
 
     metric: str
@@ -96,6 +103,13 @@ class Check:
     threshold: float | str
     basis: str
     name: str | None = None
+    kind: str | None = None
+    row: str | None = None
+
+    def __post_init__(self):
+        if self.kind not in (None, REPRODUCTION, CONSISTENCY):
+            raise ValueError(f"check {self.name or self.metric!r}: kind must be {REPRODUCTION!r} or "
+                             f"{CONSISTENCY!r}, got {self.kind!r}")
 
     def evaluate(self, metrics: dict[str, Any]) -> dict[str, Any]:
         value = metrics.get(self.metric)
@@ -104,7 +118,8 @@ class Check:
               and bool(OPS[self.op](value, thr)))
         return {"name": self.name or self.metric, "metric": self.metric, "op": self.op,
                 "threshold": thr, "threshold_ref": self.threshold if isinstance(self.threshold, str) else None,
-                "value": value, "ok": ok, "basis": self.basis}
+                "value": value, "ok": ok, "basis": self.basis, "kind": self.kind,
+                **({"row": self.row} if self.row else {})}
 
 
 def _finite(x: Any) -> bool:
@@ -138,6 +153,8 @@ class Scenario:
     constraints: tuple[tuple[Callable[[dict], bool], str], ...] = ()  # (holds(params), message) across parameters
     plots: Callable | None = None  # plots(ctx, runs, params) after the metrics (declared experiments)
     notes_path: Path | None = None  # the scenario's account, <body>/notes/<name>.md
+    covers: tuple[str, ...] = ()  # the coverage rows (thesis experiments) it reproduces
+    stochastic: bool = False  # its result depends on the seed: `reproduce --seeds N` gives mean ± std
 
     def films(self, params: dict) -> bool:
         """Whether ``--video`` can film this scenario with these parameters."""
@@ -191,7 +208,8 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
                rig: Callable | None = None, variants: Sequence[str] | Callable[[dict], Sequence[str]] = ("run",),
                metrics: Callable | None = None, plots: Callable | None = None, compute: Callable | None = None,
                filmed: Sequence[str] | Callable[[dict], Sequence[str]] | None = None, constraints=(),
-               demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True) -> Scenario:
+               demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True,
+               covers: Sequence[str] = (), stochastic: bool = False) -> Scenario:
     """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
 
     Either ``rig(params, variant) -> Rig`` with ``metrics(runs, params) -> dict`` (and optionally
@@ -215,17 +233,19 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
 
     module_file = sys._getframe(1).f_globals.get("__file__")
     return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                              demo_video, tuple(constraints), plots, notes_file(id, module_file)))
+                              demo_video, tuple(constraints), plots, notes_file(id, module_file), tuple(covers),
+                              stochastic))
 
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
-             demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=()):
+             demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=(),
+             covers: Sequence[str] = (), stochastic: bool = False):
     """Decorator registering ``compute(ctx) -> metrics`` as a scenario (:func:`experiment` with ``compute=``)."""
 
     def register(fn):
         module_file = sys.modules[fn.__module__].__dict__.get("__file__") if fn.__module__ in sys.modules else None
         _register(Scenario(id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                           demo_video, tuple(constraints), None, notes_file(id, module_file)))
+                           demo_video, tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic))
         return fn
 
     return register

@@ -165,6 +165,7 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
         "sim_time_s": ctx.sim_time_s,
         "wall_time_s": wall,
         "notes": scenario_notes(sc),
+        "covers": list(sc.covers),
     }
     if ctx.extra:
         result["extra"] = ctx.extra
