@@ -91,25 +91,43 @@ def run_one(job: tuple) -> dict:
 
 
 def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, title: str,
-              address: str | None = None, checks_only_ran: bool = False) -> int:
+              address: str | None = None, checks_only_ran: bool = False, seeds: int = 1) -> int:
+    """Run ``ids`` (a stochastic scenario ``seeds`` times, seeds ``seed`` … ``seed + seeds − 1``, combined
+    as mean ± std) on an executor, then write REPORT.md and index.html from what finished."""
     from shintai.evolve.executors import make_executor
     from shintai.scenarios.report import write_report
+    from shintai.scenarios.seeds import write_combined
 
     out.mkdir(parents=True, exist_ok=True)
+
     def films(sid):
         sc = registry.SCENARIOS[sid]
         return video and sc.demo_video and sc.films(sc.resolve())
 
-    jobs = [(sid, str(out / sid), seed, films(sid)) for sid in ids]
+    def seeds_of(sid):
+        return list(range(seed, seed + seeds)) if seeds > 1 and registry.SCENARIOS[sid].stochastic else None
+
+    jobs = []
+    for sid in ids:
+        many = seeds_of(sid)
+        jobs += ([(sid, str(out / sid / f"seed-{s}"), s, films(sid) and s == seed) for s in many] if many
+                 else [(sid, str(out / sid), seed, films(sid))])
     t0 = time.perf_counter()
 
     def progress(done, total):
-        print(f"reproduce: {done}/{total} scenarios done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
+        print(f"reproduce: {done}/{total} runs done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
 
+    summaries = []
     try:
         with make_executor(executor, address=address) as ex:
             summaries = ex.map(run_one, jobs, progress=progress)
     finally:  # a report of whatever finished, even if the run was interrupted
+        for sid in ids:
+            if seeds_of(sid):
+                try:
+                    write_combined(registry.SCENARIOS[sid], out / sid, seeds_of(sid))
+                except FileNotFoundError:
+                    pass
         results = write_report(out, ids, title)
     for s in summaries:
         print(f"  {'pass' if s['ok'] else 'FAIL'} {s['scenario']}" + (f": {s['error']}" if s["error"] else ""))
@@ -121,8 +139,10 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
 
 def cmd_reproduce(args) -> int:
     ids = select(args.only, registry.SCENARIOS)
-    return reproduce(ids, Path(args.out), args.executor, args.seed, video=False,
-                     title="shintai reproduction report", address=args.address)
+    if args.seeds < 1:
+        raise ParameterError(f"--seeds {args.seeds}: expected a positive integer")
+    return reproduce(ids, Path(args.out), args.executor, args.seed, video=args.video,
+                     title="shintai reproduction report", address=args.address, seeds=args.seeds)
 
 
 def cmd_demo(args) -> int:
@@ -171,7 +191,10 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--out", default="out/reproduce")
     rep.add_argument("--executor", choices=executors, default="process")
     rep.add_argument("--address", help="Ray cluster address (with --executor ray); default: RAY_ADDRESS or local")
-    rep.add_argument("--seed", type=int, default=0)
+    rep.add_argument("--seed", type=int, default=0, help="first seed")
+    rep.add_argument("--seeds", type=int, default=1,
+                     help="run each stochastic scenario with this many seeds and report mean ± std")
+    rep.add_argument("--video", action="store_true", help="film the scenarios that can be filmed")
     rep.set_defaults(fn=cmd_reproduce)
 
     d = sub.add_parser("demo", help="one headline scenario per body, with videos, into out/demo")

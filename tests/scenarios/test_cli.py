@@ -106,7 +106,7 @@ def test_reproduce_writes_report_and_index(tmp_path, executor):
     assert main(["reproduce", "--only", "core.*", "--out", str(tmp_path), "--executor", executor]) == 0
     report = (tmp_path / "REPORT.md").read_text()
     assert "core.minjerk" in report and "core.search-index" in report and "2 of 2" in report
-    assert "<table>" in (tmp_path / "index.html").read_text()
+    assert '<table id="scenarios">' in (tmp_path / "index.html").read_text()
     assert (tmp_path / "core.minjerk" / "metrics.json").exists()
 
 

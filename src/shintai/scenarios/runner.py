@@ -100,14 +100,14 @@ class RunContext:
             plt.close(fig)
 
 
-def _jsonable(x: Any) -> Any:
+def jsonable(x: Any) -> Any:
     """Numbers and arrays to plain JSON (NaN/inf become null rather than invalid JSON)."""
     if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
+        return {str(k): jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
+        return [jsonable(v) for v in x]
     if isinstance(x, np.ndarray):
-        return _jsonable(x.tolist())
+        return jsonable(x.tolist())
     if isinstance(x, (np.bool_, bool)):
         return bool(x)
     if isinstance(x, (np.integer,)):
@@ -116,6 +116,33 @@ def _jsonable(x: Any) -> Any:
         x = float(x)
         return x if math.isfinite(x) else None
     return x
+
+
+_COMMIT: list[str | None] = []
+
+
+def source_commit() -> str | None:
+    """The git commit of the shintai checkout that runs (``+dirty`` with uncommitted changes), or None
+    outside a checkout (an installed wheel)."""
+    if not _COMMIT:
+        import subprocess
+
+        here = Path(__file__).resolve().parent
+        try:
+            head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=10)
+            dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
+                                   capture_output=True, text=True, timeout=10)
+            _COMMIT.append(head.stdout.strip() + ("+dirty" if dirty.stdout.strip() else "")
+                           if head.returncode == 0 else None)
+        except (OSError, subprocess.SubprocessError):
+            _COMMIT.append(None)
+    return _COMMIT[0]
+
+
+def command_line(scenario_id: str, overrides: dict[str, str] | None, seed: int) -> str:
+    """The ``shintai run`` command that reproduces a result."""
+    sets = "".join(f" --set {k}={v}" for k, v in (overrides or {}).items())
+    return f"shintai run {scenario_id}" + (f" --seed {seed}" if seed else "") + sets
 
 
 def scenario_notes(sc: Scenario) -> str:
@@ -166,13 +193,15 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
         "wall_time_s": wall,
         "notes": scenario_notes(sc),
         "covers": list(sc.covers),
+        "command": command_line(sc.id, overrides, seed),
+        "commit": source_commit(),
     }
     if ctx.extra:
         result["extra"] = ctx.extra
     if error is not None:
         result["error"] = error
     result["ok"] = error is None and all(c["ok"] for c in result["checks"])
-    result = _jsonable(result)
+    result = jsonable(result)
     ctx.recorder.save(out / "log.npz")
     tmp = out / "metrics.json.tmp"
     tmp.write_text(json.dumps(result, indent=2) + "\n")
