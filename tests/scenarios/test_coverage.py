@@ -88,4 +88,4 @@ def test_reproduce_runs_a_stochastic_scenario_over_seeds(tmp_path):
     assert noisy["seeds"] == [0, 1, 2] and len(set(draws)) == 3
     assert noisy["metrics"]["draw_m"] == pytest.approx(sum(draws) / 3) and noisy["checks"][0]["held_in"] == 3
     assert not (tmp_path / "core.minjerk" / "seed-1").exists()  # a deterministic scenario runs once
-    assert "± " in (tmp_path / "REPORT.md").read_text() or noisy["metrics_std"]["draw_m"] > 0
+    assert noisy["metrics_std"]["draw_m"] > 0
