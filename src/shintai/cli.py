@@ -76,7 +76,8 @@ def cmd_run(args) -> int:
         raise ParameterError(f"--seed {args.seed}: expected a non-negative integer")
     registry.get(args.id)  # unknown id: exit 2 before anything runs
     out = Path(args.out) if args.out else Path("out") / args.id
-    result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet)
+    result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet,
+                          view=args.view)
     print_result(result, out)
     return 0 if result["ok"] else 1
 
@@ -182,6 +183,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override a parameter")
     r.add_argument("--seed", type=int, default=0)
     r.add_argument("--video", action="store_true", help="render video.mp4 (MuJoCo scenarios)")
+    r.add_argument("--view", action="store_true", help="show the run live in MuJoCo's viewer (needs a display)")
     r.add_argument("--quiet", action="store_true", help="no progress on stderr")
     r.set_defaults(fn=cmd_run)
 

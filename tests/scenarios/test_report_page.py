@@ -2,15 +2,14 @@
 and the summary counts on the page are those of the coverage rows computed from metrics.json."""
 
 import json
-import os
 import re
-import shutil
 import subprocess
 
 import imageio.v2 as imageio
 import numpy as np
 import pytest
 
+from debian_tools import ensure
 from shintai.cli import main
 from shintai.scenarios import registry
 from shintai.scenarios.coverage import all_rows
@@ -20,26 +19,10 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 
-def find_chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        if shutil.which(name):
-            return shutil.which(name)
-    return None
-
-
 @pytest.fixture(scope="module")
 def chromium():
     """Debian's chromium, installed with apt-get when missing (skipped, saying why, where it cannot be)."""
-    path = find_chromium()
-    if path is None and shutil.which("apt-get") and os.geteuid() == 0:
-        subprocess.run(["apt-get", "update", "-qq"], capture_output=True, timeout=600)
-        subprocess.run(["apt-get", "install", "-y", "-qq", "chromium"], capture_output=True, timeout=900,
-                       env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"})
-        path = find_chromium()
-    if path is None:
-        pytest.skip("no chromium and it could not be installed here (needs root and apt-get): the page is not "
-                    "tested in a browser")
-    return path
+    return ensure("chromium", "chromium")
 
 
 def dom(chromium, page, tmp_path):

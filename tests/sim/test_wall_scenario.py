@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 
 from shintai.cli import main
 from shintai.sim.corner import build_corner, contact_start, probe_sign, reaction_on_hand, settle
@@ -27,3 +28,11 @@ def test_short_run_holds_its_checks_and_renders(tmp_path):
     assert code == 0, [c for c in m["checks"] if not c["ok"]]
     assert m["metrics"]["escape_reference_shift_m"] < -0.009
     assert (tmp_path / "video.mp4").stat().st_size > 5000 and (tmp_path / "wall_force.png").exists()
+
+
+def test_an_update_period_off_the_control_step_is_a_parameter_error(tmp_path):
+    from shintai.scenarios.registry import ParameterError
+    from shintai.scenarios.runner import run_scenario
+
+    with pytest.raises(ParameterError, match="update_s must be a whole multiple of the 4 ms control step"):
+        run_scenario("sim.wall-force", tmp_path, {"update_s": "0.05"}, quiet=True)

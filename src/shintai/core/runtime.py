@@ -158,13 +158,18 @@ def ticks_per_period(period: float | None, dt: float, name: str) -> int:
     return whole_multiple(period, dt, f"module {name!r}: period")
 
 
-def whole_multiple(span: float, dt: float, what: str) -> int:
-    """``span / dt`` as an integer ≥ 1; a :class:`ValueError` naming ``what`` if it is not whole."""
+def is_multiple(span: float, dt: float) -> bool:
+    """Whether ``span`` is a whole multiple (≥ 1) of ``dt``."""
     ratio = span / dt
     n = int(round(ratio))
-    if n < 1 or not math.isclose(ratio, n, rel_tol=1e-9, abs_tol=1e-9):
+    return n >= 1 and math.isclose(ratio, n, rel_tol=1e-9, abs_tol=1e-9)
+
+
+def whole_multiple(span: float, dt: float, what: str) -> int:
+    """``span / dt`` as an integer ≥ 1; a :class:`ValueError` naming ``what`` if it is not whole."""
+    if not is_multiple(span, dt):
         raise ValueError(f"{what} {span} s is not a whole multiple of the body step {dt} s")
-    return n
+    return int(round(span / dt))
 
 
 def add_into(total: Command, part: Mapping | None) -> None:

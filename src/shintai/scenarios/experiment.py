@@ -108,16 +108,24 @@ VIDEO_DEFAULTS = {"fps": 15, "width": 480, "height": 360}
 
 def film(ctx, body: Body, variant: str | None = None, **view):
     """The one video idiom: a recorder filming ``body``'s MuJoCo model into ``video.mp4`` (or
-    ``video_<variant>.mp4``) when the run asked for ``--video``, else a null context."""
-    if not ctx.video:
+    ``video_<variant>.mp4``) when the run asked for ``--video``, and MuJoCo's own viewer showing it live
+    when it asked for ``--view``; a null context otherwise."""
+    if not (ctx.video or getattr(ctx, "view", False)):
         return contextlib.nullcontext()
     from shintai.sim.render import VideoRecorder, mujoco_of
 
     mj = mujoco_of(body)
     if mj is None:
         return contextlib.nullcontext()
-    path = ctx.out / ("video.mp4" if variant is None else f"video_{variant}.mp4")
-    return VideoRecorder(mj, path, **{**VIDEO_DEFAULTS, **view})
+    stack = contextlib.ExitStack()
+    if ctx.video:
+        path = ctx.out / ("video.mp4" if variant is None else f"video_{variant}.mp4")
+        stack.enter_context(VideoRecorder(mj, path, **{**VIDEO_DEFAULTS, **view}))
+    if getattr(ctx, "view", False):
+        from shintai.sim.viewer import LiveViewer
+
+        stack.enter_context(LiveViewer(mj, title=f"{ctx.scenario.id}" + (f" ({variant})" if variant else "")))
+    return stack
 
 
 def run_rig(rig: Rig, recorder: Recorder | None = None, progress: Callable[[float], None] | None = None) -> Run:

@@ -68,6 +68,7 @@ class RunContext:
     out: Path
     video: bool = False
     quiet: bool = False
+    view: bool = False
     recorder: Recorder = field(default_factory=Recorder)
     sim_time_s: float = 0.0
     extra: dict[str, Any] = field(default_factory=dict)  # extra JSON-able results (tables) for the report
@@ -154,7 +155,7 @@ def scenario_notes(sc: Scenario) -> str:
 
 
 def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dict[str, str] | None = None,
-                 seed: int = 0, video: bool = False, quiet: bool = False) -> dict[str, Any]:
+                 seed: int = 0, video: bool = False, quiet: bool = False, view: bool = False) -> dict[str, Any]:
     """Run one scenario, write its outputs, and return the content of ``metrics.json``.
 
     Raises :class:`~shintai.scenarios.registry.ParameterError` for a bad id or ``--set`` before
@@ -167,9 +168,18 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
 
         what = "with these parameters" if sc.video else "(no MuJoCo body to render)"
         raise ParameterError(f"--video: {sc.id} has nothing to film {what}")
+    if view:
+        from shintai.scenarios.registry import ParameterError
+        from shintai.sim.viewer import display_available
+
+        if not sc.films(params):
+            raise ParameterError(f"--view: {sc.id} has no MuJoCo body to show with these parameters")
+        if not display_available():
+            raise ParameterError("--view: no display to open the viewer on (DISPLAY is not set); "
+                                 "use --video to film the run instead")
     out = Path(out) if out is not None else Path("out") / sc.id
     out.mkdir(parents=True, exist_ok=True)
-    ctx = RunContext(sc, params, seed, out, video=video, quiet=quiet)
+    ctx = RunContext(sc, params, seed, out, video=video, quiet=quiet, view=view)
     t0 = time.perf_counter()
     error = None
     metrics: dict[str, Any] = {}

@@ -62,8 +62,11 @@ CORNER_XML = f"""
 """
 
 
+CONTROL_STEP = 0.004  # s: the hrpsys control period, seed 000 App. A.2.1 (4 physics steps of 1 ms)
+
+
 def build_corner() -> MujocoBody:
-    """The hand and the corner; control step 4 ms (hrpsys period, seed 000 App. A.2.1)."""
+    """The hand and the corner, stepped every :data:`CONTROL_STEP`."""
     return MujocoBody(CORNER_XML, substeps=4)
 
 

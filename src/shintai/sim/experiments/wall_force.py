@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.core.runtime import is_multiple
 from shintai.core.search_index import StabilityMonitor
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.sim.corner import AXES, build_corner, passive_loop, press, probe_sign, shift_wall
+from shintai.sim.corner import AXES, CONTROL_STEP, build_corner, passive_loop, press, probe_sign, shift_wall
 
 @scenario(
     "sim.wall-force",
@@ -38,6 +39,8 @@ from shintai.sim.corner import AXES, build_corner, passive_loop, press, probe_si
             "escape_per_newton": ThesisValue("1/K_v per update (quasi-static)", "spec 000 §2.10 [DERIVED]")},
     demo=True,
     video=True,
+    constraints=[(lambda p: is_multiple(p["update_s"], CONTROL_STEP),
+                  f"update_s must be a whole multiple of the {1000 * CONTROL_STEP:g} ms control step")],
 )
 def wall_force_scenario(ctx):
     p = ctx.params
@@ -50,7 +53,7 @@ def wall_force_scenario(ctx):
     n = p["updates"]
     wrong, _, _, _, _ = press(-sgn, slope, f_trg, p["step_fraction"], p["update_s"], max(3, n // 4), 0.0)
     ctx.progress(0.9, "wrong sign")
-    if ctx.video:
+    if ctx.video or ctx.view:
         _film(ctx, sgn, slope, f_trg)
     ctx.sim_time_s = float(t_end)
     monitor = StabilityMonitor(tol=1e-3)
