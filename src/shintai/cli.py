@@ -172,6 +172,22 @@ def cmd_bench(args) -> int:
     return 1 if any("error" in r for r in results.values()) else 0
 
 
+def cmd_model(args) -> int:
+    from shintai.sim.export import UnknownModel, export, load_models
+
+    models = load_models()
+    if args.list or args.id is None:
+        for mid in sorted(models):
+            print(f"{mid:28s} {models[mid].summary}")
+        return 0
+    try:
+        path = export(args.id, args.out)
+    except UnknownModel as exc:
+        raise ParameterError(exc.args[0]) from None
+    print(f"{args.id} -> {path} (open with MuJoCo's simulate: python -m mujoco.viewer --mjcf={path})")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = OneLineParser(prog="shintai", description="Robot bodies of four theses: run, reproduce, benchmark.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
@@ -204,6 +220,12 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--executor", choices=executors, default="process")
     d.add_argument("--no-video", action="store_true")
     d.set_defaults(fn=cmd_demo)
+
+    mo = sub.add_parser("model", help="export a body's MuJoCo model as MJCF (or --list the models)")
+    mo.add_argument("id", nargs="?", help="model id (see --list)")
+    mo.add_argument("--list", action="store_true", help="every model id with a summary")
+    mo.add_argument("--out", default="out/models", help="output folder (default out/models)")
+    mo.set_defaults(fn=cmd_model)
 
     b = sub.add_parser("bench", help="run the benchmarks, write bench.json")
     b.add_argument("--only", help="glob over benchmark ids")

@@ -101,6 +101,7 @@ class MujocoBody(Body):
         if int(substeps) != substeps or substeps < 1:
             raise ValueError(f"substeps must be a positive integer, got {substeps!r}")
         self.model = load_model(source)
+        self.spec = source if isinstance(source, mujoco.MjSpec) else None  # kept for export (sim/export.py)
         self.data = mujoco.MjData(self.model)
         self.substeps = int(substeps)
         self.ids = {kind: self._name_ids(kind) for kind in _OBJ}
