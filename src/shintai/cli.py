@@ -17,6 +17,7 @@ from pathlib import Path
 
 from shintai.scenarios import registry
 from shintai.scenarios.registry import ParameterError
+from shintai.scenarios.runner import Progress
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -92,7 +93,7 @@ def run_one(job: tuple) -> dict:
 
 
 def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, title: str,
-              address: str | None = None, checks_only_ran: bool = False, seeds: int = 1) -> int:
+              address: str | None = None, checks_only_ran: bool = False, seeds: int = 1, quiet: bool = False) -> int:
     """Run ``ids`` (a stochastic scenario ``seeds`` times, seeds ``seed`` … ``seed + seeds − 1``, combined
     as mean ± std) on an executor, then write REPORT.md and index.html from what finished."""
     from shintai.evolve.executors import make_executor
@@ -113,10 +114,10 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
         many = seeds_of(sid)
         jobs += ([(sid, str(out / sid / f"seed-{s}"), s, films(sid) and s == seed) for s in many] if many
                  else [(sid, str(out / sid), seed, films(sid))])
-    t0 = time.perf_counter()
+    bar = Progress("reproduce", quiet=quiet)
 
     def progress(done, total):
-        print(f"reproduce: {done}/{total} runs done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
+        bar(done / total, f"{done}/{total} runs done")
 
     summaries = []
     try:
@@ -130,7 +131,7 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
                 except FileNotFoundError:
                     pass
         results = write_report(out, ids, title)
-    for s in summaries:
+    for s in summaries if not quiet else ():
         print(f"  {'pass' if s['ok'] else 'FAIL'} {s['scenario']}" + (f": {s['error']}" if s["error"] else ""))
     print(f"{sum(r.get('ok', False) for r in results)}/{len(results)} pass -> {out}/REPORT.md, {out}/index.html")
     if checks_only_ran:  # the demo shows failing checks in its report; only a run that errs fails it
@@ -143,13 +144,13 @@ def cmd_reproduce(args) -> int:
     if args.seeds < 1:
         raise ParameterError(f"--seeds {args.seeds}: expected a positive integer")
     return reproduce(ids, Path(args.out), args.executor, args.seed, video=args.video,
-                     title="shintai reproduction report", address=args.address, seeds=args.seeds)
+                     title="shintai reproduction report", address=args.address, seeds=args.seeds, quiet=args.quiet)
 
 
 def cmd_demo(args) -> int:
     ids = [sid for sid in sorted(registry.SCENARIOS) if registry.SCENARIOS[sid].demo]
     return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo",
-                     checks_only_ran=True)
+                     checks_only_ran=True, quiet=args.quiet)
 
 
 def cmd_bench(args) -> int:
@@ -213,12 +214,14 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--seeds", type=int, default=1,
                      help="run each stochastic scenario with this many seeds and report mean ± std")
     rep.add_argument("--video", action="store_true", help="film the scenarios that can be filmed")
+    rep.add_argument("--quiet", action="store_true", help="no progress on stderr")
     rep.set_defaults(fn=cmd_reproduce)
 
     d = sub.add_parser("demo", help="one headline scenario per body, with videos, into out/demo")
     d.add_argument("--out", default="out/demo")
     d.add_argument("--executor", choices=executors, default="process")
     d.add_argument("--no-video", action="store_true")
+    d.add_argument("--quiet", action="store_true", help="no progress on stderr")
     d.set_defaults(fn=cmd_demo)
 
     mo = sub.add_parser("model", help="export a body's MuJoCo model as MJCF (or --list the models)")

@@ -146,3 +146,37 @@ def test_demo_videos_only_where_default_parameters_render():
         if sc.demo and sc.demo_video and sc.video:
             params = sc.resolve()
             assert params.get("plant", "mujoco") == "mujoco", f"{sc.id}: the demo would ask a non-MuJoCo plant for video"
+
+
+class Stream:
+    def __init__(self, tty):
+        self.tty, self.text = tty, ""
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_progress_is_a_bar_on_a_terminal_lines_in_a_log_and_nothing_when_quiet():
+    from shintai.scenarios.runner import Progress
+
+    tty, log, quiet = Stream(True), Stream(False), Stream(False)
+    for out, q in ((tty, False), (log, False), (quiet, True)):
+        p = Progress("train", stream=out, quiet=q)
+        for k in range(101):
+            p(k / 100, "gen")
+    assert "\r" in tty.text and "[############------------]  50%" in tty.text and tty.text.endswith("\n")
+    lines = log.text.splitlines()
+    assert "\r" not in log.text and len(lines) == 11 and lines[5].startswith("train:  50.0%")
+    assert quiet.text == ""
+
+
+def test_reproduce_quiet_prints_no_progress(tmp_path, capsys):
+    assert main(["reproduce", "--only", "core.minjerk", "--out", str(tmp_path), "--executor", "serial", "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert "reproduce" not in captured.err and "1/1 pass" in captured.out

@@ -26,31 +26,40 @@ from shintai.scenarios.registry import Scenario, get
 
 
 class Progress:
-    """Progress of a long run on stderr: a live line on a terminal, a line per 10 % otherwise."""
+    """Progress of a long run on stderr: a bar with the time left on a terminal; plain lines otherwise (at
+    every 10 % and at least every ``every_s`` seconds, for logs); nothing when ``quiet``."""
 
-    def __init__(self, label: str, stream=None, quiet: bool = False):
+    width = 24  # characters of the bar
+
+    def __init__(self, label: str, stream=None, quiet: bool = False, every_s: float = 30.0):
         self.label = label
         self.stream = stream or sys.stderr
         self.quiet = quiet
+        self.every_s = every_s
         self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
         self._last_decile = -1
         self._t0 = time.perf_counter()
+        self._last_line = -float("inf")
 
     def __call__(self, fraction: float, message: str = "") -> None:
         if self.quiet:
             return
         fraction = min(max(fraction, 0.0), 1.0)
         elapsed = time.perf_counter() - self._t0
-        line = f"{self.label}: {100 * fraction:5.1f}% {elapsed:6.1f}s {message}".rstrip()
+        left = f" {elapsed * (1 - fraction) / fraction:5.0f}s left" if 0.0 < fraction < 1.0 else ""
         if self.tty:
-            self.stream.write("\r" + line.ljust(79) + ("\n" if fraction >= 1.0 else ""))
+            full = int(round(self.width * fraction))
+            bar = "#" * full + "-" * (self.width - full)
+            line = f"{self.label} [{bar}] {100 * fraction:3.0f}% {elapsed:5.0f}s{left} {message}".rstrip()
+            self.stream.write("\r" + line[:119].ljust(79) + ("\n" if fraction >= 1.0 else ""))
             self.stream.flush()
-        else:
-            decile = int(fraction * 10)
-            if decile > self._last_decile:
-                self._last_decile = decile
-                self.stream.write(line + "\n")
-                self.stream.flush()
+            return
+        decile = int(fraction * 10)
+        if decile > self._last_decile or elapsed - self._last_line >= self.every_s:
+            self._last_decile = max(decile, self._last_decile)
+            self._last_line = elapsed
+            self.stream.write(f"{self.label}: {100 * fraction:5.1f}% {elapsed:6.1f}s{left} {message}".rstrip() + "\n")
+            self.stream.flush()
 
 
 @dataclass
