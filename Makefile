@@ -14,7 +14,7 @@ export OMP_NUM_THREADS ?= 1
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[ray,dev]"
+	$(BIN)/python -m pip install --quiet -e ".[ray,gym,dev]"
 	touch $(STAMP)
 
 install: $(STAMP)
