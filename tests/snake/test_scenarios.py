@@ -2,10 +2,12 @@
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import shintai.snake
 from shintai.scenarios import registry
 from shintai.scenarios.registry import ParameterError, get
 from shintai.scenarios.runner import run_scenario
@@ -86,10 +88,6 @@ def test_bad_parameters_are_rejected_before_running(tmp_path):
 
 
 def test_every_snake_scenario_has_its_notes_and_no_scenario_file_is_left():
-    from pathlib import Path
-
-    import shintai.snake
-
     registry.load_all()
     ids = [sid for sid in registry.SCENARIOS if sid.startswith("snake.")]
     assert len(ids) == 7 and all(registry.SCENARIOS[sid].notes_path.is_file() for sid in ids)

@@ -339,7 +339,7 @@ class DoorSetup:
 
     n: int = 15  # wheels: "30 links" (§3.4.3); link length etc. "as the tracking robot" (CH3_ROBOT)
     # Mode constants: §3.3's (n_c = 2, n_g = 4, t_σ = 2 s; the door text gives none), on the base of the
-    # head-raised model with its two front wheels kept down (scenarios_physical.base_candidates, fixed = 2).
+    # head-raised model with its two front wheels kept down (spatial.base_candidates, fixed = 2).
     width: float = 0.40  # m; a small door: twice the ≈ 0.2 m the body needs to pass (U-turn of two arms)
     thickness: float = 0.02  # m; leaf and wall
     height: float = 0.25  # m
@@ -445,7 +445,7 @@ class HandcartSetup:
     n_c: int = 2
     n_g: int = 4
     # Grounded wheels kept at each end of the base in every mode: 2, wheels n_h, n_h + 1 and n_t − 1, n_t
-    # (scenarios_physical.base_candidates: lifting n_h + 1 tips the frame of wheel n_h that (2.16) holds level).
+    # (spatial.base_candidates: lifting n_h + 1 tips the frame of wheel n_h that (2.16) holds level).
     fixed_end_wheels: int = 2
     # Cart: a 0.40 × 0.62 m board on four fixed-axle wheels (it rolls along x only, like a cart pushed
     # straight) with a handle pad in front of each tip. Light (0.5 kg) so that the pushing force (rolling
