@@ -62,6 +62,9 @@ HEAD_ANGLES = (3, 4, 5)  # roll, pitch, yaw in the 6D head pose w_h
 def loop_channels() -> list[Channel]:
     """The door rig's own channels (see the module docstring)."""
     return [Channel("head_estimate", SET), Channel("clock", SET), Channel("moved_at", SET),
+            # Both delays are causal, and they are the order the thesis's operator (and this code before the
+            # Switcher) works in: the clock read at a period's start counts the periods that moved before it,
+            # and the head estimate over the last period uses the model of the phase that ran in it.
             Channel("moved", SET, delay=1, doc="the operator's clock advances after a period the robot moved in"),
             Channel("phase", SET, delay=1, default=0.0, doc="the estimate over a period uses that period's model")]
 
@@ -264,7 +267,7 @@ def door_models(geometry: SnakeGeometry, door=DOOR, gains=CH3_GAINS) -> tuple[Sp
             remembering(head_raised_two_point_model(geometry, n_h, tail_modes)))
 
 
-def operator(body: MujocoSnake, geometry: SnakeGeometry, raise_model, tail_model, door=DOOR) -> Switcher:
+def door_phases(body: MujocoSnake, geometry: SnakeGeometry, raise_model, tail_model, door=DOOR) -> Switcher:
     """The phases and the operator's decisions (module docstring) as a Switcher named ``operator``."""
     approach = TwoPointPhase("approach", raise_model, approach_targets, geometry, "raise")
     pull = TwoPointPhase("pull", raise_model, pull_targets, geometry, "raise", hooked=True)
@@ -310,7 +313,7 @@ def door_rig(seed: int = 0, perturbed: bool = False, head_pose: str = "model", d
     body.place(p_h, R_h, psi)
     body.settle(d.settle)
     raise_model, tail_model = door_models(geometry, d)
-    switcher = operator(body, geometry, raise_model, tail_model, d)
+    switcher = door_phases(body, geometry, raise_model, tail_model, d)
     stages = [[HeadEstimate(raise_model, tail_model, head_pose), OperatorClock()], [switcher, door_watch(body)]]
     return Rig(body, stages=stages, channels=loop_channels(), duration=d.t_budget if duration is None else duration,
                until=lambda s: switcher.active in ("passed", "gave_up"),
