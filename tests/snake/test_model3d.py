@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from shintai.core.geometry import rot_y, rot_z
 from shintai.snake import model as M
 from shintai.snake import model3d as K
 
@@ -34,7 +35,7 @@ def flat_state(rng, n, n_h, n_last=None, r_w=0.029):
     n_last = n if n_last is None else n_last
     psi = rng.uniform(-0.8, 0.8, 2 * n - 1)
     psi[2 * n_h + 1:2 * n_last - 1:2] = 0.0  # base pitch joints 2n_h+2, …, 2n_last−2 (0-based odd)
-    ch = K.chain_from_wheel(psi, L, n_h, [rng.normal(), rng.normal(), r_w], K.rot_z(rng.uniform(-3, 3)))
+    ch = K.chain_from_wheel(psi, L, n_h, [rng.normal(), rng.normal(), r_w], rot_z(rng.uniform(-3, 3)))
     return ch.head_pose(), psi
 
 
@@ -115,11 +116,11 @@ def test_wheel_plane_relation_hand_computed_cases():
     assert d == pytest.approx(math.sin(a)) and kappa == pytest.approx(a) and lam == pytest.approx(0.0, abs=1e-15)
     # a level plane and a wheel whose link behind is pitched down by b: λ = asin(e_z · [cos b, 0, −sin b]) = −b
     b = 0.3
-    assert np.allclose(K.contact_relation([0, 0, 0.029], K.rot_y(b), K.Plane(np.zeros(3), K.E_Z)),
+    assert np.allclose(K.contact_relation([0, 0, 0.029], rot_y(b), K.Plane(np.zeros(3), K.E_Z)),
                        [0.029, 0.0, -b])
     # proper contact on the rolled plane: frame = the plane's own frame, lifted by r_w along its normal
     R_f = K.rot_zyx([-a, 0.0, 0.0])
-    assert np.allclose(K.contact_relation(0.029 * rolled.normal, R_f @ K.rot_z(2.0), rolled), [0.029, 0, 0])
+    assert np.allclose(K.contact_relation(0.029 * rolled.normal, R_f @ rot_z(2.0), rolled), [0.029, 0, 0])
 
 
 @pytest.mark.parametrize("seed", range(2))
@@ -205,7 +206,7 @@ def handcart_state(seed):
     w_h, psi = flat_state(rng, model.n, model.n_h, model.n_t)
     psi *= 0.6
     psi[2 * model.n_h + 1:2 * model.n_t - 1:2] = 0.0
-    ch = K.chain_from_wheel(psi, model.l, model.n_h, [0.2, -0.1, 0.029], K.rot_z(2.5))
+    ch = K.chain_from_wheel(psi, model.l, model.n_h, [0.2, -0.1, 0.029], rot_z(2.5))
     return rng, model, ch.head_pose(), psi
 
 
@@ -254,7 +255,7 @@ def test_double_arm_end_point_jacobians_match_finite_differences():
     pivot = ch.wheel_position(n_t)
 
     def moved(q):  # the body moved rigidly by planar (dx, dy, dθ) of wheel n_t
-        Rz = K.rot_z(q[2])
+        Rz = rot_z(q[2])
         return tail_pose(np.r_[Rz @ (ch.P[0] - pivot) + pivot + [q[0], q[1], 0.0],
                                K.euler_zyx(Rz @ ch.R[0])], psi)
 

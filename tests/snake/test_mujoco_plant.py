@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+from shintai.core.runtime import SET, ChannelError, FunctionModule, Loop
 from shintai.snake.constants import CH3_ROBOT, MUJOCO_SNAKE, TRACKING
 from shintai.snake.model import configuration, wheel_poses
 from shintai.snake.mujoco_plant import MujocoSnake, head_path_difference, lift_profile, replay_error
@@ -95,9 +96,10 @@ def test_interface_matches_the_kinematic_plant():
         assert np.shape(snap_k[key]) == np.shape(snap_m[key]), key
     assert snap_m["w_h"] == pytest.approx(TRACKING.w_h0, abs=1e-9)
     assert snap_m["phi"] == pytest.approx(TRACKING.phi0, abs=1e-9)
-    assert body.dt == kinematic.dt and set(KinematicSnake.CHANNELS) <= set(MujocoSnake.CHANNELS)
-    with pytest.raises(ValueError, match="unknown command channel"):
-        body.apply({"torque": np.zeros(N)})
+    assert body.dt == kinematic.dt and set(KinematicSnake.channels) <= set(body.channels)
+    assert body.channels["grounded"].kind == SET
+    with pytest.raises(ChannelError, match="undeclared channel 'torque'"):
+        Loop(body, [FunctionModule(lambda s: {"torque": np.zeros(N)})]).step()
     with pytest.raises(ValueError, match="not both"):
         body.apply({"phi_dot": np.zeros(N), "psi_dot": np.zeros(2 * N - 1)})
     with pytest.raises(ValueError, match="phi_dot must have 9"):

@@ -1,4 +1,4 @@
-"""Applications of §3.4 (scenarios_caging.py, scenarios_handcart.py, scenarios_door.py): targets, caging, door,
+"""Applications of §3.4 (caging.py, handcart.py, door.py, door_operator.py, spatial.py): targets, caging, door,
 handcart."""
 
 import math
@@ -6,27 +6,19 @@ import math
 import numpy as np
 import pytest
 
-from shintai.core import Loop, Recorder
+from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import ParameterError, get
-from shintai.snake.constants import CAGING, DOOR, HANDCART, MUJOCO_SNAKE
-from shintai.snake.model3d import chain_from_pose, euler_zyx
+from shintai.snake.caging import KinematicBox, box_track, caging_rig, caging_targets
+from shintai.snake.constants import CAGING, CAGING_BOX, DOOR, HANDCART, MUJOCO_SNAKE
+from shintai.snake.door import ShiftControl, door_geometry, door_scene, door_start, knob_point
+from shintai.snake.door_operator import DoorRun, Shift, door_rig, hook_distance, pull_metrics, pull_rig
+from shintai.snake.handcart import handcart_geometry, handcart_initial, handcart_rig, handcart_series
+from shintai.snake.model3d import PLANAR, chain_from_pose, euler_zyx
 from shintai.snake.mujoco_plant import MujocoSnake
-from shintai.snake.scenarios_caging import caging_targets, simulate_caging
-from shintai.snake.scenarios_door import (
-    DoorOperator,
-    ShiftControl,
-    door_geometry,
-    door_scene,
-    door_start,
-    knob_point,
-)
-from shintai.snake.scenarios_handcart import handcart_geometry, handcart_initial, simulate_handcart
-from shintai.snake.scenarios_physical import (
-    Waypoints,
-    base_candidates,
-    double_arm_model,
-    head_raised_two_point_model,
-)
+from shintai.snake.plots import plot_door
+from shintai.snake.spatial import base_candidates, double_arm_model, head_raised_two_point_model
+from shintai.snake.targets import PiecewiseLinear
+from shintai.snake.tracking import TrackingRun
 
 
 def test_two_stage_targets_are_3_22_with_the_a7_reading():
@@ -39,12 +31,12 @@ def test_two_stage_targets_are_3_22_with_the_a7_reading():
     assert target(75.0)[1] == pytest.approx((target.poses[2] - target.poses[1]) / 90.0)
     assert target(200.0)[1] == pytest.approx(np.zeros(6))
     with pytest.raises(ValueError, match="increasing"):
-        Waypoints.through((0.0, 0.0), (c0, c0))
+        PiecewiseLinear.through((0.0, 0.0), (c0, c0))
 
 
 def test_short_caging_run_keeps_the_box_in_the_u():
-    recorder = Recorder()
-    run, track = simulate_caging(3.0, recorder=recorder)
+    done = run_rig(caging_rig(3.0, "mujoco"))
+    run, track = TrackingRun.of(done), box_track(done)
     assert track["caged"].all() and len(track["pos"]) == 60
     assert np.hypot(*(track["final"] - track["pos"][0])[:2]) < 0.02  # not yet reached by the U's bottom
     assert run.pos_error.max() < 0.01 and run.physics["lateral_slip_fraction"] < 0.2
@@ -70,22 +62,20 @@ def door_snake():
 
 
 def test_door_phase_1_hooks_the_knob_and_starts_to_open_the_door():
-    """A short run of the §3.4.3 operator: the raised head reaches the knob, the hook engages, the door opens."""
-    geometry, body = door_snake()
-    body.settle(DOOR.settle)
-    operator = DoorOperator(body, geometry)
-    recorder = Recorder()
-    Loop(body, [operator], recorder).run(DOOR.t_approach + 12.0)
-    phases = [phase for _, phase in operator.events]
-    assert phases == ["pull"] and operator.events[0][0] <= DOOR.t_approach + 0.5
-    assert body.mj.data.eq_active[body.mj.id("equality", "hook")]
+    """A short run of the §3.4.3 operator: the raised head reaches the knob, the hook engages (through the
+    body's set channel), the door opens."""
+    run = run_rig(door_rig(duration=DOOR.t_approach + 12.0))
+    body, events = run.body, DoorRun.of(run).events
+    assert [phase for _, phase in events] == ["pull"] and events[0][0] <= DOOR.t_approach + 0.5
+    assert run.state["switcher"].transitions_log[0][1:] == ("approach", "pull")
+    assert body.mj.data.eq_active[body.mj.id("equality", "hook")] and run.loop.command["hook"] == 1.0
     assert 0.02 < body.mj.joint_qpos("hinge") < 0.3  # opening, following the slow arc
-    assert operator.hook_distance() < 0.01
+    assert hook_distance(body) < 0.01
     assert np.abs(body.snapshot()["psi"]).max() < 1.0  # the arm does the pulling; no joint winds up
-    grounded = recorder.values("door.grounded").astype(bool)  # the wheels' mode, for the plots
-    assert grounded.shape == (len(recorder.times("door.phase")), geometry.n)
+    grounded = run.log.values("door.grounded").astype(bool)  # the wheels' mode, for the plots
+    assert grounded.shape == (len(run.log.times("door.phase")), body.geometry.n)
     assert not grounded[:, :DOOR.raise_n_h - 1].any() and grounded[:, DOOR.raise_n_h - 1].all()
-    assert recorder.values("raise.V_m").min() > 0.0
+    assert run.log.values("raise.V_m").min() > 0.0
 
 
 def test_door_plots_draw_wheels_paths_and_modes(tmp_path):
@@ -97,8 +87,6 @@ def test_door_plots_draw_wheels_paths_and_modes(tmp_path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shintai.snake.scenarios_door import DoorRun, plot_door
-
     class Ctx:
         @contextmanager
         def figure(self, name, nrows=1, ncols=1, **kwargs):
@@ -107,18 +95,13 @@ def test_door_plots_draw_wheels_paths_and_modes(tmp_path):
             fig.savefig(tmp_path / f"{name}.png")
             plt.close(fig)
 
-    geometry, body = door_snake()
-    operator = DoorOperator(body, geometry)
-    recorder = Recorder()
-    Loop(body, [operator], recorder).run(1.0)
-    plot_door(Ctx(), recorder, DoorRun(False, 0, operator.events, 0.0, body.t))
+    run = run_rig(door_rig(duration=1.0))
+    plot_door(Ctx(), run.log, DoorRun.of(run))
     assert {p.name for p in tmp_path.iterdir()} == {"top_view.png", "phases.png", "modes.png"}
 
 
 def test_head_raised_two_point_model_matches_the_chain():
     """Phase 2 model: its last three rows are the tail wheel's planar pose rate (2.13) of the 3D chain."""
-    from shintai.snake.model3d import PLANAR
-
     geometry = door_geometry()
     p_h, R_h, psi = door_start()
     w_h = np.concatenate((p_h, euler_zyx(R_h)))
@@ -157,12 +140,10 @@ def test_door_shift_phase_puts_every_wheel_on_the_floor():
     rates as a planar command, so the pitch joints lower the raised head part (and any wheel phase 2 lifted)."""
     geometry, body = door_snake()
     p_h, _, psi = door_start()
-    operator = DoorOperator(body, geometry)
-    snapshot = body.snapshot()
-    operator.enter("shift", 0.0)
-    operator.shift = ShiftControl(snapshot["phi"])
-    for k in range(40):
-        command = operator.command(k * body.dt, body.snapshot())
+    shift = Shift("shift", geometry)
+    shift.reset(body.snapshot())
+    for _ in range(40):
+        command = shift.command(body.snapshot())
         assert "psi_dot" not in command and np.asarray(command["grounded"]).all()
         body.apply(command)
         body.step()
@@ -201,9 +182,6 @@ def test_physical_scenarios_are_registered_with_video():
 
 
 def test_kinematic_box_is_pushed_clear_of_the_body_and_only_as_far_as_needed():
-    from shintai.snake.constants import CAGING_BOX
-    from shintai.snake.scenarios_caging import KinematicBox
-
     box = KinematicBox((0.0, 0.0))
     reach = box.reach
     box.push(np.array([[reach[0] - 0.01, 0.0], [1.0, 1.0]]))  # one point 1 cm inside the +x face
@@ -215,14 +193,15 @@ def test_kinematic_box_is_pushed_clear_of_the_body_and_only_as_far_as_needed():
 
 def test_kinematic_caging_carries_the_box_with_the_u():
     """§3.4.1 on the kinematic plant: stage 1 closes the U's bottom onto the box, which then moves along."""
-    run, track = simulate_caging(40.0, plant="kinematic")
+    done = run_rig(caging_rig(40.0, "kinematic"))
+    run, track = TrackingRun.of(done), box_track(done)
     assert run.pos_error.max() < 0.01 and track["caged"].all()
     assert track["final"][0] - track["pos"][0][0] > 0.01  # pushed forward once the U closed on it
 
 
 def test_handcart_double_arm_law_tracks_on_the_kinematic_plant():
     """§3.4.2 with §3.3's mode constants (n_c = 2): no stall; head and tail keep their offset; the cart moves."""
-    run = simulate_handcart(12.0, plant="kinematic")
+    run = handcart_series(run_rig(handcart_rig(12.0, "kinematic")))
     e = run["error"]
     assert max(np.linalg.norm(e[:, :3], axis=1).max(), np.linalg.norm(e[:, 6:9], axis=1).max()) < 1e-3
     assert not run["stopped"].any() and len(np.unique(run["mode"])) > 1
@@ -234,15 +213,13 @@ def test_handcart_double_arm_law_tracks_on_the_kinematic_plant():
 def test_door_pull_is_feasible_with_the_head_raised_as_in_the_thesis():
     """§3.4.3 phase 1 with head-raising control [12] (head-raised model (2.16)–(2.26)) on the kinematic plant:
     the hooked head follows the knob's whole 90° arc (here in 30 s) within the joint limits, never stopped."""
-    from shintai.snake.scenarios_door import head_raising_pull
-
-    result = head_raising_pull(30.0)
+    result = pull_metrics(run_rig(pull_rig(30.0)))
     assert result["max_joint_rad"] < math.pi / 2 and result["stopped_fraction"] == 0.0
     assert result["max_pos_error_m"] < 1e-3
 
 
 def test_a_modes_matrices_are_the_all_grounded_ones_without_the_lifted_rows():
-    """T_σ (2.11), (2.35): SpatialTwoPoint.select builds B once and deletes rows; that equals building B_σ."""
+    """T_σ (2.11), (2.35): spatial.SpatialTwoPoint.select builds B once and deletes rows; that equals building B_σ."""
     geometry = handcart_geometry()
     p_h, R_h, psi = handcart_initial()
     w_h = np.concatenate((p_h, euler_zyx(R_h)))

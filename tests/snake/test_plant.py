@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from shintai.core.runtime import ADD, SET, ChannelError, FunctionModule, Loop
 from shintai.snake.constants import CH3_GAINS, TRACKING, PlantSettings
 from shintai.snake.model import configuration, lateral_velocities
 from shintai.snake.plant import KinematicSnake
@@ -71,13 +72,19 @@ def test_snapshot_layout():
 
 
 @pytest.mark.parametrize("command, msg", [
-    ({"torque": np.zeros(9)}, "unknown command channel"),
     ({"phi_dot": np.zeros(8)}, "phi_dot must have n = 9"),
     ({"phi_dot": np.zeros(9), "grounded": np.full(9, 0.5)}, "0/1"),
 ])
 def test_bad_commands_are_one_clear_error(command, msg):
     with pytest.raises(ValueError, match=msg):
         KinematicSnake(TRACKING.w_h0, TRACKING.phi0).apply(command)
+
+
+def test_a_command_to_an_undeclared_channel_is_a_channel_error():
+    body = KinematicSnake(TRACKING.w_h0, TRACKING.phi0)
+    assert body.channels["grounded"].kind == SET and body.channels["phi_dot"].kind == ADD
+    with pytest.raises(ChannelError, match="undeclared channel 'torque'"):
+        Loop(body, [FunctionModule(lambda s: {"torque": np.zeros(9)})]).step()
 
 
 def test_bad_construction_is_one_clear_error():

@@ -2,10 +2,13 @@
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import shintai.snake
+from shintai.scenarios import registry
 from shintai.scenarios.registry import ParameterError, get
 from shintai.scenarios.runner import run_scenario
 from shintai.snake.constants import CH3_GAINS
@@ -57,8 +60,8 @@ def test_stop_holds_the_state_until_the_next_selection(ablation):
     out, _ = ablation
     log = np.load(out / "log.npz")
     for name in ("switching", "fixed"):
-        stopped = log[f"{name}.stopped"].astype(bool)
-        phi, t = log[f"{name}.phi"], log[f"{name}.stopped_t"]
+        stopped = log[f"{name}.two_point.stopped"].astype(bool)
+        phi, t = log[f"{name}.two_point.phi"], log[f"{name}.two_point.stopped_t"]
         held = np.flatnonzero(stopped[:-1])
         assert len(held) > 0 and np.abs(phi[held + 1] - phi[held]).max() == 0.0
         resumes = [t[k] for k in range(1, len(stopped)) if stopped[k - 1] and not stopped[k]]
@@ -71,7 +74,7 @@ def test_stop_holds_the_state_until_the_next_selection(ablation):
 
 def test_whole_run_joint_angles_stay_inside_the_limit(ablation):
     out, _ = ablation
-    assert np.abs(np.load(out / "log.npz")["switching.phi"]).max() < math.pi / 2
+    assert np.abs(np.load(out / "log.npz")["switching.two_point.phi"]).max() < math.pi / 2
 
 
 def test_bad_parameters_are_rejected_before_running(tmp_path):
@@ -80,3 +83,12 @@ def test_bad_parameters_are_rejected_before_running(tmp_path):
     with pytest.raises(ParameterError, match="plant"):
         run_scenario("snake.tracking", out=tmp_path, overrides={"plant": "bullet"})
     assert get("snake.tracking").resolve({"candidates": "80"})["candidates"] == 80
+    with pytest.raises(ParameterError, match="--video"):  # the kinematic plant has nothing to film
+        run_scenario("snake.tracking", out=tmp_path, video=True)
+
+
+def test_every_snake_scenario_has_its_notes_and_no_scenario_file_is_left():
+    registry.load_all()
+    ids = [sid for sid in registry.SCENARIOS if sid.startswith("snake.")]
+    assert len(ids) == 7 and all(registry.SCENARIOS[sid].notes_path.is_file() for sid in ids)
+    assert not list(Path(shintai.snake.__file__).parent.glob("*scenarios*.py"))

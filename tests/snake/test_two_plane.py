@@ -6,10 +6,13 @@ import math
 import numpy as np
 import pytest
 
+from shintai.core.runtime import ChannelError, FunctionModule, Loop
+from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.runner import run_scenario
 from shintai.snake import model3d as K
-from shintai.snake import scenarios_two_plane as S  # registers snake.two-plane-roll / -pitch
 from shintai.snake import two_plane as TP
+from shintai.snake import two_plane_runs as S
+from shintai.snake.two_plane_plant import TwoPlaneSnake
 from shintai.snake.constants import CH4_ROBOT, CONDITION_1, CONDITION_2, TWO_PLANE, TWO_PLANE_SCENE, TwoPlaneSettings
 
 L, N, RW = CH4_ROBOT.l, CH4_ROBOT.n, TWO_PLANE.r_w
@@ -229,7 +232,7 @@ def test_plant_follows_the_model_without_slip_and_rk4_is_converged(world):
                              CH4_ROBOT.joint_limit, CONDITION_1.k_v, False)
     bodies = []
     for rk4 in (4, 40):
-        body = TP.TwoPlaneSnake(world, *world.embed(w_f), psi, part.contact, settings=TwoPlaneSettings(rk4_steps=rk4))
+        body = TwoPlaneSnake(world, *world.embed(w_f), psi, part.contact, settings=TwoPlaneSettings(rk4_steps=rk4))
         body.apply({"psi_dot": step.psi_dot, "contact": part.contact.astype(float)})
         body.step()
         bodies.append(body)
@@ -240,7 +243,7 @@ def test_plant_follows_the_model_without_slip_and_rk4_is_converged(world):
 
 def test_head_transition_moves_only_the_head_part(world):
     p_h, R_h, psi = TP.initial_posture(world)
-    body = TP.TwoPlaneSnake(world, p_h, R_h, psi, TP.head_raised_contact(N, TWO_PLANE.n_h))
+    body = TwoPlaneSnake(world, p_h, R_h, psi, TP.head_raised_contact(N, TWO_PLANE.n_h))
     before = body.ch.P.copy()
     u, _ = TP.head_input(body.ch, world, TWO_PLANE.n_h, TWO_PLANE.k_h)
     body.apply({"psi_dot": u, "contact": TP.head_raised_contact(N, TWO_PLANE.n_h).astype(float)})
@@ -251,9 +254,9 @@ def test_head_transition_moves_only_the_head_part(world):
 
 def test_plant_rejects_bad_commands(world):
     p_h, R_h, psi = TP.initial_posture(world)
-    body = TP.TwoPlaneSnake(world, p_h, R_h, psi, TP.head_raised_contact(N, 3))
-    with pytest.raises(ValueError, match="unknown command"):
-        body.apply({"phi_dot": np.zeros(9)})
+    body = TwoPlaneSnake(world, p_h, R_h, psi, TP.head_raised_contact(N, 3))
+    with pytest.raises(ChannelError, match="undeclared channel 'phi_dot'"):
+        Loop(body, [FunctionModule(lambda s: {"phi_dot": np.zeros(9)})]).step()
     with pytest.raises(ValueError, match="psi_dot"):
         body.apply({"psi_dot": np.zeros(9)})
 
@@ -296,6 +299,6 @@ def test_scenario_writes_metrics_checks_and_pictures(tmp_path):
 
 
 def test_suffix_keeps_the_unit_last():
-    assert S._with_suffix("min_edge_clearance_m") == "min_edge_clearance_no_nullspace_m"
-    assert S._with_suffix("max_slip_m_s") == "max_slip_no_nullspace_m_s"
-    assert S._with_suffix("all_wheels_on_front") == "all_wheels_on_front_no_nullspace"
+    assert variant_metric("min_edge_clearance_m", "no_nullspace") == "min_edge_clearance_no_nullspace_m"
+    assert variant_metric("max_slip_m_s", "no_nullspace") == "max_slip_no_nullspace_m_s"
+    assert variant_metric("all_wheels_on_front", "no_nullspace") == "all_wheels_on_front_no_nullspace"

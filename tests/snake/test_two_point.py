@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 
 from shintai.core import Loop, Recorder
+from shintai.core.geometry import wrap
 from shintai.snake import model as M
 from shintai.snake.constants import CAGING, CH3_GAINS, CH3_ROBOT, TRACKING
 from shintai.snake.plant import KinematicSnake
-from shintai.snake.targets import Ramp, unwrap_targets, wrap_angle
+from shintai.snake.targets import PiecewiseLinear
 from shintai.snake.two_point import (
     TwoPointController,
     TwoPointLaw,
@@ -167,24 +168,26 @@ def test_select_period_must_be_a_multiple_of_dt():
 def test_unwrapped_targets_of_the_thesis_experiments():
     law = TwoPointLaw()
     c0 = law.controlled(M.configuration(TRACKING.w_h0, TRACKING.phi0, L))
-    c_e = unwrap_targets(c0, TRACKING.c_e)
+    c_e = PiecewiseLinear.ramp(c0, TRACKING.c_e, TRACKING.t_end).poses[1]
     assert c_e[2] == pytest.approx(math.pi / 2) and c_e[5] == pytest.approx(3 * math.pi / 2)
     c0_cage = law.controlled(M.configuration(CAGING.w_h0, CAGING.phi0, L))
     assert c0_cage[5] == pytest.approx(2 * math.pi)
     assert np.allclose(c0_cage[3:5], [-0.0934, -0.5878], atol=1e-4)  # spec §4.2 [derived]
-    c_e1 = unwrap_targets(c0_cage, CAGING.c_e1)
+    c_e1 = PiecewiseLinear.ramp(c0_cage, CAGING.c_e1, CAGING.t_s1).poses[1]
     assert c_e1[2] == pytest.approx(math.pi) and c_e1[5] == pytest.approx(2 * math.pi)
 
 
 def test_wrap_angle_and_ramp():
-    assert wrap_angle(3 * math.pi / 2) == pytest.approx(-math.pi / 2)
-    ramp = Ramp(np.zeros(6), np.arange(6.0), 10.0)
+    assert wrap(3 * math.pi / 2) == pytest.approx(-math.pi / 2)
+    ramp = PiecewiseLinear.ramp(np.zeros(6), np.arange(6.0), 10.0, angles=())
     c, rate = ramp(5.0)
     assert np.allclose(c, np.arange(6.0) / 2) and np.allclose(rate, np.arange(6.0) / 10)
     c, rate = ramp(12.0)
     assert np.allclose(c, np.arange(6.0)) and not rate.any()
-    with pytest.raises(ValueError, match="6-vectors"):
-        unwrap_targets(np.zeros(3), np.zeros(6))
+    with pytest.raises(ValueError):  # start and end of different sizes
+        PiecewiseLinear.ramp(np.zeros(3), np.zeros(6), 10.0)
+    with pytest.raises(ValueError, match="t_end"):
+        PiecewiseLinear.ramp(np.zeros(6), np.zeros(6), 0.0)
 
 
 def test_vectorized_mode_objectives_equal_per_candidate_evaluation():

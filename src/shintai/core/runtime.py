@@ -202,12 +202,17 @@ class Switcher(Module):
     moves control to its target, whose :meth:`Module.reset` is called (the inactive child's state,
     e.g. its ρ, is held, not run). Each transition is kept in ``self.transitions_log`` as
     ``(t, from, to)``. Children run at the Switcher's own rate. A child with no transition leaving
-    it is a final phase.
+    it is a final phase. ``chain=True``: after a transition the guards leaving the new child are
+    tested again, so transitions whose guards hold at the same instant all happen in one update
+    (seed 001 §4.2.4: a front shift and the rear shift it allows are one instant); a cycle of guards
+    that keep holding is an error.
     """
 
     def __init__(self, modules: Sequence[Module], transitions: Sequence[tuple[str, str, Callable]],
-                 initial: str | None = None, name: str = "switcher", period: float | None = None):
+                 initial: str | None = None, name: str = "switcher", period: float | None = None,
+                 chain: bool = False):
         super().__init__(name, period)
+        self.chain = chain
         self.modules = {m.name: m for m in modules}
         if len(self.modules) != len(modules):
             raise ValueError(f"switcher {name!r}: module names must be unique")
@@ -236,10 +241,17 @@ class Switcher(Module):
         self.modules[name].reset(snapshot)
 
     def update(self, snapshot: Snapshot) -> Command | None:
-        for src, dst, guard in self.transitions:
-            if src == self.active and guard(snapshot):
-                self.switch_to(dst, snapshot)
+        for _ in range(len(self.transitions) + 1 if self.chain else 1):
+            for src, dst, guard in self.transitions:
+                if src == self.active and guard(snapshot):
+                    self.switch_to(dst, snapshot)
+                    break
+            else:
                 break
+        else:
+            if self.chain:
+                raise RuntimeError(f"switcher {self.name!r}: its guards keep switching at t = {snapshot['t']} "
+                                   f"(a cycle of transitions that all hold)")
         return self.modules[self.active].update(snapshot)
 
 

@@ -31,7 +31,7 @@ from shintai.core.recorder import Recorder
 from shintai.core.runtime import Body, Channel, Command, Loop, Module, Snapshot
 
 # Unit suffixes of metric names (DESIGN.md), longest first so ``_mps`` is not read as ``_s``.
-UNITS = ("_n_per_mm", "_deg_s", "_rad_s", "_mps", "_nm", "_mm", "_ms", "_us", "_deg", "_rad", "_hz", "_kg",
+UNITS = ("_n_per_mm", "_deg_s", "_rad_s", "_mm_s", "_m_s", "_mps", "_nm", "_mm", "_ms", "_us", "_deg", "_rad", "_hz", "_kg",
          "_pct", "_m", "_n", "_s", "_a", "_v", "_w", "_j")
 
 

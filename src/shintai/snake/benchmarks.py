@@ -10,6 +10,7 @@ import time
 
 import numpy as np
 
+from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT
 from shintai.snake.model import (
@@ -19,7 +20,7 @@ from shintai.snake.model import (
     second_point_jacobians,
     two_point_matrices,
 )
-from shintai.snake.scenarios import simulate_tracking
+from shintai.snake.tracking import TrackingRun, tracking_rig
 from shintai.snake.two_point import TwoPointLaw
 
 
@@ -49,7 +50,7 @@ def _per_call_us(fn, states, repeat: int) -> float:
 @benchmark("snake.tracking-speed", "snake.tracking (120 s, kinematic plant): sim/wall time; mode-selection cost per call")
 def tracking_speed() -> dict:
     t0 = time.perf_counter()
-    run = simulate_tracking(120.0)
+    run = TrackingRun.of(run_rig(tracking_rig(120.0)))
     wall = time.perf_counter() - t0
     law = TwoPointLaw(CH3_ROBOT, CH3_GAINS)
     picks = np.linspace(0, len(run.t) - 1, 20).astype(int)

@@ -303,6 +303,9 @@ class TwoPlaneScene:
 
 
 TWO_PLANE_SCENE = TwoPlaneScene()
+# A wheel is "on a plane" when |d − r_w| and |κ| of (2.36)–(2.37) are below these (spec §5.4 #15's tolerances).
+ON_PLANE_D_TOL = 1e-3  # m
+ON_PLANE_TILT_TOL = 0.01  # rad
 
 
 @dataclass(frozen=True)
@@ -320,6 +323,9 @@ class CagingBox:
 
 
 CAGING_BOX = CagingBox()
+# The box on the kinematic plant (caging.KinematicBox) is pushed clear of the body in at most this many passes
+# per δt (chosen: one push can move it into another part of the body; the U's corners need two or three).
+BOX_PUSH_PASSES = 8
 
 
 @dataclass(frozen=True)
@@ -333,7 +339,7 @@ class DoorSetup:
 
     n: int = 15  # wheels: "30 links" (§3.4.3); link length etc. "as the tracking robot" (CH3_ROBOT)
     # Mode constants: §3.3's (n_c = 2, n_g = 4, t_σ = 2 s; the door text gives none), on the base of the
-    # head-raised model with its two front wheels kept down (scenarios_physical.base_candidates, fixed = 2).
+    # head-raised model with its two front wheels kept down (spatial.base_candidates, fixed = 2).
     width: float = 0.40  # m; a small door: twice the ≈ 0.2 m the body needs to pass (U-turn of two arms)
     thickness: float = 0.02  # m; leaf and wall
     height: float = 0.25  # m
@@ -365,6 +371,7 @@ class DoorSetup:
     phi0: tuple[float, ...] = (0.1, -0.1, 0.1, -0.1, 0.1, 0.05, -PI / 4, -PI / 4, -PI / 4, -PI / 4,
                                0.05, -0.1, 0.1, -0.1, 0.0)
     open_angle: float = PI / 2  # rad; phase 1 pulls the door to 90°
+    pull_waypoints: int = 19  # the knob's arc about the hinge as waypoints 5° apart (the pull is linear between)
     # Head raising for phases 1–2 as the thesis does it ([12], §3.4.3): wheels 1..raise_n_h − 1 lifted as an
     # arm of 2·raise_n_h links (0.55 m, more than the knob's 0.37 m radius about the hinge), raised at
     # raise_pitch from wheel raise_n_h and levelled at joint 2 (as the handcart's arms), the hook at its tip.
@@ -397,6 +404,11 @@ class DoorSetup:
     # The operator gives up when the robot has not followed for this long (10 mode selections of t_σ).
     give_up: float = 20.0
     pass_margin: float = 0.03  # m; passed = every link origin this far beyond the wall's inner face
+    # Perturbed runs (two runs of an operator differ): the body starts up to ±1 cm in x, y and ±0.03 rad in
+    # heading off, the hinge spring up to ±20 % off (uniform draws). Chosen: a few times the operator's
+    # placement error, and a spring the thesis does not give.
+    perturb_pose: tuple[float, float, float] = (0.01, 0.01, 0.03)
+    perturb_spring: float = 0.2
 
 
 DOOR = DoorSetup()
@@ -433,7 +445,7 @@ class HandcartSetup:
     n_c: int = 2
     n_g: int = 4
     # Grounded wheels kept at each end of the base in every mode: 2, wheels n_h, n_h + 1 and n_t − 1, n_t
-    # (scenarios_physical.base_candidates: lifting n_h + 1 tips the frame of wheel n_h that (2.16) holds level).
+    # (spatial.base_candidates: lifting n_h + 1 tips the frame of wheel n_h that (2.16) holds level).
     fixed_end_wheels: int = 2
     # Cart: a 0.40 × 0.62 m board on four fixed-axle wheels (it rolls along x only, like a cart pushed
     # straight) with a handle pad in front of each tip. Light (0.5 kg) so that the pushing force (rolling

@@ -29,25 +29,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shintai.core.geometry import rot_x, rot_y, rot_z, skew
 from shintai.snake.model import configuration, constraint_matrices
 
 E_X, E_Y, E_Z = np.eye(3)
 I3 = np.eye(3)
-
-
-def rot_x(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def rot_y(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def rot_z(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def rot_zyx(theta) -> np.ndarray:
@@ -74,12 +60,6 @@ def head_euler_map(theta_h) -> np.ndarray:
     M = np.eye(6)
     M[3:, 3:] = euler_rate_matrix(theta_h)
     return M
-
-
-def skew(r) -> np.ndarray:
-    """[r]_× with [r]_× a = r × a."""
-    x, y, z = r
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 @dataclass(frozen=True, eq=False)

@@ -18,7 +18,8 @@ curved body the pitch axes are not parallel and a least-squares fit keeps the ax
 
 Interface (as KinematicSnake): command ``phi_dot`` (n yaw rates, integrated into the yaw servos'
 targets) and ``grounded`` (the mode σ, turned into pitch targets approached at most at
-``settings.lift_rate``, so a switch lifts and lowers wheels over a few control periods);
+``settings.lift_rate``, so a switch lifts and lowers wheels over a few control periods), and one set
+channel per equality the scene lets the experiment switch (``Scene.switches``: the door's hook);
 snapshot ``t, w_h, phi, psi, grounded, slip`` plus ``wheel_contact`` (n, measured wheel–floor contact)
 and ``head_pose`` (6D). For the 3D models of §2.5 the command may instead be ``psi_dot`` (all 2n−1
 joint rates; ``grounded`` then only labels the wheels).
@@ -47,9 +48,10 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import SET, Body, declare
+from shintai.core.geometry import rot_z, wrap
+from shintai.core.integrators import midpoint
+from shintai.core.runtime import SET, Body, declare, whole_multiple
 from shintai.sim.body import MujocoBody
-from shintai.sim.render import VideoRecorder
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, MUJOCO_SNAKE, MujocoSnakeSettings, SnakeGeometry
 from shintai.snake.model import check_mode, configuration, constraint_terms, wheel_poses
 
@@ -62,11 +64,14 @@ class Scene:
     """MJCF fragments added to the snake's model: objects (box, cart, door), equalities, sensors.
 
     Object geoms should use ``class="object"`` (collides with the floor, objects and the snake).
+    ``switches``: equalities an experiment turns on and off through the body's set channel of the same
+    name (a value > 0.5 on), never by calling into MuJoCo.
     """
 
     worldbody: str = ""
     equality: str = ""
     sensor: str = ""
+    switches: tuple[str, ...] = ()
 
 
 def lift_profile(phi, grounded, l: float, settings: MujocoSnakeSettings = MUJOCO_SNAKE) -> np.ndarray:
@@ -197,12 +202,12 @@ def planar_heading(quat) -> float:
 
 
 class MujocoSnake(Body):
-    """The snake in MuJoCo as a Body: command ``phi_dot, grounded``; snapshot as KinematicSnake plus
-    ``wheel_contact`` (see the module docstring). ``mocap_noise`` is the head-position noise σ (m; the
-    heading gets σ / marker_span rad); ``head_pose`` is ``"mocap"`` or ``"model"``."""
+    """The snake in MuJoCo as a Body: command ``phi_dot`` or ``psi_dot``, ``grounded`` and the scene's
+    switches; snapshot as KinematicSnake plus ``wheel_contact`` and ``head_pose`` (see the module docstring).
+    ``mocap_noise`` is the head-position noise σ (m; the heading gets σ / marker_span rad); ``head_pose``
+    is ``"mocap"`` or ``"model"``."""
 
-    CHANNELS = ("phi_dot", "psi_dot", "grounded")
-    channels = {**declare("phi_dot", "psi_dot"), **declare("grounded", kind=SET)}
+    channels = {**declare("phi_dot", "psi_dot"), **declare("grounded", kind=SET)}  # σ: on the floor (1) / lifted
 
     def __init__(self, w_h0, phi0, geometry: SnakeGeometry = CH3_ROBOT, dt: float = CH3_GAINS.dt,
                  settings: MujocoSnakeSettings = MUJOCO_SNAKE, scene: Scene = Scene(), mocap_noise: float = 0.0,
@@ -211,9 +216,7 @@ class MujocoSnake(Body):
             raise ValueError(f"head_pose must be 'mocap' or 'model', got {head_pose!r}")
         if mocap_noise < 0:
             raise ValueError(f"mocap_noise must be >= 0 m, got {mocap_noise!r}")
-        servo_steps = dt / settings.servo_period
-        if round(servo_steps) < 1 or abs(servo_steps - round(servo_steps)) > 1e-9:
-            raise ValueError(f"dt {dt} s must be a whole multiple of the servo period {settings.servo_period} s")
+        servo_steps = whole_multiple(dt, settings.servo_period, "dt")
         cfg = configuration(w_h0, phi0, geometry.l)
         if cfg.n != geometry.n:
             raise ValueError(f"phi0 must have n = {geometry.n} yaw angles, got {cfg.n}")
@@ -222,16 +225,16 @@ class MujocoSnake(Body):
         self.rng = rng if rng is not None else np.random.default_rng(0)
         self.mj = MujocoBody(snake_mjcf(geometry, settings, scene),
                              substeps=int(round(settings.servo_period / settings.timestep)))
-        self._servo_steps = int(round(servo_steps))
+        self.switches = tuple(scene.switches)
+        self.channels = {**MujocoSnake.channels, **declare(*self.switches, kind=SET)}
+        self._servo_steps = servo_steps
         self._index()
         self.steps = 0
         self.t = 0.0
         self.grounded = np.ones(geometry.n, dtype=bool)
         psi0 = np.zeros(geometry.joints)
         psi0[::2] = cfg.phi
-        c, s = math.cos(cfg.w_h[2]), math.sin(cfg.w_h[2])
-        self.place([cfg.w_h[0], cfg.w_h[1], settings.wheel_radius], [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]], psi0,
-                   heading=float(cfg.w_h[2]))
+        self.place([cfg.w_h[0], cfg.w_h[1], settings.wheel_radius], rot_z(cfg.w_h[2]), psi0, heading=float(cfg.w_h[2]))
         self.slip = 0.0
         self.wheel_contact = np.zeros(geometry.n, dtype=bool)
         self._slid = self._rolled = 0.0  # m, net per control period, summed over floor-touching axles
@@ -287,6 +290,8 @@ class MujocoSnake(Body):
         unloaded; raised parts (the handcart's arms) then sag by centimetres in the first 0.1 s. An experiment
         starts from the robot at rest, its initial controlled variables measured there ((3.21), (3.26))."""
         grounded = self.grounded.copy()
+        # The body's own steps, not a Loop: a Loop would read the snapshot every period, which advances the mocap
+        # heading's unwrapping and noise draws before the experiment starts.
         for _ in range(int(round(duration / self.dt))):
             self.apply({"psi_dot": np.zeros(self.geometry.joints), "grounded": grounded})
             self.step()
@@ -304,10 +309,10 @@ class MujocoSnake(Body):
                 "slip": self.slip, "wheel_contact": self.wheel_contact.copy(), "head_pose": self._head_pose(w_h)}
 
     def apply(self, command: dict) -> None:
-        unknown = set(command) - set(self.CHANNELS)
-        if unknown:
-            raise ValueError(f"MuJoCo snake: unknown command channel(s) {sorted(unknown)}; known: {self.CHANNELS}")
         n = self.geometry.n
+        for name in self.switches:
+            if name in command:
+                self.mj.set_equality(name, float(command[name]) > 0.5)
         if "grounded" in command:
             grounded = check_mode(command["grounded"], n)
             if not np.array_equal(grounded, self.grounded):
@@ -389,7 +394,7 @@ class MujocoSnake(Body):
         d = self.mj.data
         p_adr, q_adr = self._head
         heading = planar_heading(d.sensordata[q_adr:q_adr + 4])
-        self._heading += (heading - self._heading + math.pi) % (2 * math.pi) - math.pi  # unwrap
+        self._heading += wrap(heading - self._heading)  # unwrap
         w = np.array([d.sensordata[p_adr], d.sensordata[p_adr + 1], self._heading])
         if self.mocap_noise:
             sigma = self.mocap_noise
@@ -410,14 +415,7 @@ class MujocoSnake(Body):
         """Internal-model odometry (§3.4.3): A_σ ẇ̃_h = B_σ φ̇ (2.10) with the measured joint motion over δt,
         solved at the period's midpoint angles."""
         phi = self.mj.data.sensordata[self._enc][::2]
-        rate = (phi - self._phi_prev) / self.dt
-        mid = 0.5 * (phi + self._phi_prev)
-        w_mid = self._w_model.copy()
-        for _ in range(2):  # the heading at mid-period, then the step from there
-            A, b = constraint_terms(w_mid[2], mid, self.geometry.l, rate)
-            w_dot = np.linalg.lstsq(A[self.grounded], b[self.grounded], rcond=None)[0]
-            w_mid = self._w_model + 0.5 * self.dt * w_dot
-        self._w_model = self._w_model + self.dt * w_dot
+        self._w_model = odometry_step(self._w_model, self._phi_prev, phi, self.grounded, self.geometry.l, self.dt)
         self._phi_prev = phi
 
     def true_head(self) -> np.ndarray:
@@ -425,7 +423,7 @@ class MujocoSnake(Body):
         d = self.mj.data
         q = d.sensordata[self._head[1]:self._head[1] + 4]
         heading = planar_heading(q)
-        heading = self._heading + (heading - self._heading + math.pi) % (2 * math.pi) - math.pi
+        heading = self._heading + wrap(heading - self._heading)
         p = d.sensordata[self._head[0]:self._head[0] + 3]
         return np.array([p[0], p[1], heading])
 
@@ -449,17 +447,35 @@ class MujocoSnake(Body):
                 "max_lateral_slip_m_s": self._slip_max, "rolled_m": self._rolled,
                 "contact_mismatch_fraction": self._mismatch / wheel_time if wheel_time > 0 else 0.0}
 
-    def video(self, path, fps: float = 20, width: int = 640, height: int = 480, **view) -> VideoRecorder:
-        """A VideoRecorder following the middle of the body (context manager; captures every servo step)."""
-        view = {"distance": 1.2 * self.geometry.length, "elevation": -60.0, "azimuth": 90.0, **view}
-        return VideoRecorder(self.mj, path, fps=fps, width=width, height=height,
-                             track=f"link{self.geometry.n}", **view)
+    def link_points(self) -> np.ndarray:
+        """Head tip, link origins (joints) and tail tip of the simulated body in the plane, shape (2n+1, 2)."""
+        n = self.geometry.n
+        points = [self.mj.body_pos(f"link{j}")[:2] for j in range(1, 2 * n + 1)]
+        return np.array(points + [self.mj.site_pos(f"axle{n}")[:2]])
+
+    def view(self, **overrides) -> dict:
+        """Camera options for ``--video`` (scenarios.experiment.film): following the middle of the body."""
+        return {"fps": 20, "width": 640, "height": 480, "track": f"link{self.geometry.n}",
+                "distance": 1.2 * self.geometry.length, "elevation": -60.0, "azimuth": 90.0, **overrides}
 
 
 def head_path_difference(c_a: np.ndarray, c_b: np.ndarray) -> float:
     """Largest distance between the head positions of two runs sampled at the same control periods (m)."""
     k = min(len(c_a), len(c_b))
     return float(np.hypot(*(c_a[:k, :2] - c_b[:k, :2]).T).max())
+
+
+def odometry_step(w_h: np.ndarray, phi_0: np.ndarray, phi_1: np.ndarray, grounded, l: float, dt: float) -> np.ndarray:
+    """The head pose after one period δt by the internal model (2.10), A_σ ẇ̃_h = B_σ φ̇, from the measured joint
+    angles at its start and end (φ̇ = Δφ/δt, the angles at mid-period), by the explicit midpoint rule."""
+    rate = (phi_1 - phi_0) / dt
+    mid = 0.5 * (phi_1 + phi_0)
+
+    def w_dot(w):
+        A, b = constraint_terms(w[2], mid, l, rate)
+        return np.linalg.lstsq(A[grounded], b[grounded], rcond=None)[0]
+
+    return midpoint(w_dot, w_h, dt)
 
 
 def replay_error(w_h: np.ndarray, phi: np.ndarray, grounded: np.ndarray, l: float, dt: float, window: int) -> float:
@@ -472,13 +488,6 @@ def replay_error(w_h: np.ndarray, phi: np.ndarray, grounded: np.ndarray, l: floa
     for start in range(0, len(grounded) - window + 1, window):
         w = np.asarray(w_h[start], dtype=float).copy()
         for k in range(start, start + window):
-            rate = (phi[k + 1] - phi[k]) / dt
-            mid_phi = 0.5 * (phi[k] + phi[k + 1])
-            half = w.copy()
-            for _ in range(2):  # midpoint: the rate at mid-period, then the full step
-                A, b = constraint_terms(half[2], mid_phi, l, rate)
-                w_dot = np.linalg.lstsq(A[grounded[k]], b[grounded[k]], rcond=None)[0]
-                half = w + 0.5 * dt * w_dot
-            w = w + dt * w_dot
+            w = odometry_step(w, phi[k], phi[k + 1], grounded[k], l, dt)
         worst = max(worst, float(np.hypot(*(w[:2] - w_h[start + window][:2]))))
     return worst

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.core.integrators import rk4_constant_rate
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
 from shintai.snake.model import check_mode, configuration, constraint_terms
@@ -26,8 +27,7 @@ from shintai.snake.model import check_mode, configuration, constraint_terms
 class KinematicSnake(Body):
     """Planar kinematic snake: snapshot ``t, w_h, phi, psi, grounded, slip``; command ``phi_dot, grounded``."""
 
-    CHANNELS = ("phi_dot", "grounded")
-    channels = {**declare("phi_dot"), **declare("grounded", kind=SET)}
+    channels = {**declare("phi_dot"), **declare("grounded", kind=SET)}  # σ: wheels on the floor (1) or lifted (0)
 
     def __init__(self, w_h0, phi0, geometry: SnakeGeometry = CH3_ROBOT, dt: float = CH3_GAINS.dt,
                  settings: PlantSettings = PLANT):
@@ -54,9 +54,6 @@ class KinematicSnake(Body):
                 "grounded": self.grounded.copy(), "slip": self.slip}
 
     def apply(self, command: dict) -> None:
-        unknown = set(command) - set(self.CHANNELS)
-        if unknown:
-            raise ValueError(f"kinematic snake: unknown command channel(s) {sorted(unknown)}; known: {self.CHANNELS}")
         if "grounded" in command:
             self.grounded = check_mode(command["grounded"], self.geometry.n)
         phi_dot = np.asarray(command.get("phi_dot", np.zeros(self.geometry.n)), dtype=float)
@@ -73,20 +70,10 @@ class KinematicSnake(Body):
 
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
-        h = self.dt / self.settings.rk4_steps
-        w, phi, u = self.w_h, self.phi, self.phi_dot
-        k1, residual = self.head_velocity(w, phi)
+        k1, residual = self.head_velocity(self.w_h, self.phi)
         self.slip = float(np.max(np.abs(residual), initial=0.0))
-        f = lambda w_, phi_: self.head_velocity(w_, phi_)[0]  # noqa: E731
-        for i in range(self.settings.rk4_steps):
-            if i:
-                k1 = f(w, phi)
-            mid = phi + 0.5 * h * u
-            k2 = f(w + 0.5 * h * k1, mid)
-            k3 = f(w + 0.5 * h * k2, mid)
-            k4 = f(w + h * k3, phi + h * u)
-            w = w + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-            phi = phi + h * u
+        w, phi = rk4_constant_rate(lambda w_, phi_: self.head_velocity(w_, phi_)[0], self.w_h, self.phi,
+                                   self.phi_dot, self.dt / self.settings.rk4_steps, self.settings.rk4_steps, k1)
         if not (np.all(np.isfinite(w)) and np.all(np.isfinite(phi))):
             raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")
         self.w_h, self.phi = w, phi

@@ -48,7 +48,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from shintai.core.runtime import SET, Body, Module, SimulationDiverged, declare
+from shintai.core.geometry import rot_z
 from shintai.snake.constants import (
     CH4_ROBOT,
     TWO_PLANE,
@@ -63,7 +63,6 @@ from shintai.snake.model3d import (
     Chain,
     Plane,
     anchored_twist_map,
-    base_matrices,
     chain_from_wheel,
     contact_jacobian,
     contact_relation,
@@ -73,7 +72,6 @@ from shintai.snake.model3d import (
     planar_pose,
     point_jacobian,
     pose_jacobian,
-    rot_z,
     rot_zyx,
     tilt_rows,
     yaw_joints,
@@ -482,218 +480,3 @@ def head_input(ch: Chain, world: TwoPlaneWorld, n_h: int, k_h: float) -> tuple[n
     target = np.array([world.r_w, 0.0, 0.0])
     u[: 2 * n_h] = resolved_rate(head_part_jacobian(ch, world, n_h), k_h * (target - r_1), np.zeros(2 * n_h), 0.0)
     return u, r_1
-
-
-# ------------------------------------------------------------------------------------------- controller
-
-HEAD, STRADDLE, FRONT_SHIFT = 0, 1, 2  # phases (Fig. 4.4: A–B, C, D–E)
-
-
-class TwoPlaneController(Module):
-    """The motions of Fig. 4.4 and their transition conditions (§4.2.4) as one Module running every δt.
-
-    Reads ``p_h``, ``R_h``, ``psi`` from the snapshot; contributes ``{"psi_dot", "contact"}``. Events go to
-    :attr:`events` as (t, kind, n_f, n_c, n_re) with kind in head_done, rear_shift, front_shift_start,
-    front_shift, release.
-    """
-
-    def __init__(self, world: TwoPlaneWorld, cond: TwoPlaneCondition, geometry: SnakeGeometry = CH4_ROBOT,
-                 settings: TwoPlaneSettings = TWO_PLANE, k_v: float | None = None, name: str = "tp"):
-        super().__init__(name, period=settings.dt)
-        self.world, self.cond, self.geometry, self.settings = world, cond, geometry, settings
-        self.k_v = cond.k_v if k_v is None else float(k_v)
-        self.phase = HEAD
-        self.part: Partition | None = None
-        self.t_0 = float("nan")
-        self.origin = np.zeros(3)
-        self.events: list[tuple[float, str, int, int, int]] = []
-
-    def reset(self, snapshot) -> None:
-        self.phase, self.part, self.events = HEAD, None, []
-
-    def _event(self, t: float, kind: str) -> None:
-        p = self.part
-        self.events.append((t, kind, p.n_f, p.n_c, 0 if p.released else p.n_re))
-
-    def _transitions(self, t: float, ch: Chain) -> None:
-        """Apply the transition conditions of §4.2.4 until none holds."""
-        s, p = self.settings, self.part
-        while True:
-            if self.phase == FRONT_SHIFT and abs(ch.psi[p.connection[0]]) < s.front_shift_tol:
-                self.part, self.phase = p.front_shift(), STRADDLE
-                self._event(t, "front_shift")
-            elif self.phase == STRADDLE and p.n_c < s.n_c_max and not p.released:
-                self.part = p.rear_shift()
-                self._event(t, "release" if self.part.released else "rear_shift")
-            elif self.phase == STRADDLE and p.n_c >= 1 and self.world.d_e(ch.wheel_position(p.n_f + 1)) < s.eps_d:
-                self.phase = FRONT_SHIFT
-                self._event(t, "front_shift_start")
-            else:
-                return
-            p = self.part
-
-    def update(self, snapshot):
-        t = float(snapshot["t"])
-        ch = forward_kinematics(snapshot["p_h"], snapshot["R_h"], snapshot["psi"], self.geometry.l)
-        s, n = self.settings, self.geometry.n
-        if self.phase == HEAD:
-            u, r_1 = head_input(ch, self.world, s.n_h, s.k_h)
-            self.log(t, **{f"{self.name}.r1": r_1})
-            if np.abs(r_1 - [self.world.r_w, 0.0, 0.0]).max() >= s.eps_1:
-                return {"psi_dot": u, "contact": head_raised_contact(n, s.n_h).astype(float)}
-            self.phase, self.part = STRADDLE, Partition(n, 1, s.n_h - 2)
-            self.t_0, self.origin = t, self.world.planar(ch.P[0], ch.R[0])
-            self._event(t, "head_done")
-        self._transitions(t, ch)
-        w_f = self.world.planar(ch.P[0], ch.R[0])
-        w_d, w_d_dot = head_target(t, self.t_0, self.origin, self.cond)
-        model = straddle_model(self.world, self.part, w_f, ch.psi, self.geometry.l)
-        step = straddle_input(model, w_f, w_d, w_d_dot, self.cond, self.world.r_w, self.geometry.joint_limit,
-                              self.k_v, self.phase == FRONT_SHIFT)
-        self._log_straddle(t, model, w_f, w_d, step)
-        return {"psi_dot": step.psi_dot, "contact": self.part.contact.astype(float)}
-
-    def _log_straddle(self, t: float, model: StraddleModel, w_f, w_d, step: StraddleStep) -> None:
-        """``<name>.*``: head pose and target in Σ_f, r (NaN-padded), partition, V, d_e, σ_min(H_3), σ_min(A_p)."""
-        part, p = self.part, self.name
-        first = part.n_f + 1
-        d_e = self.world.d_e(model.ch.wheel_position(first)) if first <= part.n else np.nan
-        self.log(t, **{f"{p}.w_f": w_f, f"{p}.w_d": w_d, f"{p}.r": np.r_[model.r, np.full(3 - len(model.r), np.nan)],
-                       f"{p}.phase": self.phase, f"{p}.n_f": part.n_f, f"{p}.n_c": part.n_c,
-                       f"{p}.n_re": 0 if part.released else part.n_re, f"{p}.V": step.V, f"{p}.d_e": d_e,
-                       f"{p}.sigma_H": step.sigma_H, f"{p}.sigma_A": step.sigma_A,
-                       f"{p}.u_norm": float(np.linalg.norm(step.psi_dot))})
-
-
-# ------------------------------------------------------------------------------------------------ plant
-
-class TwoPlaneSnake(Body):
-    """Kinematic plant of the two-plane world: the thesis's models as the motion law (spec §5.2).
-
-    State: head pose (p_h, R_h) and all joints ψ. Commands: ``psi_dot`` (2n−1) and ``contact`` (n codes,
-    :data:`FRONT`/:data:`LIFTED`/:data:`REAR`; which wheels touch is a command, as σ in ch. 2), held over δt.
-
-    * Wheel 1 lifted (head raised, §2.5.1): the grounded base n_h..n moves as (2.21) by least squares,
-      ẇ̃_{n_h} = A_b^† B_b φ̇_b (RK4); the head part follows by forward kinematics from wheel n_h.
-    * Wheel 1 on the front plane: ^f w̃_h moves as (4.9) by least squares, ^f ẇ̃_h = A_p^† B_p ψ̇ (RK4); the
-      front part lies in the front plane by construction, everything else follows by forward kinematics.
-      On entering this mode the head is projected onto the front plane (``snap_m``: largest point shift).
-
-    The snapshot reports ``slip`` = max |A ẇ − B ψ̇| of the constraints used, and for every wheel its contact
-    relation [d, κ, λ] (2.36)–(2.38) to the front (``r_front``) and rear (``r_rear``) planes, plus the
-    clearance of the lifted part (:meth:`lifted_clearance`) to the front edge.
-    """
-
-    CHANNELS = ("psi_dot", "contact")
-    channels = {**declare("psi_dot"), **declare("contact", kind=SET)}
-
-    def __init__(self, world: TwoPlaneWorld, p_h, R_h, psi, contact, geometry: SnakeGeometry = CH4_ROBOT,
-                 settings: TwoPlaneSettings = TWO_PLANE, link_radius: float = TWO_PLANE_SCENE.link_radius):
-        self.world, self.geometry, self.settings, self.link_radius = world, geometry, settings, link_radius
-        self.dt = float(settings.dt)
-        self.t, self.steps = 0.0, 0
-        self.ch = forward_kinematics(p_h, R_h, psi, geometry.l)
-        if len(self.ch.psi) != geometry.joints:
-            raise ValueError(f"psi must hold 2n−1 = {geometry.joints} joint angles, got {len(self.ch.psi)}")
-        self.contact = np.asarray(contact).round().astype(int)
-        self.psi_dot = np.zeros(geometry.joints)
-        self.slip, self.snap_m = 0.0, 0.0
-
-    def snapshot(self) -> dict:
-        ch, w = self.ch, self.world
-        r_front = np.array([contact_relation(ch.wheel_position(i), ch.wheel_frame(i), w.front)
-                            for i in range(1, self.geometry.n + 1)])
-        r_rear = np.array([contact_relation(ch.wheel_position(i), ch.wheel_frame(i), w.rear)
-                           for i in range(1, self.geometry.n + 1)])
-        return {"t": self.t, "p_h": ch.P[0].copy(), "R_h": ch.R[0].copy(), "psi": ch.psi.copy(),
-                "contact": self.contact.copy(), "slip": self.slip, "snap_m": self.snap_m,
-                "r_front": r_front, "r_rear": r_rear, "edge_clearance": self.lifted_clearance(),
-                "wheels": np.array([ch.wheel_position(i) for i in range(1, self.geometry.n + 1)])}
-
-    def lifted_clearance(self) -> float:
-        """:func:`edge_clearance` of the body between the last front-plane wheel (or the head tip) and the first
-        rear-plane wheel (or the tail tip): the lifted part, the connection part once wheel 1 is on the front."""
-        c = self.contact
-        if (c == FRONT).all():
-            return float("inf")
-        first = 2 * int(np.argmax(c != FRONT)) if c[0] == FRONT else 0
-        rear = np.flatnonzero(c == REAR)
-        last = 2 * (int(rear[0]) + 1) if len(rear) else 2 * self.geometry.n
-        return edge_clearance(self.world, self.ch, first, last, self.link_radius)
-
-    def apply(self, command: dict) -> None:
-        unknown = set(command) - set(self.CHANNELS)
-        if unknown:
-            raise ValueError(f"two-plane snake: unknown command channel(s) {sorted(unknown)}; known: {self.CHANNELS}")
-        if "contact" in command:
-            contact = np.asarray(command["contact"]).round().astype(int)
-            if contact.shape != (self.geometry.n,) or not np.isin(contact, (LIFTED, FRONT, REAR)).all():
-                raise ValueError(f"contact must give n = {self.geometry.n} codes 0/1/2, got {contact.tolist()}")
-            self.contact = contact
-        psi_dot = np.asarray(command.get("psi_dot", np.zeros(self.geometry.joints)), dtype=float)
-        if psi_dot.shape != (self.geometry.joints,):
-            raise ValueError(f"psi_dot must have 2n−1 = {self.geometry.joints} entries, got shape {psi_dot.shape}")
-        self.psi_dot = psi_dot
-
-    def step(self) -> None:
-        if self.contact[0] == FRONT:
-            self._step_front()
-        else:
-            self._step_base()
-        if not np.all(np.isfinite(self.ch.P)):
-            raise SimulationDiverged(f"two-plane snake: non-finite state at t = {self.t + self.dt:.3f} s")
-        self.steps += 1
-        self.t = self.steps * self.dt
-
-    def _rk4(self, f, x, psi):
-        """RK4 of ẋ = f(x, ψ) with ψ̇ constant over δt; returns (x, ψ) at t + δt and f's first residual."""
-        h, u = self.dt / self.settings.rk4_steps, self.psi_dot
-        k1, residual = f(x, psi)
-        for i in range(self.settings.rk4_steps):
-            if i:
-                k1 = f(x, psi)[0]
-            mid = psi + 0.5 * h * u
-            k2 = f(x + 0.5 * h * k1, mid)[0]
-            k3 = f(x + 0.5 * h * k2, mid)[0]
-            k4 = f(x + h * k3, psi + h * u)[0]
-            x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-            psi = psi + h * u
-        return x, psi, residual
-
-    def _step_front(self) -> None:
-        part, l = Partition.from_contact(self.contact), self.geometry.l
-        w = self.world.planar(self.ch.P[0], self.ch.R[0])
-        snapped = forward_kinematics(*self.world.embed(w), self.ch.psi, l)
-        self.snap_m = max(self.snap_m, float(np.abs(snapped.P - self.ch.P).max()))
-
-        def f(w_, psi_):
-            m = straddle_model(self.world, part, w_, psi_, l)
-            A, b = m.A_p(), m.B_p() @ self.psi_dot
-            w_dot = np.linalg.lstsq(A, b, rcond=None)[0]
-            return w_dot, A @ w_dot - b
-
-        w, psi, residual = self._rk4(f, w, self.ch.psi)
-        self.slip = float(np.abs(residual).max(initial=0.0))
-        self.ch = forward_kinematics(*self.world.embed(w), psi, l)
-
-    def _step_base(self) -> None:
-        rear = np.flatnonzero(self.contact == REAR)
-        if len(rear) < 2 or rear[-1] != self.geometry.n - 1 or np.ptp(rear) != len(rear) - 1 \
-                or (self.contact[: rear[0]] != LIFTED).any():
-            raise ValueError(f"with wheel 1 off the front plane the contact must read LIFTED…, REAR… (wheels "
-                             f"n_h..n on the rear plane), got {self.contact.tolist()}")
-        k, n, l = int(rear[0]) + 1, self.geometry.n, self.geometry.l
-        base_yaw = yaw_joints(2 * k + 1, 2 * n - 1)
-        p_a, R_a = self.ch.wheel_position(k), self.ch.wheel_frame(k)
-        w_a = planar_pose(self.ch, 2 * k, self.ch.wheel_link(k))
-
-        def f(w_, psi_):
-            A, B = base_matrices(w_, psi_[base_yaw], l)
-            b = B @ self.psi_dot[base_yaw]
-            w_dot = np.linalg.lstsq(A, b, rcond=None)[0]
-            return w_dot, A @ w_dot - b
-
-        w, psi, residual = self._rk4(f, w_a, self.ch.psi)
-        self.slip = float(np.abs(residual).max(initial=0.0))
-        shift = np.r_[w[:2] - w_a[:2], 0.0]
-        self.ch = chain_from_wheel(psi, l, k, p_a + shift, rot_z(w[2] - w_a[2]) @ R_a)

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Module
+from shintai.core.runtime import Module, whole_multiple
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, SnakeGeometry, TwoPointGains
 from shintai.snake.model import (
     Configuration,
@@ -217,12 +217,8 @@ class TwoPointController(Module):
         super().__init__(name, period=law.gains.dt)
         self.law = law
         self.target = target
-        self.select_every = None
-        if select_period is not None:
-            ratio = select_period / law.gains.dt
-            if round(ratio) < 1 or not math.isclose(ratio, round(ratio), rel_tol=1e-9):
-                raise ValueError(f"select_period {select_period} s is not a whole multiple of δt = {law.gains.dt} s")
-            self.select_every = int(round(ratio))
+        self.select_every = None if select_period is None else whole_multiple(select_period, law.gains.dt,
+                                                                              "select_period")
         self.mode = 0
         self.calls = 0
         self.selections = 0

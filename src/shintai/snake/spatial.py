@@ -1,10 +1,11 @@
-"""Shared pieces of the applications of two-point control, seed 001 §3.4, on the physical (MuJoCo) snake.
+"""The two-point law on the 3D models of seed 001 §2.5, as the applications of §3.4 use it.
 
-The scenarios themselves are in scenarios_caging.py (§3.4.1), scenarios_handcart.py (§3.4.2) and
-scenarios_door.py (§3.4.3). Here: piecewise-linear targets (the two-stage ramp (3.22)–(3.23) and (3.26)),
-a logging probe, body geometry helpers, and the two-point law (3.3)–(3.6), (3.19)–(3.20) written for the 3D
-models of §2.5 (:class:`SpatialTwoPoint`; the thesis applies it to the double-arm model (3.24)–(3.25) without
-writing it out, A17).
+The thesis applies two-point control (3.3)–(3.6), (3.19)–(3.20) to the double-arm model for the handcart
+((3.24)–(3.25), §3.4.2) and to the head-raised model for the door (§3.4.3) without writing the 3D law out
+(A17, A18). Here: a 3D model as the controller sees it (:class:`SpatialModel`: A_σ ċ = B_σ u with its
+inputs, base wheels and candidate base modes), the candidate base modes (§3.2.4 on the base), the three
+models used (:func:`double_arm_model`, :func:`head_raised_model`, :func:`head_raised_two_point_model`), a
+kinematic plant of such a model (:class:`KinematicSpatial`) and the law (:class:`SpatialTwoPoint`).
 """
 
 from __future__ import annotations
@@ -13,11 +14,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib.path import Path as Polygon
 
-from shintai.core.runtime import SET, Body, Module, SimulationDiverged, declare
+from shintai.core.geometry import wrap
+from shintai.core.runtime import SET, Body, Module, SimulationDiverged, declare, whole_multiple
 from shintai.snake.constants import CH3_GAINS, MUJOCO_SNAKE, SnakeGeometry
-from shintai.snake.model import body_points, configuration
 from shintai.snake.model3d import (
     PLANAR,
     DoubleArm,
@@ -28,66 +28,8 @@ from shintai.snake.model3d import (
     pose_jacobian,
     yaw_joints,
 )
-from shintai.snake.mujoco_plant import MujocoSnake, lift_profile
-from shintai.snake.targets import ANGLE_INDICES, wrap_angle
+from shintai.snake.mujoco_plant import lift_profile
 from shintai.snake.two_point import joint_limit_objective
-
-
-@dataclass(frozen=True)
-class Waypoints:
-    """Piecewise-linear target through poses ``c[k]`` at ``times[k]`` (held after the last), with its slope.
-
-    With (0, t_s1, t_end) and (c_c(0), c_{c,e1}, c_{c,e2}) this is the two-stage ramp (3.22)–(3.23) read as
-    (t − t_s1)/(t_end − t_s1) in stage 2 (A7). Each angle (``angles``: indices into a pose, the headings
-    of c_c by default) is moved to the 2π-branch nearest the previous waypoint's (A6), so no ramp winds the
-    joints up.
-    """
-
-    times: tuple[float, ...]
-    poses: np.ndarray
-
-    @classmethod
-    def through(cls, times, poses, angles=ANGLE_INDICES) -> Waypoints:
-        poses = np.array(poses, dtype=float)
-        if len(times) != len(poses) or len(times) < 2 or np.any(np.diff(times) <= 0):
-            raise ValueError("waypoints need >= 2 strictly increasing times, one pose each")
-        idx = np.asarray(angles)
-        for k in range(1, len(poses)):
-            poses[k, idx] = poses[k - 1, idx] + wrap_angle(poses[k, idx] - poses[k - 1, idx])
-        return cls(tuple(float(t) for t in times), poses)
-
-    def __call__(self, t: float) -> tuple[np.ndarray, np.ndarray]:
-        if t >= self.times[-1]:
-            return self.poses[-1].copy(), np.zeros(self.poses.shape[1])
-        k = int(np.searchsorted(self.times, t, side="right")) - 1
-        rate = (self.poses[k + 1] - self.poses[k]) / (self.times[k + 1] - self.times[k])
-        return self.poses[k] + rate * (t - self.times[k]), rate
-
-
-class Probe(Module):
-    """Logs ``signals(snapshot)`` (a dict) under ``<name>.<key>`` every control period."""
-
-    def __init__(self, name: str, signals, period: float = CH3_GAINS.dt):
-        super().__init__(name, period)
-        self.signals = signals
-
-    def update(self, snapshot):
-        self.log(snapshot["t"], **{f"{self.name}.{k}": v for k, v in self.signals(snapshot).items()})
-
-
-def link_points(body: MujocoSnake) -> np.ndarray:
-    """Head tip, link origins (joints) and tail tip of the simulated body in the plane, shape (2n+1, 2)."""
-    n = body.geometry.n
-    points = [body.mj.body_pos(f"link{j}")[:2] for j in range(1, 2 * n + 1)]
-    return np.array(points + [body.mj.site_pos(f"axle{n}")[:2]])
-
-
-def inside_body_loop(w_h, phi, l: float, point) -> bool:
-    """Is ``point`` inside the loop the body polyline (head → tail wheel) makes when closed tail → head?"""
-    return bool(Polygon(body_points(configuration(w_h, phi, l))).contains_point(point[:2]))
-
-
-# ------------------------------------------------------------------------------------ spatial two-point
 
 ANGLES_6 = (3, 4, 5, 9, 10, 11)  # Euler angles in c_d = [w_h; w_t] (2.34)
 
@@ -191,8 +133,7 @@ class KinematicSpatial(Body):
     model's flat base; lifting is the deletion of rows, §2.3). Snapshot ``t, head_pose, psi, phi, grounded``;
     command ``psi_dot``, ``grounded``."""
 
-    CHANNELS = ("psi_dot", "grounded")
-    channels = {**declare("psi_dot"), **declare("grounded", kind=SET)}
+    channels = {**declare("psi_dot"), **declare("grounded", kind=SET)}  # σ: on the floor (1) / lifted (0)
 
     def __init__(self, w_h, psi, geometry: SnakeGeometry, model: SpatialModel, dt: float = CH3_GAINS.dt):
         self.geometry, self.model, self.dt = geometry, model, float(dt)
@@ -206,9 +147,6 @@ class KinematicSpatial(Body):
                 "grounded": self.grounded.copy()}
 
     def apply(self, command: dict) -> None:
-        unknown = set(command) - set(self.CHANNELS)
-        if unknown:
-            raise ValueError(f"kinematic 3D snake: unknown command channel(s) {sorted(unknown)}")
         if "grounded" in command:
             self.grounded = np.asarray(command["grounded"], dtype=bool)
         self.psi_dot = np.asarray(command.get("psi_dot", np.zeros(self.geometry.joints)), dtype=float)
@@ -237,16 +175,21 @@ class SpatialTwoPoint(Module):
     The lifted base wheels are raised by the base's pitch joints (mujoco_plant.lift_profile on the base,
     anchored at its first wheel, at most at settings.lift_rate as on the planar plant); everything else is
     in u. Sends ``psi_dot`` and ``grounded``.
+
+    ``pose``: the snapshot key of the 6D head pose it controls from (``head_pose``, the mocap; the door's
+    operator gives an internal-model estimate); ``clock``: the key of the time the target is read at
+    (``t``, the body's; the door's targets run on the operator's clock).
     """
 
     def __init__(self, model: SpatialModel, target, geometry: SnakeGeometry, gains=CH3_GAINS,
-                 settings=MUJOCO_SNAKE, k_sigma: float = 0.0, name: str = "spatial"):
+                 settings=MUJOCO_SNAKE, k_sigma: float = 0.0, name: str = "spatial", pose: str = "head_pose",
+                 clock: str = "t"):
         super().__init__(name, period=gains.dt)
-        self.k_sigma = k_sigma
+        self.k_sigma, self.pose, self.clock = k_sigma, pose, clock
         self.model, self.target, self.geometry, self.gains, self.settings = model, target, geometry, gains, settings
         first, last = model.base
         self.lift_joints = 2 * np.arange(first + 1, last) - 1  # pitch joints of the inner base wheels (0-based)
-        self.select_every = int(round(gains.t_sigma / gains.dt))
+        self.select_every = whole_multiple(gains.t_sigma, gains.dt, "t_sigma")
         self.mode, self.calls = 0, 0
         self.lift_cmd = np.zeros(len(self.lift_joints))
 
@@ -270,16 +213,16 @@ class SpatialTwoPoint(Module):
         self.mode = int(np.argmax(V))
 
     def update(self, snapshot):
-        t, w_h, psi = float(snapshot["t"]), snapshot["head_pose"], snapshot["psi"]
+        t, w_h, psi = float(snapshot["t"]), snapshot[self.pose], snapshot["psi"]
         if len(self.model.candidates) > 1 and self.calls % self.select_every == 0:
             self.select(w_h, psi)
         self.calls += 1
         g = self.model.candidates[self.mode]
         A, B, c = self.model.matrices(w_h, psi, g)
-        c_d, c_d_dot = self.target(t)
+        c_d, c_d_dot = self.target(float(snapshot[self.clock]))
         error = np.asarray(c_d, float) - c
         angles = list(self.model.angles)
-        error[angles] = wrap_angle(error[angles])
+        error[angles] = wrap(error[angles])
         eta = self.gains.k_u[0] * joint_limit_objective(psi[self.model.inputs], self.gains.phi_th)[1]
         if self.k_sigma:
             eta = eta + self.k_sigma * self.sigma_gradient(w_h, psi, g, B)

@@ -1,0 +1,17 @@
+"""``snake.two-plane-pitch``: seed 001 §4.5 condition 2 — head transition, straddling and connection transitions
+onto a front plane pitched by −0.0609 rad; the same run without the null-space term as the second variant."""
+
+from __future__ import annotations
+
+from shintai.scenarios.registry import experiment
+from shintai.snake.constants import CONDITION_2
+from shintai.snake.plots_two_plane import plot_two_plane
+from shintai.snake.two_plane_runs import PARAMS, checks, condition_metrics, condition_rig, thesis_values, variants
+
+experiment(
+    "snake.two-plane-pitch",
+    source="seed 001 §4.5 condition 2",
+    summary="head transition, straddling and connection transitions onto a front plane pitched by −0.0609 rad",
+    params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_2, "Fig. 4.14"),
+    rig=condition_rig(CONDITION_2), variants=variants, metrics=condition_metrics, plots=plot_two_plane,
+)
