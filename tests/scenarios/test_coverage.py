@@ -89,3 +89,23 @@ def test_reproduce_runs_a_stochastic_scenario_over_seeds(tmp_path):
     assert noisy["metrics"]["draw_m"] == pytest.approx(sum(draws) / 3) and noisy["checks"][0]["held_in"] == 3
     assert not (tmp_path / "core.minjerk" / "seed-1").exists()  # a deterministic scenario runs once
     assert noisy["metrics_std"]["draw_m"] > 0
+
+
+def test_every_scenario_classes_its_checks_and_covers_known_rows():
+    """No experiment without a row: a scenario's covers name rows of the registry, every check says its kind,
+    and a check naming a row names one its scenario covers."""
+    import importlib.util
+
+    from shintai.scenarios import registry
+    from shintai.scenarios.coverage import all_rows
+
+    registry.load_all()
+    rows = all_rows()
+    for sid, sc in registry.SCENARIOS.items():
+        body = {"core": "humanoid", "sim": "humanoid"}.get(sid.split(".")[0], sid.split(".")[0])  # seed 000's
+        if importlib.util.find_spec(f"shintai.{body}.coverage") is None:
+            continue  # a body whose thesis is not catalogued yet
+        assert set(sc.covers) <= set(rows), f"{sid} covers unknown rows {set(sc.covers) - set(rows)}"
+        for c in sc.checks:
+            assert c.kind in ("reproduction", "consistency"), f"{sid}: check {c.name or c.metric} has no kind"
+            assert c.row is None or c.row in sc.covers, f"{sid}: check {c.name or c.metric} names a row it does not cover"

@@ -180,29 +180,29 @@ def checks() -> tuple[Check, ...]:
     n = CH4_ROBOT.n
     return (
         Check("head_transition_time_s", "<=", 20.0,
-              "thesis §4.5: head adaptation converged (Fig. 4.13b); 20 s = 20 time constants of K_h = I (chosen)"),
+              "thesis §4.5: head adaptation converged (Fig. 4.13b); 20 s = 20 time constants of K_h = I (chosen)", kind="consistency"),
         Check("head_error_after_transient_m", "<=", 0.01,
               "thesis §4.5: the head followed its target on the front plane (Fig. 4.13c, no number); 1 cm after "
-              "2/k_p s proposed in spec §5.4 #16"),
+              "2/k_p s proposed in spec §5.4 #16", kind="reproduction"),
         Check("contact_d_error_max_m", "<=", 0.002,
               "thesis §4.5: connection variables tracked well, wheels kept proper contact (Fig. 4.13d); 2 mm from "
-              "spec §5.4 #16"),
-        Check("max_abs_tilt_rad", "<=", 0.02, "thesis §4.5 (as above); 0.02 rad from spec §5.4 #16"),
+              "spec §5.4 #16", kind="reproduction"),
+        Check("max_abs_tilt_rad", "<=", 0.02, "thesis §4.5 (as above); 0.02 rad from spec §5.4 #16", kind="reproduction"),
         Check("all_wheels_on_front", "==", 1,
               "thesis §4.5: the robot moved onto the front plane (Fig. 4.13a); the last wheels need the tail "
-              "release of two_plane.py, not in the thesis"),
+              "release of two_plane.py, not in the thesis", kind="reproduction"),
         Check("min_edge_clearance_m", ">", 0.0,
-              "thesis §4.4.2, §4.5: contact with the plane edges avoided through the redundancy (spec §5.4 #18)"),
-        Check("max_abs_joint_rad", "<", CH4_ROBOT.joint_limit, "thesis §4.5: ψ_lim = π/2 avoided (sub-task (i))"),
-        Check("front_shifts", "==", n - 1, "derived: wheels 2..n land one by one after the head transition"),
+              "thesis §4.4.2, §4.5: contact with the plane edges avoided through the redundancy (spec §5.4 #18)", kind="reproduction"),
+        Check("max_abs_joint_rad", "<", CH4_ROBOT.joint_limit, "thesis §4.5: ψ_lim = π/2 avoided (sub-task (i))", kind="reproduction"),
+        Check("front_shifts", "==", n - 1, "derived: wheels 2..n land one by one after the head transition", kind="consistency"),
         Check("rear_shifts", "==", n - TWO_PLANE.n_h,
-              "derived: the rear end moves from wheel n_h to wheel n (then the tail is released)"),
+              "derived: the rear end moves from wheel n_h to wheel n (then the tail is released)", kind="consistency"),
         Check("rear_shift_after_each_front_shift", "==", 1,
-              "thesis §4.2.4: after a front shift n_c < n_c_max, so the rear end shifts at once (spec §5.4 #17)"),
-        Check("max_connection_wheels", "<=", TWO_PLANE.n_c_max, f"thesis §4.5: n_c_max = {TWO_PLANE.n_c_max}"),
+              "thesis §4.2.4: after a front shift n_c < n_c_max, so the rear end shifts at once (spec §5.4 #17)", kind="consistency"),
+        Check("max_connection_wheels", "<=", TWO_PLANE.n_c_max, f"thesis §4.5: n_c_max = {TWO_PLANE.n_c_max}", kind="consistency"),
         Check("min_edge_clearance_m", ">", "min_edge_clearance_no_nullspace_m",
               "thesis §4.4.2: the null-space term keeps the connection off the edge (spec §5.4 #19, comparative)",
-              name="redundancy_raises_edge_clearance"),
+              name="redundancy_raises_edge_clearance", kind="consistency"),
     )
 
 

@@ -43,6 +43,7 @@ def plots(ctx, runs, params):
 experiment(
     "snake.caging",
     source="seed 001 §3.4.1",
+    covers=("001:fig3.8",),
     summary="caging transport: a box inside the U carried by the two-stage targets (3.22)–(3.23), MuJoCo or kinematic",
     params=(
         Param("plant", "mujoco", "mujoco: physical snake with a box (joint encoders, mocap head pose); kinematic: "
@@ -54,14 +55,14 @@ experiment(
     ),
     checks=(
         Check("max_pos_error_m", "<=", 0.01, "thesis §3.4.1: controlled variables 'follow the targets well' "
-              "(Fig. 3.8c, no number); 1 cm from spec §5.4 #11 (kinematic prototype: 4.1 mm)"),
-        Check("rms_pos_error_m", "<=", 0.001, "spec §5.4 #11 (kinematic prototype: 0.22 mm)"),
-        Check("final_pos_error_m", "<=", 0.001, "spec §5.4 #11: final head and tail within 1 mm"),
-        Check("max_abs_joint_rad", "<", CH3_ROBOT.joint_limit, "thesis §3.2.3 sub-task (a); spec §5.4 #11"),
-        Check("stopped_fraction", "<", 0.1, "thesis §3.2.5; spec §5.4 #11 (prototype 2 %)"),
-        Check("box_left_cage", "==", 0, "thesis §3.4.1 / Fig. 3.9: the box stays enclosed and is carried"),
+              "(Fig. 3.8c, no number); 1 cm from spec §5.4 #11 (kinematic prototype: 4.1 mm)", kind="reproduction"),
+        Check("rms_pos_error_m", "<=", 0.001, "spec §5.4 #11 (kinematic prototype: 0.22 mm)", kind="consistency"),
+        Check("final_pos_error_m", "<=", 0.001, "spec §5.4 #11: final head and tail within 1 mm", kind="consistency"),
+        Check("max_abs_joint_rad", "<", CH3_ROBOT.joint_limit, "thesis §3.2.3 sub-task (a); spec §5.4 #11", kind="consistency"),
+        Check("stopped_fraction", "<", 0.1, "thesis §3.2.5; spec §5.4 #11 (prototype 2 %)", kind="consistency"),
+        Check("box_left_cage", "==", 0, "thesis §3.4.1 / Fig. 3.9: the box stays enclosed and is carried", kind="reproduction"),
         Check("box_advance_x_m", ">=", 0.275, "thesis §3.4.1: the box is carried as the robot advances; the "
-              "targets advance 0.55 m in x, so at least half of it"),
+              "targets advance 0.55 m in x, so at least half of it", kind="reproduction"),
     ),
     thesis={
         "tracking": ThesisValue("follows the targets well (Fig. 3.8c, no number in the text)", "seed 001 §3.4.1",

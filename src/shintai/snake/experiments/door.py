@@ -48,6 +48,7 @@ def plots(ctx, runs, params):
 experiment(
     "snake.door",
     source="seed 001 §3.4.3",
+    covers=("001:fig3.16",),
     summary="30-link snake opens a spring-hinged door (hook, pull), slips its tail in (two-point control) and "
             "passes tail-first (shift control), in MuJoCo; plus a success rate over perturbed runs",
     params=(
@@ -57,10 +58,10 @@ experiment(
     ),
     checks=(
         Check("phase_reached", ">=", 2, "thesis Fig. 3.16 blocks 3–4 / spec §5.4 #20: after phase 2 the tail is "
-              "inside and the head holds the door open"),
-        Check("passed", "==", 1, "thesis §3.4.3 / Fig. 3.16: the robot passed through the door"),
+              "inside and the head holds the door open", kind="reproduction"),
+        Check("passed", "==", 1, "thesis §3.4.3 / Fig. 3.16: the robot passed through the door", kind="reproduction"),
         Check("success_rate", ">", 0.0, "thesis §3.4.3: passing succeeded, with failures in phase 3 "
-              "(Fig. 3.17); no rate is given, so only 'some runs pass'"),
+              "(Fig. 3.17); no rate is given, so only 'some runs pass'", kind="consistency"),
     ),
     thesis={
         "result": ThesisValue("passed (Fig. 3.16); failures seen in phase 3, wheels caught on the door (Fig. 3.17)",

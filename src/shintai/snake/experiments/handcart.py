@@ -29,6 +29,7 @@ def plots(ctx, runs, params):
 experiment(
     "snake.handcart",
     source="seed 001 §3.4.2",
+    covers=("001:fig3.10",),
     summary="n = 15 snake, head and tail raised (double-arm model of model3d), pushes a wheeled cart 0.5 m",
     params=(Param("duration_s", HANDCART.t_end, "simulated time; the ramp (3.26) keeps t_end", lo=0.05,
                   hi=HANDCART.t_end),
@@ -36,11 +37,11 @@ experiment(
                   "kinematic: the double-arm model itself with a pushed cart", choices=("mujoco", "kinematic"))),
     checks=(
         Check("max_pos_error_m", "<=", 0.01, "thesis §3.4.2: controlled variables follow the targets (Fig. 3.10c, "
-              "no number); 1 cm as for caging (spec §5.4 #11, #14)"),
+              "no number); 1 cm as for caging (spec §5.4 #11, #14)", kind="reproduction"),
         Check("relative_pose_drift_m", "<=", 0.005, "thesis §3.4.2: the head–tail relation is kept, or the ends slip "
-              "off the handles; 'a few mm' from spec §5.4 #14"),
+              "off the handles; 'a few mm' from spec §5.4 #14", kind="consistency"),
         Check("cart_displacement_m", ">=", 0.4, "thesis §3.4.2 / Fig. 3.11: the cart is steered along; both ends "
-              "advance 0.5 m"),
+              "advance 0.5 m", kind="reproduction"),
     ),
     thesis={"result": ThesisValue("targets followed; cart steered by head and tail (Figs. 3.10–3.11, no numbers)",
                                   "seed 001 §3.4.2", "cart_displacement_m")},

@@ -47,10 +47,10 @@ experiment(
     checks=(
         Check("final_pos_error_fixed_m", ">=", 0.1,
               "thesis §3.1: with fixed constraints the robot meets singular configuration II and cannot continue; "
-              "0.1 m from spec §5.4 #12"),
-        Check("final_pos_error_switching_m", "<", 0.005, "thesis §3.3: with switching both points track (Fig. 3.6c)"),
+              "0.1 m from spec §5.4 #12", kind="consistency"),
+        Check("final_pos_error_switching_m", "<", 0.005, "thesis §3.3: with switching both points track (Fig. 3.6c)", kind="consistency"),
         Check("final_pos_error_fixed_m", ">", "final_pos_error_switching_m", "thesis §3.1 claim: switching helps",
-              name="switching_beats_fixed"),
+              name="switching_beats_fixed", kind="consistency"),
     ),
     thesis={"claim": ThesisValue("fixed constraints stall at singular configuration II; switching continues",
                                  "seed 001 §3.1, §3.2.5")},

@@ -11,6 +11,7 @@ from shintai.snake.two_plane_runs import PARAMS, checks, condition_metrics, cond
 experiment(
     "snake.two-plane-pitch",
     source="seed 001 §4.5 condition 2",
+    covers=("001:fig4.14",),
     summary="head transition, straddling and connection transitions onto a front plane pitched by −0.0609 rad",
     params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_2, "Fig. 4.14"),
     rig=condition_rig(CONDITION_2), variants=variants, metrics=condition_metrics, plots=plot_two_plane,

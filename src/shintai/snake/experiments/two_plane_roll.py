@@ -11,6 +11,7 @@ from shintai.snake.two_plane_runs import PARAMS, checks, condition_metrics, cond
 experiment(
     "snake.two-plane-roll",
     source="seed 001 §4.5 condition 1",
+    covers=("001:fig4.13",),
     summary="head transition, straddling and connection transitions onto a front plane rolled by −0.107 rad",
     params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_1, "Fig. 4.13"),
     rig=condition_rig(CONDITION_1), variants=variants, metrics=condition_metrics, plots=plot_two_plane,
