@@ -24,6 +24,7 @@ class SidePush(Module):
 
     def __init__(self, lengths: np.ndarray, push_n: float, name: str = "side_push"):
         super().__init__(name)
+        self.push_n = push_n
         self.commands = [{"length": lengths}, {"push": [0.0, push_n, 0.0]}, {"push": [0.0, -push_n, 0.0]}]
         self.seen: list[Snapshot] = []
 
@@ -43,16 +44,15 @@ def stiffening_rig(robot: SpineRobot, precompression_m: float, push_n: float) ->
     body = QuasiStaticSpine(robot)
     lengths = robot.model.lengths(np.zeros(3 * robot.n), np.full(robot.n, gap))
     probe = SidePush(lengths, push_n)
-    return Rig(body, modules=[probe], duration=3 * body.dt, state=(probe, push_n))
+    return Rig(body, modules=[probe], duration=3 * body.dt, state=probe)
 
 
-def stiffness_metrics(body: QuasiStaticSpine, state) -> dict[str, float]:
+def stiffness_metrics(body: QuasiStaticSpine, probe: SidePush) -> dict[str, float]:
     """Lateral stiffness [N/mm], mean muscle tension at rest, the discs' compression at rest, and
     whether the rest equilibrium converged."""
-    probe, push_n = state
     rest, pushed = probe.seen[1], probe.seen[2]
     y_plus, y_minus = pushed["top"][1], body.snapshot()["top"][1]
     ring = body.robot.disc
-    return {"stiffness_n_mm": 2 * push_n / (y_plus - y_minus) / 1e3, "mean_tension_n": float(rest["tension"].mean()),
+    return {"stiffness_n_mm": 2 * probe.push_n / (y_plus - y_minus) / 1e3, "mean_tension_n": float(rest["tension"].mean()),
             "disc_compression_mm": 1e3 * (ring.t_free_m - ring.gap_m - float(rest["gap"].mean())),
             "solved": int(rest["solved"])}

@@ -80,14 +80,14 @@ def replay(teach_kgf: float, recording: Recording, speedup: int,
     loop = Loop(body, stages=[[playback], [control]], channels=SETPOINTS)
     steps = int(round((len(samples) - 1) * SAMPLE_PERIOD_S / body.dt)) + E9_EXTRA_TICKS
     taught = whole_spine(recording.postures[np.minimum(np.arange(len(samples)) * speedup, len(recording.postures) - 1)])
-    err, ref, post, sat = [], [], [], [0]
+    err, ref, post, saturated = [], [], [], []
 
-    def observe(snap):
+    def observe(snap):  # after each tick: the encoders against the l_r the playback wrote
         target = snap["l_r"]
         err.append(snap["encoder"] - target)
         ref.append(target - samples[0])
-        sat[0] += int(np.any(np.abs(loop.command["duty"]) >= 0.99))
-        i = min(int((len(post) + 1) * body.dt / SAMPLE_PERIOD_S), len(taught) - 1)
+        saturated.append(int(np.any(np.abs(loop.command["duty"]) >= 0.99)))
+        i = min(int(loop.tick * body.dt / SAMPLE_PERIOD_S), len(taught) - 1)
         post.append(np.degrees(whole_spine(snap["theta"]) - taught[i]))
 
     with film(body) if film is not None else contextlib.nullcontext():
@@ -96,7 +96,7 @@ def replay(teach_kgf: float, recording: Recording, speedup: int,
     rms_err, rms_ref = float(np.sqrt(np.mean(err**2))), float(np.sqrt(np.mean(ref**2)))
     return {"rms_length_error_mm": 1e3 * rms_err, "max_length_error_mm": 1e3 * float(np.abs(err).max()),
             "relative_length_error": rms_err / rms_ref, "rms_posture_error_deg": float(np.sqrt(np.mean(post**2))),
-            "saturated_fraction": sat[0] / steps,
+            "saturated_fraction": sum(saturated) / steps,
             "required_peak_speed_mm_s": 1e3 * float(np.abs(np.diff(samples, axis=0)).max() / SAMPLE_PERIOD_S),
             "duration_s": (len(samples) - 1) * SAMPLE_PERIOD_S, "sim_time_s": steps * body.dt + 1.0}
 
@@ -112,24 +112,22 @@ def key_postures(teach_kgf: float) -> float:
                 + [uniform_posture(np.zeros(3), CLA.n)])
     read = {held * (k + 1): k for k in range(len(taught))}  # the first tick after each posture was held
     encoders, truth = [None] * len(taught), [None] * len(taught)
-    ticks = [0]
+    loop = Loop(body, [hand, control])
 
     def read_taught(snap):
-        k = read.get(ticks[0])
+        k = read.get(loop.tick - 1)
         if k is not None:
             encoders[k], truth[k] = snap["encoder"], whole_spine(snap["theta"])
-        ticks[0] += 1
 
-    Loop(body, [hand, control]).run(len(taught) * held * body.dt + E9_RETURN_S, every={1: read_taught})
+    loop.run(len(taught) * held * body.dt + E9_RETURN_S, every={1: read_taught})
     period = int(round(E9_KEY_PERIOD_S / body.dt))
     goals = Schedule({period * k: {"l_goal": enc} for k, enc in enumerate(encoders)})
     playback = Playback(body.snapshot()["encoder"], key_move_s=E9_KEY_MOVE_S)
     loop = Loop(body, stages=[[goals], [playback], [control]], channels=(*SETPOINTS, L_GOAL))
-    errors, ticks[0] = [], 0
+    errors = []
 
-    def error_at_goal(snap):
-        ticks[0] += 1
-        if ticks[0] % period == 1 and ticks[0] > 1:  # the state right after a posture's period
+    def error_at_goal(snap):  # the state a period after each goal, before the next one is commanded
+        if loop.tick > 1 and (loop.tick - 1) % period == 0:
             errors.append(np.degrees(np.abs(whole_spine(snap["theta"]) - truth[len(errors)])).max())
 
     loop.run(len(taught) * period * body.dt, every={1: error_at_goal})

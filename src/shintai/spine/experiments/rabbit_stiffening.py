@@ -20,14 +20,18 @@ def prefixes(params) -> list[str]:
     return [""] + ([ABLATION] if params["ablation"] else [])
 
 
+def runs_by_name(params) -> dict[str, tuple[str, float]]:
+    """Every run: its name (``linear_disc.pre_0.5mm``) → (disc prefix, pre-compression [mm])."""
+    return {f"{prefix}pre_{level:g}mm": (prefix, level) for prefix in prefixes(params) for level in levels(params)}
+
+
 def variants(params) -> list[str]:
-    return [f"{prefix}pre_{level:g}mm" for prefix in prefixes(params) for level in levels(params)]
+    return list(runs_by_name(params))
 
 
 def rig(params, variant):
-    robot = linear_disc(RABBIT) if variant.startswith(ABLATION) else RABBIT
-    level = float(variant.removeprefix(ABLATION).removeprefix("pre_").removesuffix("mm"))
-    return stiffening_rig(robot, level * 1e-3, params["push_n"])
+    prefix, level = runs_by_name(params)[variant]
+    return stiffening_rig(linear_disc(RABBIT) if prefix else RABBIT, level * 1e-3, params["push_n"])
 
 
 def per_disc(runs, params):

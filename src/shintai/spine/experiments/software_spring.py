@@ -15,20 +15,24 @@ def k_list(params) -> list[float]:
     return [float(k) for k in params["k_s_list"].split(",")]
 
 
+def trial_names(params) -> dict[str, float]:
+    """The trials of the chosen spring law by name (``k50``: k_s = 50), in the order given."""
+    return {f"k{int(k)}": k for k in k_list(params)}
+
+
 def other_law(params) -> str:
     return next(x for x in SPRING_LAWS if x != params["spring_law"])
 
 
 def variants(params) -> list[str]:
-    main = [f"k{int(k)}" for k in k_list(params)]
+    main = list(trial_names(params))
     return main + ([f"{other_law(params)}.{v}" for v in main] if params["compare"] else [])
 
 
 def rig(params, variant):
-    law, _, name = variant.rpartition(".")
-    k_s = k_list(params)[[f"k{int(k)}" for k in k_list(params)].index(name)]
-    return spring_rig(k_s, params["push_deg"], params["push_s"], params["release_s"], law or params["spring_law"],
-                      log=not law)
+    law, _, name = variant.rpartition(".")  # "newtons.k50": the other law; "k50": the chosen one
+    return spring_rig(trial_names(params)[name], params["push_deg"], params["push_s"], params["release_s"],
+                      law or params["spring_law"], log=not law)
 
 
 def trials(runs, params) -> dict[float, dict]:
@@ -86,7 +90,7 @@ experiment(
     thesis={"k_s": ThesisValue("50, 100, 200, 400 (ADC counts / encoder counts)", "§4.5.2"),
             "trend": ThesisValue("larger k_s → larger tension change for a small length change", "§4.5.2")},
     constraints=[(lambda p: _k_list_ok(p["k_s_list"]), "k_s_list: a comma list of numbers ≥ 1 with distinct integer parts")],
-    rig=rig, variants=variants, filmed=lambda p: variants(p)[len(k_list(p)) - 1:len(k_list(p))],
+    rig=rig, variants=variants, filmed=lambda p: list(trial_names(p))[-1:],  # the stiffest spring
     metrics=metrics, plots=plots,
     video=True,
 )
