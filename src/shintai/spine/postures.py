@@ -25,7 +25,8 @@ from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
 from shintai.spine.robots import HOLD_FALL_DEG, HOLD_LIMIT_DEG
 
-GOAL = Channel("goal", SET, doc="the next uniform-bend posture Θ = (φ_s, θ_s, ψ_s) [rad], on the tick it is commanded")
+GOAL = Channel("goal", SET, doc="the next uniform-bend posture Θ = (φ_s, θ_s, ψ_s) [rad], on the tick it is "
+                                "commanded")
 WHOLE_REF = Channel("whole_ref", SET, doc="the posture player's whole-spine reference Θ this tick [rad]")
 
 

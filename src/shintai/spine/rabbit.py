@@ -53,6 +53,7 @@ def stiffness_metrics(body: QuasiStaticSpine, probe: SidePush) -> dict[str, floa
     rest, pushed = probe.seen[1], probe.seen[2]
     y_plus, y_minus = pushed["top"][1], body.snapshot()["top"][1]
     ring = body.robot.disc
-    return {"stiffness_n_mm": 2 * probe.push_n / (y_plus - y_minus) / 1e3, "mean_tension_n": float(rest["tension"].mean()),
+    return {"stiffness_n_mm": 2 * probe.push_n / (y_plus - y_minus) / 1e3,
+            "mean_tension_n": float(rest["tension"].mean()),
             "disc_compression_mm": 1e3 * (ring.t_free_m - ring.gap_m - float(rest["gap"].mean())),
             "solved": int(rest["solved"])}

@@ -66,7 +66,8 @@ def plots(ctx, runs, params):
 E11_CHECKS = [
     Check("l_t.collapsed", "==", 1, "Table 4.8 mode 6 / §4.7.3: shortening L + lengthening T buckled"),
     *[Check(f"{m}.max_pitch_held_deg", "<", 30, f"Table 4.8: {m} holds pitch only to {TABLE_4_8[m][2]}° "
-            "(§4.7.3: cannot hold large pitch against gravity, arms raised)") for m in ("all_ll", "all_s_mid", "l_ll")],
+            "(§4.7.3: cannot hold large pitch against gravity, arms raised)")
+      for m in ("all_ll", "all_s_mid", "l_ll")],
     *[Check(f"{m}.max_pitch_held_deg", ">=", 30, f"Table 4.8: {m} holds the whole ±30° pitch range")
       for m in ("all_l", "all_s_high", "l_s_mid", "l_s_high")],
     Check("all_l.mean_error_pitch_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 4.73° pitch)"),
@@ -102,7 +103,8 @@ experiment(
     constraints=[
         (lambda p: all(m in MODE_CONFIGS for m in names(p)) and len(set(names(p))) == len(names(p)),
          f"modes: unknown or repeated mode configuration; valid: all, or a comma list of {', '.join(MODE_CONFIGS)}"),
-        (lambda p: p["window_s"] <= p["hold_s"], "window_s must not exceed hold_s: the window lies at the end of the hold"),
+        (lambda p: p["window_s"] <= p["hold_s"],
+         "window_s must not exceed hold_s: the window lies at the end of the hold"),
     ],
     rig=rig, variants=variants, filmed=filmed, metrics=metrics, plots=plots,
     demo=True,

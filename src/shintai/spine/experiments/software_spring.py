@@ -63,7 +63,7 @@ def _k_list_ok(text: str) -> bool:
         ks = [float(k) for k in text.split(",")]
     except ValueError:
         return False
-    return all(k >= 1 for k in ks) and len({int(k) for k in ks}) == len(ks)
+    return all(k > 0 for k in ks) and len({int(k) for k in ks}) == len(ks)
 
 
 experiment(
@@ -89,7 +89,8 @@ experiment(
     ],
     thesis={"k_s": ThesisValue("50, 100, 200, 400 (ADC counts / encoder counts)", "§4.5.2"),
             "trend": ThesisValue("larger k_s → larger tension change for a small length change", "§4.5.2")},
-    constraints=[(lambda p: _k_list_ok(p["k_s_list"]), "k_s_list: a comma list of numbers ≥ 1 with distinct integer parts")],
+    constraints=[(lambda p: _k_list_ok(p["k_s_list"]),
+                  "k_s_list: a comma list of positive numbers with distinct integer parts (they name the runs)")],
     rig=rig, variants=variants, filmed=lambda p: list(trial_names(p))[-1:],  # the stiffest spring
     metrics=metrics, plots=plots,
     video=True,
