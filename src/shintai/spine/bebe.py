@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shintai.core import Body, Loop, Module, Recorder, SimulationDiverged
-from shintai.core.runtime import FunctionModule, declare
+from shintai.core.runtime import SET, FunctionModule, declare
 from shintai.spine.geometry import Chain, MuscleSet, SpineModel
 from shintai.spine.robots import BEBE
 
@@ -129,7 +129,7 @@ class BeBePlant(Body):
     angles), ``valve``, ``pressure``.
     """
 
-    channels = declare("valve", "push")
+    channels = {**declare("valve", kind=SET), **declare("push")}  # the valve mask has one writer; pushes add
 
     def __init__(self, params: BeBeParams = BeBeParams(), target=None, rng: np.random.Generator | None = None):
         self.prm = params

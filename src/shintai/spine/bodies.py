@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged, Snapshot, declare
+from shintai.core.runtime import SET, Body, SimulationDiverged, Snapshot, declare
 from shintai.spine.control import Mode
 from shintai.spine.geometry import MuscleSet, SpineModel
 from shintai.spine.robots import STANDARD_GRAVITY, DiscSpec, RingDiscSpec, SpineRobot
@@ -75,7 +75,7 @@ class QuasiStaticSpine(Body):
     (1 if the last equilibrium converged, else 0), ``t``.
     """
 
-    channels = declare("length", "push")
+    channels = {**declare("length", kind=SET), **declare("push")}  # one length set-point; pushes add
     dt_default = 0.1  # s per equilibrium: a static posture "held for a while"
     max_iterations = 200
     max_step = 0.02  # rad (or m for a gap) per Newton step
