@@ -3,13 +3,14 @@
 import numpy as np
 import pytest
 
+from shintai.core.constants import KGF_N
 from shintai.spine.actuators import (
     DCMotorDrive, Encoder, TensionSensor, fsr_force, posture_from_accelerometers, pwm_duty, shunt_current, tilt,
     zmp,
 )
 from shintai.spine.geometry import rpy_matrix
 from shintai.spine.robots import (
-    CLA, CLA_MOTOR, KENTA_MOTOR_A, KENTA_MOTOR_B, KENTA_MOTOR_C, KGF, RABBIT_SERVO, TABLE_3_3_MAX_SPEED_M_S,
+    CLA, CLA_MOTOR, KENTA_MOTOR_A, KENTA_MOTOR_B, KENTA_MOTOR_C, RABBIT_SERVO, TABLE_3_3_MAX_SPEED_M_S,
     TABLE_3_3_SPEED_AT_5KGF_M_S,
 )
 
@@ -21,7 +22,7 @@ def test_motor_model_reproduces_table_3_3_speeds(group):
     """No-load pulling speed and speed at 5 kgf on the linear torque–speed line (spec §3.2)."""
     drive = DCMotorDrive([KENTA[group]])
     assert drive.no_load_speed_m_s[0] == pytest.approx(TABLE_3_3_MAX_SPEED_M_S[group], rel=2e-3)
-    assert drive.speed(5 * KGF)[0] == pytest.approx(TABLE_3_3_SPEED_AT_5KGF_M_S[group], abs=0.25e-3)
+    assert drive.speed(5 * KGF_N)[0] == pytest.approx(TABLE_3_3_SPEED_AT_5KGF_M_S[group], abs=0.25e-3)
 
 
 def test_cla_drive_matches_table_3_2():
@@ -37,7 +38,7 @@ def test_cla_drive_matches_table_3_2():
 
 
 def test_rabbit_servo_tension_from_torque():
-    assert RABBIT_SERVO.max_tension_n / KGF == pytest.approx(12.6)  # §3.5.1
+    assert RABBIT_SERVO.max_tension_n / KGF_N == pytest.approx(12.6)  # §3.5.1
 
 
 def test_pwm_duty_saturates_and_quantises():

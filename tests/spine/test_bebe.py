@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from shintai.core import Body, Loop, declare
+from shintai.core.runtime import ChannelError, FunctionModule
 from shintai.spine import bebe
 
 # Four hand-made view shifts: right, up, left, and a 45° diagonal (right-up).
@@ -139,8 +140,9 @@ def test_cooperating_muscles_on_one_span_do_not_superpose(plant_and_shifts):
 
 
 def test_plant_rejects_unknown_channels():
-    with pytest.raises(ValueError, match="channels"):
-        bebe.BeBePlant().apply({"pressure": np.zeros(36)})
+    """The plant declares valve and push; anything else is the Loop's one ChannelError."""
+    with pytest.raises(ChannelError, match="pressure"):
+        Loop(bebe.BeBePlant(), [FunctionModule(lambda snap: {"pressure": np.zeros(36)}, name="bad")]).run(0.1)
 
 
 def test_rule_brings_an_offset_target_into_the_dead_zone(plant_and_shifts):

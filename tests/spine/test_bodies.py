@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from shintai.core.runtime import Loop
+from shintai.core.runtime import ADD, SET, ChannelError, FunctionModule, Loop
 from shintai.spine.bodies import QuasiStaticSpine
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.control import Mode, MuscleControl
@@ -70,9 +70,8 @@ def test_the_wire_only_pulls_and_its_joint_torque_is_minus_J_transpose_T(plain):
 
 def test_positive_duty_winds_in_and_raises_tension():
     body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
-    body.hold(np.zeros(15))
     for _ in range(100):
-        body.apply({"duty": np.r_[0.3, np.zeros(7)]})
+        body.apply({"duty": np.r_[0.3, np.zeros(7)], "hand": np.zeros(15)})  # the hand holds the spine
         body.step()
     snap = body.snapshot()
     assert snap["encoder"][0] > 0 and snap["tension_true"][0] > 1.0
@@ -85,9 +84,8 @@ def test_snapshot_sensors_equal_the_body_state():
     """The snapshot's muscle entries are the body's own state functions (tension, current, lengths,
     θ), read at the same instant."""
     body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
-    body.hold(uniform_posture(np.radians([5.0, -8.0, 3.0]), CLA.n))
     for _ in range(50):
-        body.apply({"duty": np.linspace(-0.2, 0.3, 8)})
+        body.apply({"duty": np.linspace(-0.2, 0.3, 8), "hand": uniform_posture(np.radians([5.0, -8.0, 3.0]), CLA.n)})
         body.step()
     snap = body.snapshot()
     assert np.array_equal(snap["tension_true"], body.wire_tension())
@@ -195,3 +193,19 @@ def test_kenta_ligaments_are_pre_stretched_extension_springs():
             b.step()
         sag[key] = np.abs(b.theta()).max()
     assert sag["with"] < sag["without"]
+
+
+def test_the_hand_channel_holds_while_written_and_lets_go_after():
+    """The hand is a set channel of the body: a tick that writes a posture welds the top link to its
+    pose; a tick without it lets go (so whoever holds the spine writes it every tick)."""
+    body = SpineBody(CLA, loads=CLA_TRUNK_LOADS + CLA_ARMS_DOWN)
+    assert body.channels["hand"].kind == SET and body.channels["duty"].kind == ADD
+    bent = uniform_posture(np.radians([0.0, 12.0, 0.0]), CLA.n)
+    Loop(body, [], base={"hand": bent}).run(0.6)
+    assert body.data.eq_active[body.id("equality", "hand")]
+    assert np.degrees(whole_spine(body.theta()))[1] > 8.0  # bent toward 12° (a firm, not rigid grip)
+    Loop(body, []).run(0.001)
+    assert not body.data.eq_active[body.id("equality", "hand")]
+    with pytest.raises(ChannelError, match="two writers"):
+        hand = FunctionModule(lambda snap: {"hand": bent}, name="second_hand")
+        Loop(body, [hand], base={"hand": bent}).run(0.001)

@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 
+from shintai.core.runtime import SET
 from shintai.spine.actuators import TensionSensor
 from shintai.spine.control import (
-    RECOMMENDED, CountSpring, Gains, Mode, MuscleControl, encoder_targets, interference_modes, law_L, law_LL,
+    RECOMMENDED, SETPOINTS, CountSpring, Gains, Mode, MuscleControl, encoder_targets, interference_modes, law_L, law_LL,
     law_S, law_T, software_spring, table_4_6_gains, unified_duty,
 )
-
 from shintai.spine.robots import CLA
 
 G = Gains(K_Pl=2000.0, K_Il=1.0e4, K_Dl=3.0, K_Pt=0.1, K_Dt=1e-3, T_t=0.5, T_l=10.0, k_s=3000.0, T_r=9.8)
@@ -105,6 +105,22 @@ def test_module_contributes_duty_from_snapshot():
     ctl.reset(snap)
     out = ctl.update(snap)
     assert set(out) == {"duty"} and out["duty"].shape == (2,)
+
+
+def test_setpoints_arrive_on_channels_and_are_kept():
+    """A set-point stage writes mode and targets; the controller takes them in the same tick (before
+    its duty) and keeps them on ticks nobody writes them."""
+    ctl = MuscleControl(2, G)
+    snap = {"t": 0.0, "encoder": np.zeros(2), "tension": np.full(2, 5.0)}
+    ctl.reset(snap)
+    ctl.state.integral[:] = 1e-5
+    out = ctl.update({**snap, "mode": np.array([float(Mode.L), float(Mode.T)]), "l_r": np.array([1e-3, 0.0]),
+                      "T_r": np.array([0.0, 5.0])})
+    assert list(ctl.modes) == [Mode.L, Mode.T] and ctl.l_r[0] == 1e-3 and ctl.T_r[1] == 5.0
+    assert out["duty"][0] == pytest.approx(1.0) and out["duty"][1] == 0.0  # 1 mm too long: wind in; T at target
+    ctl.update(snap)
+    assert list(ctl.modes) == [Mode.L, Mode.T] and ctl.l_r[0] == 1e-3  # kept
+    assert {c.name for c in SETPOINTS} == {"mode", "l_r", "T_r", "l_0"} and all(c.kind == SET for c in SETPOINTS)
 
 
 def test_interference_policy():

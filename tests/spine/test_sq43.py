@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from shintai.spine import sq43
+from shintai.spine.robots import STANDARD_GRAVITY
 
 
 def quadratic(centre):
@@ -97,7 +98,7 @@ def test_inclined_blocks_turn_twist_into_stiff_lateral_bending():
 def test_lift_carries_the_weight_and_a_stiffer_foam_lifts_the_foot_higher():
     prm = sq43.SQ43Params()
     res = sq43.lift_left_front([5.0, 5.0, 5.0], prm)
-    assert res.reactions_n.sum() == pytest.approx(prm.mass_kg * sq43.G)
+    assert res.reactions_n.sum() == pytest.approx(prm.mass_kg * STANDARD_GRAVITY)
     assert res.reactions_n.min() >= -1e-9  # no foot pulls the ground
     assert 0.0 < res.height_m < prm.lift_m  # the twisting spine lets the front sag
     stiffer = sq43.lift_left_front([5.0, 5.0, 5.0], replace(prm, k_torsion=2 * prm.k_torsion))

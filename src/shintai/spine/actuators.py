@@ -25,10 +25,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from shintai.spine.robots import MotorSpec, TensionSensorSpec
-
-SHUNT_OHM = 0.1  # §3.6.2, JSK-D02
-PWM_STEPS = 255  # chosen: an 8-bit PWM timer on the H8 (the resolution is not in text)
+from shintai.spine.robots import PWM_STEPS, SHUNT_OHM, MotorSpec, TensionSensorSpec
 
 
 class DCMotorDrive:

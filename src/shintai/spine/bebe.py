@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shintai.core import Body, Loop, Module, Recorder, SimulationDiverged
-from shintai.core.runtime import FunctionModule, declare
+from shintai.core.runtime import SET, FunctionModule, declare
 from shintai.spine.geometry import Chain, MuscleSet, SpineModel
 from shintai.spine.robots import BEBE
 
@@ -129,7 +129,7 @@ class BeBePlant(Body):
     angles), ``valve``, ``pressure``.
     """
 
-    channels = declare("valve", "push")
+    channels = {**declare("valve", kind=SET), **declare("push")}  # the valve mask has one writer; pushes add
 
     def __init__(self, params: BeBeParams = BeBeParams(), target=None, rng: np.random.Generator | None = None):
         self.prm = params
@@ -206,19 +206,15 @@ class BeBePlant(Body):
                 "pressure": self.pressure.copy()}
 
     def apply(self, command: dict) -> None:
-        unknown = set(command) - {"valve", "push"}
-        if unknown:
-            raise ValueError(f"BeBePlant: unknown command channels {sorted(unknown)}")
         if "valve" in command:
             self.valve = (np.asarray(command["valve"]) > 0.5).astype(float)
         self.push = np.asarray(command.get("push", np.zeros(3)), dtype=float)
 
-    def settle(self, valve: np.ndarray, seconds: float) -> np.ndarray:
-        """Hold ``valve`` for ``seconds`` (no controller) and return the final target image position."""
-        self.apply({"valve": valve})
-        for _ in range(int(round(seconds / self.dt))):
-            self.step()
-        return self.snapshot()["target_px"]
+
+def settle(plant: BeBePlant, valve: np.ndarray, seconds: float) -> np.ndarray:
+    """Hold ``valve`` for ``seconds`` (no controller) and return the final target image position."""
+    Loop(plant, [], base={"valve": valve}).run(seconds)
+    return plant.snapshot()["target_px"]
 
 
 # ------------------------------------------------------------------------------------- calibration
@@ -236,7 +232,7 @@ def calibrate(make_plant, settle_s: float = 1.0) -> np.ndarray:
         start = plant.snapshot()["target_px"]
         valve = np.zeros(plant.model.m)
         valve[i] = 1.0
-        shifts.append(start - plant.settle(valve, settle_s))
+        shifts.append(start - settle(plant, valve, settle_s))
     return np.array(shifts)
 
 
@@ -248,7 +244,7 @@ def superposition_error(make_plant, shifts: np.ndarray, pairs, settle_s: float =
         start = plant.snapshot()["target_px"]
         valve = np.zeros(plant.model.m)
         valve[[i, j]] = 1.0
-        both = start - plant.settle(valve, settle_s)
+        both = start - settle(plant, valve, settle_s)
         errors.append(np.linalg.norm(both - shifts[i] - shifts[j]) / np.linalg.norm(shifts[i] + shifts[j]))
     return np.array(errors)
 
@@ -272,8 +268,8 @@ def hysteresis_residual(make_plant, muscle: int, settle_s: float = 1.0) -> float
     start = plant.snapshot()["target_px"]
     valve = np.zeros(plant.model.m)
     valve[muscle] = 1.0
-    plant.settle(valve, settle_s)
-    return float(np.linalg.norm(plant.settle(np.zeros_like(valve), settle_s) - start))
+    settle(plant, valve, settle_s)
+    return float(np.linalg.norm(settle(plant, np.zeros_like(valve), settle_s) - start))
 
 
 # ------------------------------------------------------------------------------------------- the rule

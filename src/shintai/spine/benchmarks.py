@@ -1,6 +1,13 @@
-"""Benchmark: one L/T/S/LL control tick for all 40 of Kenta's muscles against the ~1 ms period
-(§3.6.1, §4.7.3: "the control period is 1 ms"; §4.6.5: one routine per mode). Compared with the
-naive form of the same computation — a Python loop calling the per-mode law for each muscle."""
+"""The spine's benchmarks.
+
+* ``spine.kenta-control-tick``: one L/T/S/LL control tick for all 40 of Kenta's muscles against the
+  ~1 ms period (§3.6.1, §4.7.3: "the control period is 1 ms"; §4.6.5: one routine per mode), compared
+  with the naive form of the same computation — a Python loop calling the per-mode law for each muscle.
+* ``spine.inverse-query``: muscle length → posture on Cla, the NN query against Jacobian integration
+  (§4.4.3). Both answer the same question for the same lengths (the thesis compares their errors and
+  their time: Jacobian integration took 19–2100 s per posture, Table 4.2). The network is trained once
+  (8-40-15, L-BFGS, seeded); its training time is reported separately.
+"""
 
 from __future__ import annotations
 
@@ -9,8 +16,9 @@ import time
 import numpy as np
 
 from shintai.scenarios.registry import benchmark
+from shintai.spine import inverse_model
 from shintai.spine.control import Gains, Mode, MuscleControl, law_L, law_LL, law_S, law_T
-from shintai.spine.robots import KENTA
+from shintai.spine.robots import CLA, KENTA
 
 
 def _inputs(rng, m: int) -> tuple[np.ndarray, np.ndarray]:
@@ -66,4 +74,33 @@ def kenta_control_tick(ticks: int = 20000) -> dict:
         "naive_us_per_tick": 1e6 * results["naive"],
         "speedup_vs_naive": results["naive"] / results["vectorised"],
         "period_ms": 1e3 * period,
+    }
+
+
+@benchmark("spine.inverse-query", "Cla q → θ: NN 8-40-15 query vs Jacobian integration (4.26–4.28), same 20 postures")
+def inverse_query() -> dict:
+    model = CLA.model
+    rng = np.random.default_rng(0)
+    theta = inverse_model.random_postures(model.n, 20, rng)
+    q = model.lengths(theta)
+    t0 = time.perf_counter()
+    nn = inverse_model.NeuralInverse(model, (40,), np.random.default_rng(1))
+    nn.fit(iterations=1000, record_every=100)
+    train_s = time.perf_counter() - t0
+    repeat = 50
+    t0 = time.perf_counter()
+    for _ in range(repeat):
+        for qk in q:
+            nn.posture(qk)
+    nn_s = (time.perf_counter() - t0) / (repeat * len(q))
+    runs = [inverse_model.jacobian_integration(model, qk) for qk in q]
+    jac_s = float(np.mean([r.seconds for r in runs]))
+    return {
+        "nn_query_us": 1e6 * nn_s,
+        "jacobian_query_ms": 1e3 * jac_s,
+        "jacobian_over_nn": jac_s / nn_s,
+        "jacobian_divisions_mean": float(np.mean([r.divisions for r in runs])),
+        "nn_train_s": train_s,
+        "nn_error_norm_deg": float(inverse_model.error_norm_deg(nn.posture(q), theta).mean()),
+        "jacobian_error_norm_deg": float(inverse_model.error_norm_deg(np.array([r.theta for r in runs]), theta).mean()),
     }

@@ -30,10 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged, Snapshot, declare
+from shintai.core.runtime import SET, Body, SimulationDiverged, Snapshot, declare
 from shintai.spine.control import Mode
 from shintai.spine.geometry import MuscleSet, SpineModel
-from shintai.spine.robots import DiscSpec, G, RingDiscSpec, SpineRobot
+from shintai.spine.robots import STANDARD_GRAVITY, DiscSpec, RingDiscSpec, SpineRobot
 
 
 def ring_springs(model: SpineModel, disc: RingDiscSpec) -> MuscleSet:
@@ -69,12 +69,13 @@ class QuasiStaticSpine(Body):
 
     Command channels: ``length`` (m,) commanded muscle lengths λ_r for L and LL muscles (the
     model's eq. 4.25 lengths, not encoder values); ``push`` (3,) an external force [N] on the top
-    link at ``push_point`` (its frame), in the base frame. Muscle laws, target tensions, springs
-    and limits are set with :meth:`set_laws`. Snapshot: ``theta``, ``gap``, ``lengths``,
-    ``tension``, ``top`` (3,) the top link's origin, ``t``.
+    link at ``push_point`` (its frame), in the base frame; a channel not written keeps its last
+    value. Muscle laws, target tensions, springs and limits are set with :meth:`set_laws`. Snapshot:
+    ``theta``, ``gap``, ``lengths``, ``tension``, ``top`` (3,) the top link's origin, ``solved``
+    (1 if the last equilibrium converged, else 0), ``t``.
     """
 
-    channels = declare("length", "push")
+    channels = {**declare("length", kind=SET), **declare("push")}  # one length set-point; pushes add
     dt_default = 0.1  # s per equilibrium: a static posture "held for a while"
     max_iterations = 200
     max_step = 0.02  # rad (or m for a gap) per Newton step
@@ -87,7 +88,7 @@ class QuasiStaticSpine(Body):
         self.dt = dt
         self.t = 0.0
         self.loads = tuple(robot.loads if loads is None else loads)
-        self.gravity = G if gravity else 0.0
+        self.gravity = STANDARD_GRAVITY if gravity else 0.0
         self.push_point = np.asarray(push_point, dtype=float)
         self.ring = robot.disc if isinstance(robot.disc, RingDiscSpec) else None
         self.rings = SpineModel(self.model.chain, ring_springs(self.model, self.ring)) if self.ring else None
@@ -271,16 +272,13 @@ class QuasiStaticSpine(Body):
         r = self.result
         _, p, _ = self.model.chain.frames(r.theta, r.gap)
         return {"t": self.t, "theta": r.theta.copy(), "gap": r.gap.copy(), "lengths": r.lengths.copy(),
-                "tension": r.tension.copy(), "top": p[-1].copy()}
+                "tension": r.tension.copy(), "top": p[-1].copy(), "solved": float(r.success)}
 
     def apply(self, command) -> None:
-        for channel, value in command.items():
-            if channel == "length":
-                self.length_cmd = np.broadcast_to(np.asarray(value, dtype=float), (self.model.m,)).copy()
-            elif channel == "push":
-                self.push = np.asarray(value, dtype=float).reshape(3).copy()
-            else:
-                raise KeyError(f"unknown command channel {channel!r}; valid: length, push")
+        if "length" in command:
+            self.length_cmd = np.broadcast_to(np.asarray(command["length"], dtype=float), (self.model.m,)).copy()
+        if "push" in command:
+            self.push = np.asarray(command["push"], dtype=float).reshape(3).copy()
 
     def step(self) -> None:
         self.result = self.solve()

@@ -29,8 +29,9 @@ Model (spec 003 §5.2):
   and motor currents are computed from the reel and tendon state in :meth:`SpineBody.snapshot`.
 * **Ligaments** (Kenta, §3.7.1), optional: extension springs between neighbouring vertebrae as
   spatial tendons that pull only beyond their natural length (``ligaments=KENTA_LIGAMENTS``).
-* **A human hand**: a mocap body welded to the top link when active (:meth:`SpineBody.hold`), used
-  to push the spine (E10) or teach it (E9).
+* **A human hand**: a mocap body welded to the top link while the ``hand`` channel (a set channel:
+  the posture θ whose top-link pose the hand holds) is written, used to zero the encoders (§4.6.4),
+  push the spine (E10) or teach it (E9); a tick without a writer lets go.
 """
 
 from __future__ import annotations
@@ -40,17 +41,13 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import declare
+from shintai.core.runtime import SET, declare, whole_multiple
 from shintai.sim.body import MujocoBody
 from shintai.spine.actuators import DCMotorDrive, Encoder, TensionSensor, posture_from_accelerometers
 from shintai.spine.geometry import matrix_rpy, rpy_matrix
-from shintai.spine.robots import DiscSpec, LigamentSpec, Load, SpineRobot
-
-PELVIS_HEIGHT_M = 0.45  # chosen: the pelvis stands on (rigid) legs; only the spine moves
-REEL_OFFSET_M = 0.08  # chosen: wire inside the block between the pull point and the reel at s = 0
-WRAP_RADIUS_M = 0.015  # chosen: our disc annulus Ø24 mm (robots.py, not a thesis number: §3.6.1 gives no Cla
-# vertebra sizes) + the wire and its clearance; the thesis does not model interference (§4.7.1, §4.4.1)
-HAND_SOLREF = (0.04, 1.0)  # chosen: a firm but not rigid human grip (time constant 40 ms)
+from shintai.spine.robots import (
+    HAND_SOLREF, PELVIS_HEIGHT_M, REEL_OFFSET_M, WRAP_RADIUS_M, DiscSpec, LigamentSpec, Load, SpineRobot,
+)
 
 
 def _quat(R: np.ndarray) -> np.ndarray:
@@ -223,23 +220,23 @@ class SpineBody(MujocoBody):
     motor currents [A]; ``posture`` (2,) (roll, pitch) of the top link seen from the pelvis by the
     accelerometers (eq. 3.4) [rad]; ``theta`` (3n,) the true joint angles (eq. 4.1) [rad];
     ``lengths`` (m,) the muscles' external path lengths [m] (eq. 4.25 when nothing wraps).
-    Command: ``duty`` (m,) PWM duties o ∈ [−1, 1] (o > 0 winds in), besides MujocoBody's channels.
+    Command: ``duty`` (m,) PWM duties o ∈ [−1, 1] (o > 0 winds in), besides MujocoBody's channels;
+    ``hand`` (3n,), a set channel: the hand holds the top link at its pose for posture θ this tick,
+    and lets go on a tick nobody writes it (:meth:`hold`).
     """
 
     def __init__(self, robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
                  interference: bool = True, timestep: float = 5e-4, control_period: float | None = None,
                  ligaments: LigamentSpec | None = None):
         period = control_period if control_period is not None else robot.control_period_s
-        substeps = round(period / timestep)
-        if substeps < 1 or not math.isclose(substeps * timestep, period, rel_tol=1e-9):
-            raise ValueError(f"control period {period} s is not a whole multiple of the timestep {timestep} s")
+        substeps = whole_multiple(period, timestep, "control period")
         self.robot = robot
         self.joint_type = joint
         self.drive = DCMotorDrive(robot.motors)
         self.encoder = Encoder(robot.motors)
         self.sensor = TensionSensor(robot.sensor)
         super().__init__(build_spec(robot, loads, joint, interference, timestep, ligaments), substeps=substeps)
-        self.channels = {**self.channels, **declare("duty")}
+        self.channels = {**self.channels, **declare("duty"), **declare("hand", kind=SET)}
         m = self.model
         names = robot.muscle_names
         self.tendon_ids = np.array([mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_TENDON, nm) for nm in names])
@@ -326,7 +323,8 @@ class SpineBody(MujocoBody):
                 self.model.jnt_stiffness[jnt] = k_twist if name.endswith("_yaw") else k_bend
 
     def hold(self, theta=None) -> None:
-        """A human hand holds the top link at the pose it has at posture θ (3n,), or lets go (None)."""
+        """A human hand holds the top link at the pose it has at posture θ (3n,), or lets go (None):
+        what the ``hand`` channel does each tick (:meth:`apply`)."""
         if theta is None:
             self.data.eq_active[self._hand] = False
             return
@@ -362,6 +360,7 @@ class SpineBody(MujocoBody):
 
     def apply(self, command) -> None:
         command = dict(command)
+        self.hold(command.pop("hand", None))
         duty = command.pop("duty", None)
         if duty is not None:
             duty = np.asarray(duty, dtype=float)

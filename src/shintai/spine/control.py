@@ -37,9 +37,9 @@ from enum import IntEnum
 
 import numpy as np
 
-from shintai.core.runtime import Module, Snapshot
+from shintai.core.constants import KGF_N
+from shintai.core.runtime import SET, Channel, Module, Snapshot
 from shintai.spine.actuators import TensionSensor, pwm_duty
-from shintai.spine.robots import KGF
 
 
 class Mode(IntEnum):
@@ -67,10 +67,10 @@ class Gains:
     K_Dl: float = 3.0  # s/m
     K_Pt: float = 0.10  # 1/N
     K_Dt: float = 1.0e-3  # s/N
-    T_t: float = 0.05 * KGF  # N, dead band
-    T_l: float = 1.0 * KGF  # N, LL limit tension
+    T_t: float = 0.05 * KGF_N  # N, dead band
+    T_l: float = 1.0 * KGF_N  # N, LL limit tension
     k_s: float = 1000.0  # N/m, software spring; ADC counts per encoder pulse with a CountSpring
-    T_r: float = 1.0 * KGF  # N, T-mode target tension
+    T_r: float = 1.0 * KGF_N  # N, T-mode target tension
 
 
 def law_L(l, l_r, integral, dl, g: Gains) -> np.ndarray:
@@ -195,6 +195,18 @@ RECOMMENDED = {
 }
 
 
+# The upper layer's set-points of :class:`MuscleControl` (§4.6.5: "the upper layer selects the routine and
+# sends the targets"): loop channels a player, teacher or sequence writes in an earlier stage and the
+# controller reads in a later stage of the same tick. Each has one writer; on a tick nobody writes one, the
+# controller keeps the last value it was given (as the firmware keeps its target registers).
+SETPOINTS = (
+    Channel("mode", SET, doc="per-muscle Mode (L, T, S, LL)"),
+    Channel("l_r", SET, doc="target encoder lengths of L and LL muscles [m]"),
+    Channel("T_r", SET, doc="target tensions of T muscles [N]"),
+    Channel("l_0", SET, doc="natural lengths of the software springs of S muscles [m]"),
+)
+
+
 @dataclass
 class MuscleState:
     """Per-muscle controller memory: the length integral and the previous readings."""
@@ -209,9 +221,10 @@ class MuscleControl(Module):
     """All muscles' L/T/S/LL laws at the control period, as a runtime module.
 
     Reads ``snapshot["encoder"]`` (l, m) and ``snapshot["tension"]`` (T, N) and contributes
-    ``{"duty": o}``. Modes, targets and gains are per muscle and may change between ticks
+    ``{"duty": o}``. Modes and targets are per muscle: they arrive on the :data:`SETPOINTS` channels
+    (when present in the snapshot, before the tick's duty is computed), or are set between runs
     (:meth:`set_modes`, :meth:`set_targets`); gains are a :class:`Gains` whose fields may be
-    scalars or (m,) arrays. Each tick's duty, and the modes, are kept as ``last_duty``.
+    scalars or (m,) arrays. Each tick's duty is kept as ``last_duty``.
     """
 
     def __init__(self, m: int, gains: Gains | None = None, period: float = 1e-3, name: str = "muscles",
@@ -287,6 +300,10 @@ class MuscleControl(Module):
         return self.last_duty
 
     def update(self, snapshot: Snapshot):
+        if "mode" in snapshot:
+            self.set_modes(snapshot["mode"])
+        if "l_r" in snapshot or "T_r" in snapshot or "l_0" in snapshot:
+            self.set_targets(snapshot.get("l_r"), snapshot.get("T_r"), snapshot.get("l_0"))
         l = np.asarray(snapshot["encoder"], dtype=float)
         T = np.asarray(snapshot["tension"], dtype=float)
         return {"duty": self.duty(l, T, self.period)}

@@ -49,7 +49,11 @@ E = np.eye(3)
 
 
 def rpy_matrix(rpy) -> np.ndarray:
-    """R = Rz(ψ) Ry(θ) Rx(φ) for ``rpy = (..., [φ roll, θ pitch, ψ yaw])`` in radians → (..., 3, 3)."""
+    """R = Rz(ψ) Ry(θ) Rx(φ) for ``rpy = (..., [φ roll, θ pitch, ψ yaw])`` in radians → (..., 3, 3).
+
+    Written out element by element, vectorised over any batch of postures (the chain's forward
+    kinematics evaluates thousands at once); :mod:`shintai.core.geometry`'s ``rot_x/y/z`` are single
+    scalar rotations, and their product would round differently (and change every result)."""
     rpy = np.asarray(rpy, dtype=float)
     cr, sr = np.cos(rpy[..., 0]), np.sin(rpy[..., 0])
     cp, sp = np.cos(rpy[..., 1]), np.sin(rpy[..., 1])

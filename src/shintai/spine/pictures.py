@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.spine.robots import KGF
+from shintai.core.constants import KGF_N
 
 MODE_LABEL = {"all_l": "1. all L", "all_ll": "2. all LL", "all_s_mid": "3. all S (mid)", "all_s_high": "4. all S (high)",
               "l_ll": "5. L + LL", "l_t": "6. L + T", "l_s_mid": "7. L + S (mid)", "l_s_high": "8. L + S (high)",
@@ -198,13 +198,13 @@ def software_spring(ctx, k_list, trials: dict) -> None:
             key = f"k{int(k)}."
             t = rec.times(f"{key}length_error_mm")
             axes[0, col].plot(t - t[0], rec.values(f"{key}length_error_mm"), lw=0.8)
-            axes[1, col].plot(t - t[0], rec.values(f"{key}tension_n") / KGF, lw=0.8)
+            axes[1, col].plot(t - t[0], rec.values(f"{key}tension_n") / KGF_N, lw=0.8)
             axes[0, col].set_title(f"k_s = {k:g}", fontsize=9)
             axes[1, col].set_xlabel("time [s]")
         axes[0, 0].set_ylabel("length from l_0 (encoder) [mm]")
         axes[1, 0].set_ylabel("tension [kgf]")
         ax = axes[0, -1]
-        ax.plot(k_list, [trials[k]["tension_change_n"] / KGF for k in k_list], "-o")
+        ax.plot(k_list, [trials[k]["tension_change_n"] / KGF_N for k in k_list], "-o")
         ax.set_xscale("log")
         ax.set_xlabel("k_s (thesis units)")
         ax.set_ylabel("Σ|ΔT| while bent [kgf]")

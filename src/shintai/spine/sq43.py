@@ -33,7 +33,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import null_space
 
-from shintai.spine.robots import G, SQ43
+from shintai.core.geometry import skew
+from shintai.spine.robots import SQ43, STANDARD_GRAVITY
 
 TABLE_3_1 = SQ43.starts_deg  # the four starts of Table 3.1 [deg]
 STEP_DEG = SQ43.search_step_deg  # δa_i/δt = 0.5°, §3.2.3
@@ -100,10 +101,6 @@ def spine_shape(a123_deg, prm: SQ43Params = SQ43Params()) -> SpineShape:
     poly = np.array(pts)
     centres = np.array([(poly[2 * k + 1] + poly[2 * k + 2]) / 2 for k in range(3)])
     return SpineShape(np.degrees(a), float(l), poly, centres, (a[:3] + a[1:]) / 2)
-
-
-def skew(r: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
 
 
 def spine_compliance(shape: SpineShape, prm: SQ43Params = SQ43Params()) -> np.ndarray:
@@ -186,7 +183,7 @@ def lift_left_front(a123_deg, prm: SQ43Params = SQ43Params()) -> LiftResult:
     Ks = np.linalg.inv(spine_compliance(shape, prm))
     D = np.hstack((np.eye(6), -np.vstack((point_rows(st.shoulder, st.hip), np.hstack((np.zeros((3, 3)), np.eye(3)))))))
     K = D.T @ Ks @ D  # relative motion of the shoulder end w.r.t. the hip frame
-    weight = prm.mass_kg / 2 * G
+    weight = prm.mass_kg / 2 * STANDARD_GRAVITY
     g = np.zeros(12)
     g[:6] = weight * point_rows(st.com_shoulder, st.shoulder)[2]
     g[6:] = weight * point_rows(st.com_hip, st.hip)[2]

@@ -7,10 +7,11 @@
   all at 1 kgf) while a human moves the spine; the encoder values are logged at a fixed sampling
   period (20 ms, §5.9.2: "the muscle lengths are recorded at a 20 ms sampling period").
 * :class:`Playback` — replay in L mode: the logged encoder values are sent in order as the length
-  targets (§4.2.2), through the seqplugin posture player
-  (:class:`~shintai.core.interpolation.SequencePlayer`), one sample per sampling period;
-  ``speedup=k`` sends every k-th sample — "every other sample → 2× speed … 8× exceeded the motors'
-  maximum speed" (§4.2.2). Key postures (§4.2.2 (a)) are replayed with interpolation.
+  targets (§4.2.2, the ``l_r`` channel the muscle controller reads in a later stage), through the
+  seqplugin posture player (:class:`~shintai.core.interpolation.SequencePlayer`), one sample per
+  sampling period; ``speedup=k`` sends every k-th sample — "every other sample → 2× speed … 8× exceeded
+  the motors' maximum speed" (§4.2.2). Key postures (§4.2.2 (a)) are replayed with interpolation, each
+  commanded on the ``l_goal`` channel.
 """
 
 from __future__ import annotations
@@ -20,10 +21,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shintai.core.interpolation import SequencePlayer
-from shintai.core.runtime import Loop, Module, Snapshot
+from shintai.core.runtime import SET, Channel, Loop, Module, Snapshot
 from shintai.spine.control import Mode, MuscleControl
+from shintai.spine.robots import SAMPLE_PERIOD_S
 
-SAMPLE_PERIOD_S = 0.020  # §5.9.2: direct motion teaching records the muscle lengths every 20 ms
+# A key posture to replay: the encoder lengths the playback moves to (minimum jerk), written by a schedule.
+L_GOAL = Channel("l_goal", SET, doc="encoder lengths of the next key posture [m]")
 
 
 def zero_encoders(body, control: MuscleControl, limit_n: float, theta0=None, seconds: float = 1.0,
@@ -33,14 +36,15 @@ def zero_encoders(body, control: MuscleControl, limit_n: float, theta0=None, sec
     A hand holds the spine at ``theta0`` (default: the basic posture) while every muscle runs LL
     with T_l = ``limit_n`` ("just taut") and a target ``pull_m`` shorter than where it is, so each
     winds in until its tension reaches the limit; then the encoders are zeroed and the targets set
-    to zero (the muscle lengths of ``theta0``). The hand stays: the caller lets go.
+    to zero (the muscle lengths of ``theta0``). The hand stays until the next loop's first tick
+    without a ``hand`` writer.
     """
-    body.hold(np.zeros(3 * body.robot.n) if theta0 is None else theta0)
+    hand = np.zeros(3 * body.robot.n) if theta0 is None else np.asarray(theta0, dtype=float)
     saved_limit = control.gains.T_l
     control.set_gains(T_l=limit_n)
     control.set_modes(Mode.LL)
     control.set_targets(l_r=np.asarray(body.snapshot()["encoder"]) + pull_m)
-    Loop(body, [control]).run(seconds)
+    Loop(body, [control], base={"hand": hand}).run(seconds)
     tension = body.wire_tension()
     body.zero_encoders()
     control.set_gains(T_l=saved_limit)
@@ -92,17 +96,22 @@ class Recorder(Module):
 
 
 class Playback(Module):
-    """Replays encoder targets into a :class:`MuscleControl` in L mode through a SequencePlayer.
+    """Replays encoder targets in L mode through a SequencePlayer, for a :class:`MuscleControl` in a
+    later stage.
 
     :meth:`play` queues samples one ``period`` apart ("linear": the recorded stream as encoder
-    targets); :meth:`play_postures` queues taught key postures with minimum-jerk interpolation.
-    Each tick the player's current vector becomes the controller's l_r; contributes nothing itself.
+    targets); :meth:`play_postures` queues taught key postures with minimum-jerk interpolation, as
+    does a key posture arriving on the ``l_goal`` channel (reached in ``key_move_s``). Each tick the
+    player's current vector is written to ``l_r``; on its first tick it also sets every muscle to L
+    (``mode``).
     """
 
-    def __init__(self, control: MuscleControl, start, period: float | None = None, name: str = "playback"):
+    def __init__(self, start, period: float | None = None, name: str = "playback", key_move_s: float = 1.0):
         super().__init__(name, period)
-        self.control = control
         self.player = SequencePlayer(np.asarray(start, dtype=float), method="linear", channel="l_r")
+        self.length_mode = np.full(self.player.x.size, float(Mode.L))
+        self.key_move_s = key_move_s
+        self._first = True
 
     def play(self, samples, sample_period: float = SAMPLE_PERIOD_S) -> None:
         self.player.switch("linear")
@@ -120,8 +129,14 @@ class Playback(Module):
 
     def reset(self, snapshot: Snapshot) -> None:
         self.player.reset(snapshot)
-        self.control.set_modes(Mode.L)
+        self._first = True
 
     def update(self, snapshot: Snapshot):
-        self.control.set_targets(l_r=self.player.update(snapshot)["l_r"])
-        return None
+        goal = snapshot.get("l_goal")
+        if goal is not None:
+            self.play_postures([goal], self.key_move_s)
+        out = self.player.update(snapshot)
+        if self._first:
+            out["mode"] = self.length_mode
+            self._first = False
+        return out

@@ -1,0 +1,112 @@
+"""``spine.control-modes``: E11 on a MuJoCo Cla with arms raised — the eight L/T/S/LL combinations over
+±30° pitch and roll (seed 003 §4.7.2–4.7.3, Tables 4.7–4.8). One run per mode configuration and axis
+(:func:`shintai.spine.modes.mode_rig`), plus all-L without interference."""
+
+from __future__ import annotations
+
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine import pictures
+from shintai.spine.cla import SPRING_LAWS
+from shintai.spine.modes import (
+    ABLATION, AXES, MODE_CONFIGS, TABLE_4_8, TABLE_COLUMNS, THESIS_ROW, mode_metrics, mode_rig, rows_until_lost,
+)
+from shintai.spine.robots import K_S_UNIT_N_M
+
+
+def names(params) -> list[str]:
+    return list(MODE_CONFIGS) if params["modes"] == "all" else [m.strip() for m in params["modes"].split(",")]
+
+
+def variants(params) -> list[str]:
+    modes = names(params) + ([ABLATION] if params["ablation"] else [])
+    return [f"{mode}.{axis}" for mode in modes for axis in AXES if mode != ABLATION or axis == "pitch"]
+
+
+def filmed(params) -> list[str]:
+    runs = variants(params)
+    return ["all_ll.pitch"] if "all_ll.pitch" in runs else runs[:1]
+
+
+def rig(params, variant):
+    mode, axis = variant.rsplit(".", 1)
+    if mode == ABLATION:
+        return mode_rig("all_l", axis, dict(params, interference=False), log=False)
+    return mode_rig(mode, axis, params, picture=mode == "all_l")
+
+
+def rows_by_mode(runs) -> dict:
+    rows: dict = {}
+    for variant, run in runs.items():
+        mode, axis = variant.rsplit(".", 1)
+        rows.setdefault(mode, {})[axis] = run.state.rows
+    return rows
+
+
+def metrics(runs, params):
+    return mode_metrics(rows_by_mode(runs), names(params), params["max_angle_deg"])[0]
+
+
+def plots(ctx, runs, params):
+    rows_all, modes = rows_by_mode(runs), names(params)
+    table = mode_metrics(rows_all, modes, params["max_angle_deg"])[1]
+    ctx.extra["table_4_8"] = {m: {"ours": table[m], "thesis": dict(zip(TABLE_COLUMNS, TABLE_4_8[m]))} for m in modes}
+    ctx.extra["postures"] = {m: {a: [r.__dict__ for r in rows] for a, rows in by_axis.items()}
+                             for m, by_axis in rows_all.items()}
+    ctx.extra["k_s_n_m"] = {"law": params["spring_law"], "at_rest": {"mid": params["k_s_mid"] * K_S_UNIT_N_M,
+                                                                    "high": params["k_s_high"] * K_S_UNIT_N_M}}
+    pictures.table_4_8(ctx, {m: table[m] for m in modes}, TABLE_4_8, TABLE_COLUMNS)
+    pictures.posture_errors(ctx, {m: {a: rows_until_lost(rows) + [r for r in rows if not r.held][:1]
+                                      for a, rows in by_axis.items()} for m, by_axis in rows_all.items()}, modes)
+    pictures.mode_time_series(ctx, modes)
+    states = {v: run.state.picture for v, run in runs.items() if run.state.picture is not None}
+    if states:
+        pictures.spine_3d(ctx, states)
+
+
+E11_CHECKS = [
+    Check("l_t.collapsed", "==", 1, "Table 4.8 mode 6 / §4.7.3: shortening L + lengthening T buckled"),
+    *[Check(f"{m}.max_pitch_held_deg", "<", 30, f"Table 4.8: {m} holds pitch only to {TABLE_4_8[m][2]}° "
+            "(§4.7.3: cannot hold large pitch against gravity, arms raised)")
+      for m in ("all_ll", "all_s_mid", "l_ll")],
+    *[Check(f"{m}.max_pitch_held_deg", ">=", 30, f"Table 4.8: {m} holds the whole ±30° pitch range")
+      for m in ("all_l", "all_s_high", "l_s_mid", "l_s_high")],
+    Check("all_l.mean_error_pitch_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 4.73° pitch)"),
+    Check("all_l.mean_error_roll_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 3.68° roll)"),
+    Check("l_s.max_mean_current_a", ">=", "others.max_mean_current_a",
+          "§4.7.3 / Table 4.8: L + S draws the highest mean current (0.86–1.29 A)"),
+    Check("interference_error_gain_deg", ">", 0.0, "spec §5.3.9: the interference (wrapping) is what makes "
+          "all-L's model error (compared over the pitch postures both runs held)", name="interference_drives_error"),
+]
+
+experiment(
+    "spine.control-modes",
+    source="seed 003 §4.6–4.7, Tables 4.7–4.8",
+    summary="E11 on Cla with arms raised: 8 L/T/S/LL combinations, pitch and roll ±30°, interference by wrapping",
+    params=[
+        Param("modes", "all", "comma list of mode configurations, or 'all'"),
+        Param("max_angle_deg", 30, "largest whole-spine angle of the sequence (10° steps)", lo=10, hi=30),
+        Param("hold_s", 3.0, "time each posture is held [s] (thesis: several seconds)", lo=0.5, hi=20.0),
+        Param("move_s", 1.0, "minimum-jerk transition between postures [s]", lo=0.1, hi=5.0),
+        Param("window_s", 1.0, "static measuring window at the end of each hold [s]", lo=0.1, hi=5.0),
+        Param("interference", True, "wrap the muscles around the middle vertebra (§4.7.1)"),
+        Param("ablation", True, "also run all-L without interference (spec §5.3.9)"),
+        Param("k_s_mid", 100.0, "'mid' software spring, thesis units (ADC counts / encoder counts)", lo=1.0, hi=2000.0),
+        Param("k_s_high", 400.0, "'high' software spring, thesis units", lo=1.0, hi=2000.0),
+        Param("spring_law", "counts", "S mode's spring: on the ADC count (§4.5.2) or linear in newtons",
+              choices=SPRING_LAWS),
+        Param("T_l_kgf", 1.0, "LL limit tension [kgf]", lo=0.05, hi=30.0),
+        Param("T_r_kgf", 1.0, "T-mode target tension [kgf]", lo=0.05, hi=30.0),
+    ],
+    checks=E11_CHECKS,
+    thesis={f"{mode}.{column}": ThesisValue(value, f"Table 4.8 row {THESIS_ROW[mode]}", f"{mode}.{column}")
+            for mode, row in TABLE_4_8.items() for column, value in zip(TABLE_COLUMNS, row) if value is not None},
+    constraints=[
+        (lambda p: all(m in MODE_CONFIGS for m in names(p)) and len(set(names(p))) == len(names(p)),
+         f"modes: unknown or repeated mode configuration; valid: all, or a comma list of {', '.join(MODE_CONFIGS)}"),
+        (lambda p: p["window_s"] <= p["hold_s"],
+         "window_s must not exceed hold_s: the window lies at the end of the hold"),
+    ],
+    rig=rig, variants=variants, filmed=filmed, metrics=metrics, plots=plots,
+    demo=True,
+    video=True,
+)

@@ -1,0 +1,159 @@
+"""E11: the muscle-mode combinations on Cla with arms raised, and Table 4.8 (seed 003 §4.7.2–4.7.3).
+
+One run per mode configuration and axis, from a freshly zeroed spine (§4.6.4): a
+:class:`~shintai.spine.scripted.Schedule` commands each posture of §4.7.2's sequence and the modes of
+its move — shortening muscles L, lengthening ones the configuration's mode (:func:`interference_modes`)
+— the posture player turns it into length targets, the muscle controller follows, and the observer
+measures (:mod:`shintai.spine.postures`). :func:`mode_metrics` turns the rows into Table 4.8's columns.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.scenarios.experiment import Rig
+from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.cla import CLA_VIEW, calibrated, cla_gains, cla_spring, k_s_gain
+from shintai.spine.control import SETPOINTS, Mode, MuscleControl, interference_modes
+from shintai.spine.geometry import uniform_posture
+from shintai.spine.pictures import spine_state
+from shintai.spine.postures import GOAL, WHOLE_REF, PostureObserver, PostureRow, PostureTargets, axis_sequence
+from shintai.spine.robots import CLA, E11_LOG_S, E11_SETTLE_S
+from shintai.spine.scripted import Schedule
+
+# (shortening mode, lengthening mode, k_s level) — §4.7.2's list; mode 6 is L + T
+MODE_CONFIGS = {
+    "all_l": (Mode.L, Mode.L, None),
+    "all_ll": (Mode.LL, Mode.LL, None),
+    "all_s_mid": (Mode.S, Mode.S, "mid"),
+    "all_s_high": (Mode.S, Mode.S, "high"),
+    "l_ll": (Mode.L, Mode.LL, None),
+    "l_t": (Mode.L, Mode.T, None),
+    "l_s_mid": (Mode.L, Mode.S, "mid"),
+    "l_s_high": (Mode.L, Mode.S, "high"),
+}
+ABLATION = "all_l_no_interference"  # all-L with the wrap sphere removed (spec §5.3.9)
+THESIS_ROW = {"all_l": 1, "all_ll": 2, "all_s_mid": 3, "all_s_high": 4, "l_ll": 5, "l_t": 6, "l_s_mid": 7, "l_s_high": 8}
+# Table 4.8: error pitch/roll [deg], max held pitch/roll [deg] (30 = "30 or more"), mean tension
+# pitch/roll [kgf], mean current pitch/roll [A]; None = "—" (mode 6 buckled)
+TABLE_4_8 = {
+    "all_l": (4.73, 3.68, 30, 30, 0.20, 0.13, 0.41, 0.33),
+    "all_ll": (2.85, 2.93, 10, 30, 0.48, 0.47, 0.59, 0.64),
+    "all_s_mid": (4.83, 4.06, 20, 30, 0.13, 0.13, 0.49, 0.42),
+    "all_s_high": (3.86, 4.17, 30, 30, 0.23, 0.25, 0.98, 0.79),
+    "l_ll": (3.66, 4.09, 10, 30, 0.09, 0.24, 0.25, 0.38),
+    "l_t": (None, None, 0, 0, None, None, None, None),
+    "l_s_mid": (5.88, 4.93, 30, 30, 0.26, 0.41, 0.86, 0.99),
+    "l_s_high": (6.87, 4.47, 30, 30, 0.25, 0.33, 1.29, 1.04),
+}
+TABLE_COLUMNS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_deg", "max_roll_held_deg",
+                 "mean_tension_pitch_kgf", "mean_tension_roll_kgf", "mean_current_pitch_a", "mean_current_roll_a")
+AXES = {"pitch": 1, "roll": 0}
+SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_deg", "max_roll_held_deg",
+                "mean_tension_kgf", "mean_current_a", "mean_sway_deg", "collapsed", "max_pitch_held_window_deg",
+                "max_roll_held_window_deg", "collapsed_window", "mean_current_posture_a")
+
+
+def mode_rig(config: str, axis_name: str, p: dict, log: bool = True, picture: bool = False) -> Rig:
+    """One axis of §4.7.2 for one mode configuration (module doc); ``p`` holds the experiment's
+    parameters. ``picture``: keep :func:`~shintai.spine.pictures.spine_state` at the largest angle."""
+    shortening, lengthening, spring = MODE_CONFIGS[config]
+    body = SpineBody(CLA, interference=p["interference"])
+    control = MuscleControl(CLA.m, cla_gains(p["T_l_kgf"], p["T_r_kgf"]), spring=cla_spring(p["spring_law"]))
+    if spring:
+        control.set_gains(k_s=k_s_gain(p[f"k_s_{spring}"], p["spring_law"]))
+    calibrated(body, control)
+    dt, axis = body.dt, AXES[axis_name]
+    settle = int(round(E11_SETTLE_S / dt))
+    moving = int(round((p["move_s"] + p["hold_s"] - p["window_s"]) / dt))
+    window = max(1, int(round(p["window_s"] / dt)))
+    targets_deg = axis_sequence(p["max_angle_deg"])[1:]
+    events = {0: {"mode": shortening}}
+    previous = zero = CLA.model.lengths(np.zeros(3 * CLA.n))
+    for j, target in enumerate(targets_deg):
+        whole = np.zeros(3)
+        whole[axis] = np.radians(target)
+        lengths = CLA.model.lengths(uniform_posture(whole, CLA.n))
+        modes = interference_modes(previous, lengths, lengthening) if shortening != lengthening else shortening
+        events[settle + j * (moving + window)] = {"mode": modes, "goal": whole}
+        previous = lengths
+    observer = PostureObserver(axis, targets_deg, settle, moving, window,
+                               max(1, int(round(E11_LOG_S / dt))) if log else None,
+                               p["max_angle_deg"] if picture else None)
+    if picture:  # the spine as the posture's window ends, after the step (a body after-step hook, like a video)
+        def capture():
+            if observer.picture_due:
+                observer.picture_due, observer.picture = False, spine_state(body)
+        body.after_step.append(capture)
+    return Rig(body, stages=[[Schedule(events)], [PostureTargets(CLA.model, zero, p["move_s"])], [control, observer]],
+               channels=(*SETPOINTS, GOAL, WHOLE_REF),
+               duration=(settle + len(targets_deg) * (moving + window)) * dt, until=lambda snap: observer.stopped,
+               view=dict(CLA_VIEW, azimuth=210.0 if axis_name == "pitch" else 180.0), state=observer)
+
+
+def max_held(rows: list[PostureRow], max_deg: int, attr: str = "held") -> float:
+    """Table 4.8's "max posture-holding angle" — "up to which posture the mode could hold as the
+    model posture was changed" (§4.7.3): 10° short of the first posture lost (all-LL lost +20°
+    → 10; L + T lost the first → 0), or the whole range if none was lost. ``attr`` names the hold
+    test (``held``, or the window-only ``held_window``)."""
+    lost = next((r for r in rows if not getattr(r, attr)), None)
+    return float(max_deg) if lost is None else max(0.0, abs(lost.target_deg) - 10.0)
+
+
+def rows_until_lost(rows: list[PostureRow], attr: str = "held") -> list[PostureRow]:
+    """The postures before the first one lost: the thesis has no data after a "—" (the spine was
+    caught; Table 4.7, App. A.2)."""
+    out = []
+    for r in rows:
+        if not getattr(r, attr):
+            break
+        out.append(r)
+    return out
+
+
+def _mean(values) -> float:
+    return float(np.mean(values)) if values else float("nan")
+
+
+def summarise_mode(rows_by_axis: dict[str, list[PostureRow]], max_deg: int) -> dict[str, float]:
+    """Per mode: Table 4.8's columns, the overall means, and whether the spine collapsed — over the
+    postures before the first lost one (``held``); plus the window-only hold test's max-held angles
+    and collapse flag (``*_window``) and the current averaged over whole postures (move, hold and
+    window) rather than the measuring window (``mean_current_posture_a``)."""
+    out = {}
+    every = []
+    for axis_name, rows in rows_by_axis.items():
+        held = rows_until_lost(rows)
+        every += held
+        out[f"mean_error_{axis_name}_deg"] = _mean([r.error_deg for r in held])
+        out[f"max_{axis_name}_held_deg"] = max_held(rows, max_deg)
+        out[f"max_{axis_name}_held_window_deg"] = max_held(rows, max_deg, "held_window")
+        out[f"mean_tension_{axis_name}_kgf"] = _mean([r.tension_kgf for r in held])
+        out[f"mean_current_{axis_name}_a"] = _mean([r.current_a for r in held])
+    out["mean_sway_deg"] = _mean([r.sway_deg for r in every])
+    out["mean_tension_kgf"] = _mean([r.tension_kgf for r in every])
+    out["mean_current_a"] = _mean([r.current_a for r in every])
+    out["mean_current_posture_a"] = _mean([r.current_posture_a for r in every])
+    out["collapsed"] = int(any(not r.held for rows in rows_by_axis.values() for r in rows))
+    out["collapsed_window"] = int(any(not r.held_window for rows in rows_by_axis.values() for r in rows))
+    return out
+
+
+def mode_metrics(rows_all: dict[str, dict[str, list[PostureRow]]], names, max_deg: int
+                 ) -> tuple[dict[str, float], dict[str, dict]]:
+    """E11's metrics from the rows of every run (mode → axis → rows), and each mode's summary."""
+    metrics, table = {}, {}
+    for mode, by_axis in rows_all.items():
+        table[mode] = summary = summarise_mode(by_axis, max_deg)
+        metrics |= {f"{mode}.{key}": summary[key] for key in SUMMARY_KEYS if key in summary}
+    working = [m for m in names if m != "l_t"]
+    l_s = [m for m in working if m.startswith("l_s")]
+    if l_s and len(working) > len(l_s):
+        for key in ("mean_current_a", "mean_current_posture_a"):
+            metrics[f"l_s.max_{key}"] = max(table[m][key] for m in l_s)
+            metrics[f"others.max_{key}"] = max(table[m][key] for m in working if m not in l_s)
+    if ABLATION in rows_all and "all_l" in rows_all:
+        pairs = [(a.error_deg, b.error_deg) for a, b in zip(rows_until_lost(rows_all["all_l"]["pitch"]),
+                                                             rows_until_lost(rows_all[ABLATION]["pitch"]))]
+        metrics["interference_error_gain_deg"] = float(np.mean([a - b for a, b in pairs])) if pairs else float("nan")
+    return metrics, table

@@ -1,0 +1,71 @@
+"""E11's posture player and observer (seed 003 §4.7.2, Appendix A.1.3)."""
+
+import numpy as np
+import pytest
+
+from shintai.core.runtime import Loop
+from shintai.spine.control import encoder_targets
+from shintai.spine.geometry import uniform_posture
+from shintai.spine.postures import PostureObserver, PostureTargets, axis_sequence
+from shintai.spine.robots import CLA
+
+
+def test_posture_targets_follow_the_min_jerk_move_then_hold():
+    """PostureTargets writes eq. 4.25's lengths of the player's posture on every tick of a move, ends at
+    the commanded posture, and leaves the targets alone while idle (only the reference is written)."""
+    zero = CLA.model.lengths(np.zeros(15))
+    targets = PostureTargets(CLA.model, zero, move_s=1.0)
+    targets.reset({"t": 0.0})
+    whole = np.radians([0.0, -30.0, 0.0])
+    out = targets.update({"t": 0.0, "goal": whole})
+    l_r = out["l_r"]
+    for k in range(1, 1100):
+        l_r = out.get("l_r", l_r)  # the controller keeps the last targets it was given
+        assert np.array_equal(l_r, encoder_targets(CLA.model.lengths(uniform_posture(out["whole_ref"], CLA.n)), zero))
+        assert np.array_equal(out.get("l_0", l_r), l_r)
+        if k == 500:
+            assert 0.3 < out["whole_ref"][1] / whole[1] < 0.7  # mid-way through the move
+        out = targets.update({"t": k * 1e-3})
+    assert np.allclose(out["whole_ref"], whole)
+    idle = targets.update({"t": 1.2})
+    assert set(idle) == {"whole_ref"} and np.allclose(idle["whole_ref"], whole)  # idle: targets untouched
+
+
+def test_axis_sequence_is_the_thesis_order():
+    """§4.7.2: 0 → −10 → … → −max → … → +max → … → 0 in 10° steps."""
+    assert axis_sequence(20) == [0, -10, -20, -10, 0, 10, 20, 10, 0]
+
+
+class _StillBody:
+    """A body that holds a fixed reading (encoder-free): theta bent by ``bend_deg`` about pitch."""
+
+    dt = 1e-3
+    channels = {}
+
+    def __init__(self, bend_deg):
+        self.t = 0.0
+        self.theta = np.tile(np.radians([0.0, bend_deg / 5, 0.0]), 5)
+
+    def snapshot(self):
+        return {"t": self.t, "theta": self.theta, "posture": np.array([0.0, self.theta[1::3].sum()]),
+                "current": np.full(8, 0.02), "tension_true": np.full(8, 2.0), "whole_ref": np.zeros(3)}
+
+    def apply(self, command):
+        pass
+
+    def step(self):
+        self.t += self.dt
+
+
+def test_observer_measures_each_posture_and_stops_at_the_first_lost():
+    """The window's accelerometer mean gives the error; a spine 25° off a 0° reference fails the 20°
+    limit, so the sequence stops after the first posture's window."""
+    still = PostureObserver(axis=1, targets_deg=[0, 10], settle=5, moving=10, window=4)
+    Loop(_StillBody(0.0), [still]).run(0.033)
+    assert [r.target_deg for r in still.rows] == [0, 10] and still.stopped
+    assert still.rows[0].error_deg < 1e-9 and still.rows[1].error_deg == 10.0 and still.rows[1].held
+    assert still.rows[0].tension_kgf == pytest.approx(2.0 / 9.80665)
+    assert still.rows[0].current_posture_a == pytest.approx(0.02)
+    bent = PostureObserver(axis=1, targets_deg=[0, 10], settle=5, moving=10, window=4)
+    Loop(_StillBody(25.0), [bent]).run(0.033, until=lambda snap: bent.stopped)
+    assert len(bent.rows) == 1 and bent.stopped and not bent.rows[0].held_window and not bent.rows[0].held
