@@ -18,7 +18,7 @@ import re
 import sys
 from pathlib import Path
 
-TIMING = r"(wall|_us$|_per_s$|seconds_per|elapsed|duration_wall|speedup|throughput)"
+TIMING = r"(wall|_us$|_fit_s$|_query_s$|time_ratio|seconds_per_individual|elapsed)"  # wall-clock figures only
 
 
 def load(folder: Path) -> dict[str, dict]:
@@ -46,8 +46,8 @@ def compare(before: dict, after: dict, rename: dict[str, str], ignore: re.Patter
             diffs.append(f"metric {key}: new ({ma[key]!r})")
         elif not same(mb[key], ma[key]):
             diffs.append(f"metric {key}: {mb[key]!r} -> {ma[key]!r}")
-    cb = {rename.get(c["name"], c["name"]): c for c in before.get("checks", [])}
-    ca = {c["name"]: c for c in after.get("checks", [])}
+    cb = {rename.get(c["name"], c["name"]): c for c in before.get("checks", []) if not ignore.search(c["metric"])}
+    ca = {c["name"]: c for c in after.get("checks", []) if not ignore.search(c["metric"])}
     for name in sorted(cb.keys() | ca.keys()):
         b, a = cb.get(name), ca.get(name)
         if a is None or b is None:
