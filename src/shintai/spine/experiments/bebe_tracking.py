@@ -18,6 +18,7 @@ from shintai.spine.pictures_learning import (
 @scenario(
     "spine.bebe-tracking",
     source="seed 003 §4.8.3–4.8.4",
+    covers=("003:fig4.54", "003:fig4.55", "003:fig4.56"),
     summary="BeBe: 36 on/off muscles track a target by the cos > 0.2, off-before-on rule; pushes, forced-on muscles",
     params=(
         Param("dead_zone_px", 15.0, "dead-zone radius (not given; chosen below the median single-muscle shift)",
@@ -34,25 +35,25 @@ from shintai.spine.pictures_learning import (
     checks=(
         Check("dead_zone_fraction", ">=", 0.5,
               "thesis §4.8.4: 'kept tracking' an object moved at ordinary human speed; read (chosen) as the "
-              "target inside the dead zone in most image cycles"),
+              "target inside the dead zone in most image cycles", kind="reproduction", row="003:fig4.54"),
         Check("tracking_error_max_px", "<=", 120.0,
-              "thesis §4.8.4: tracking never lost — the target stays in the frame (±120 px of 256 × 240; chosen)"),
+              "thesis §4.8.4: tracking never lost — the target stays in the frame (±120 px of 256 × 240; chosen)", kind="reproduction", row="003:fig4.54"),
         Check("disturbances_not_recovered", "==", 0,
-              "thesis §4.8.4, Fig. 4.55: pushed left and right, the target is kept at the centre"),
+              "thesis §4.8.4, Fig. 4.55: pushed left and right, the target is kept at the centre", kind="reproduction", row="003:fig4.55"),
         Check("forced_left_final_px", "<=", "dead_zone_px",
-              "thesis §4.8.4, Fig. 4.56: muscles tilting left forced on, the free muscles re-centre the target"),
+              "thesis §4.8.4, Fig. 4.56: muscles tilting left forced on, the free muscles re-centre the target", kind="reproduction", row="003:fig4.56"),
         Check("forced_back_final_px", "<=", "dead_zone_px",
-              "thesis §4.8.4, Fig. 4.56: muscles tilting backwards forced on, the target is re-centred"),
+              "thesis §4.8.4, Fig. 4.56: muscles tilting backwards forced on, the target is re-centred", kind="reproduction", row="003:fig4.56"),
         Check("max_on_muscles", "<=", "same_direction_bound",
               "derived from the rule (§4.8.3): with off before on, every free on-muscle is same-direction "
-              "for the v at which the last one was switched on"),
+              "for the v at which the last one was switched on", kind="consistency"),
         Check("max_on_muscles_on_first", ">", "same_direction_bound",
               "thesis §4.8.3: off before on is there to stop the divergence to all muscles on — the ablation "
-              "that switches on first must break the bound", name="on_first_diverges"),
+              "that switches on first must break the bound", name="on_first_diverges", kind="consistency"),
         Check("superposition_error_median", ">", 0.05,
-              "thesis §4.8.3 [38]: BeBe's postures do not superpose — our plant must share that property"),
+              "thesis §4.8.3 [38]: BeBe's postures do not superpose — our plant must share that property", kind="consistency"),
         Check("hysteresis_residual_max_px", ">", 1.0,
-              "thesis §4.8.3 eq. 4.44: BeBe's posture depends on its history — our plant must share it"),
+              "thesis §4.8.3 eq. 4.44: BeBe's posture depends on its history — our plant must share it", kind="consistency"),
     ),
     thesis={
         "image_period": ThesisValue("66 ms", "§4.8.4"),

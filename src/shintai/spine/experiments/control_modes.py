@@ -64,23 +64,25 @@ def plots(ctx, runs, params):
 
 
 E11_CHECKS = [
-    Check("l_t.collapsed", "==", 1, "Table 4.8 mode 6 / §4.7.3: shortening L + lengthening T buckled"),
+    Check("l_t.collapsed", "==", 1, "Table 4.8 mode 6 / §4.7.3: shortening L + lengthening T buckled", kind="reproduction", row="003:table4.8"),
     *[Check(f"{m}.max_pitch_held_deg", "<", 30, f"Table 4.8: {m} holds pitch only to {TABLE_4_8[m][2]}° "
-            "(§4.7.3: cannot hold large pitch against gravity, arms raised)")
+            "(§4.7.3: cannot hold large pitch against gravity, arms raised)", kind="reproduction", row="003:table4.8")
       for m in ("all_ll", "all_s_mid", "l_ll")],
-    *[Check(f"{m}.max_pitch_held_deg", ">=", 30, f"Table 4.8: {m} holds the whole ±30° pitch range")
+    *[Check(f"{m}.max_pitch_held_deg", ">=", 30, f"Table 4.8: {m} holds the whole ±30° pitch range",
+            kind="reproduction", row="003:table4.8")
       for m in ("all_l", "all_s_high", "l_s_mid", "l_s_high")],
-    Check("all_l.mean_error_pitch_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 4.73° pitch)"),
-    Check("all_l.mean_error_roll_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 3.68° roll)"),
+    Check("all_l.mean_error_pitch_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 4.73° pitch)", kind="reproduction", row="003:table4.8"),
+    Check("all_l.mean_error_roll_deg", "<=", 5.0, "spec §5.3.9 from Table 4.8 (all L: 3.68° roll)", kind="reproduction", row="003:table4.8"),
     Check("l_s.max_mean_current_a", ">=", "others.max_mean_current_a",
-          "§4.7.3 / Table 4.8: L + S draws the highest mean current (0.86–1.29 A)"),
+          "§4.7.3 / Table 4.8: L + S draws the highest mean current (0.86–1.29 A)", kind="reproduction", row="003:table4.8"),
     Check("interference_error_gain_deg", ">", 0.0, "spec §5.3.9: the interference (wrapping) is what makes "
-          "all-L's model error (compared over the pitch postures both runs held)", name="interference_drives_error"),
+          "all-L's model error (compared over the pitch postures both runs held)", name="interference_drives_error", kind="consistency"),
 ]
 
 experiment(
     "spine.control-modes",
     source="seed 003 §4.6–4.7, Tables 4.7–4.8",
+    covers=("003:table4.7", "003:table4.8", "003:tableA"),
     summary="E11 on Cla with arms raised: 8 L/T/S/LL combinations, pitch and roll ±30°, interference by wrapping",
     params=[
         Param("modes", "all", "comma list of mode configurations, or 'all'"),

@@ -65,6 +65,7 @@ def table_4_2(model) -> list[dict]:
 @scenario(
     "spine.inverse-model",
     source="seed 003 §4.4.3, Tables 4.2–4.3",
+    covers=("003:table4.2", "003:table4.3"),
     summary="muscle lengths → posture on Cla: NN 8-40-15 and 8-10-10-15 vs Jacobian integration (4.26–4.28)",
     params=(
         Param("trainer", "lbfgs", "lbfgs: scipy L-BFGS on the back-propagated loss; backprop: plain eq. 4.30",
@@ -76,13 +77,13 @@ def table_4_2(model) -> list[dict]:
     ),
     checks=(
         Check("nn_test_error_norm_deg", "<=", 2.5,
-              "thesis §4.4.3 Table 4.3: 8-40-15 mean error norm 1.95° on 50 random postures (8-10-10-15: 2.51°)"),
+              "thesis §4.4.3 Table 4.3: 8-40-15 mean error norm 1.95° on 50 random postures (8-10-10-15: 2.51°)", kind="reproduction", row="003:table4.3"),
         Check("nn_train_max_joint_error_deg", "<=", 0.5,
-              "thesis §4.4.3: max joint error on uniform-bend inputs 'less than about 0.5°' (8-40-15)"),
+              "thesis §4.4.3: max joint error on uniform-bend inputs 'less than about 0.5°' (8-40-15)", kind="reproduction", row="003:table4.3"),
         Check("jacobian_test_error_norm_deg", ">", "nn_test_error_norm_deg",
-              "thesis §4.4.3: Jacobian integration errors are larger than the NN's", name="jacobian_worse_than_nn"),
+              "thesis §4.4.3: Jacobian integration errors are larger than the NN's", name="jacobian_worse_than_nn", kind="reproduction", row="003:table4.2"),
         Check("jacobian_to_nn_time_ratio", ">", 100.0,
-              "thesis §4.4.3: Jacobian integration takes 'very large' time (19–2100 s) — two orders over a query"),
+              "thesis §4.4.3: Jacobian integration takes 'very large' time (19–2100 s) — two orders over a query", kind="consistency"),
     ),
     thesis={
         "nn_test_error_norm": ThesisValue(1.95, "§4.4.3 Table 4.3 (8-40-15, 50 random inputs)",

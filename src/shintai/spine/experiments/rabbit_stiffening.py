@@ -70,6 +70,7 @@ def _levels_ok(text: str) -> bool:
 experiment(
     "spine.rabbit-stiffening",
     source="seed 003 §3.5.3–3.5.4, Figs. 3.26, 3.28",
+    covers=("003:fig3.28",),
     summary="E6 on a quasi-static Rabbit: all six muscles shortened to pre-compress the silicone discs; "
             "lateral stiffness rises",
     params=[
@@ -79,11 +80,11 @@ experiment(
     ],
     checks=[
         Check("stiffness_monotone", "==", 1, "§3.5.3–3.5.4: pulling all six muscles pre-compresses the discs and "
-              "the spine gets stiffer (Fig. 3.28)"),
-        Check("stiffness_ratio", ">", 1.0, "§3.5.4 (Fig. 3.28, no number): hard > soft"),
+              "the spine gets stiffer (Fig. 3.28)", kind="consistency"),
+        Check("stiffness_ratio", ">", 1.0, "§3.5.4 (Fig. 3.28, no number): hard > soft", kind="reproduction"),
         Check("stiffness_ratio_taut", ">", "linear_disc.stiffness_ratio_taut",
               "§3.5.3: the stiffening comes from the silicone's nonlinearity, not from the muscles alone",
-              name="nonlinearity_drives_stiffening"),
+              name="nonlinearity_drives_stiffening", kind="consistency"),
     ],
     thesis={"hard_vs_soft": ThesisValue("stiffer when all 6 muscles are pulled (photos only)", "§3.5.4, Fig. 3.28")},
     constraints=[(lambda p: _levels_ok(p["precompressions_mm"]),

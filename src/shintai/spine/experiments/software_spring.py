@@ -69,6 +69,7 @@ def _k_list_ok(text: str) -> bool:
 experiment(
     "spine.software-spring",
     source="seed 003 §4.5.2, eq. 4.36, Figs. 4.13–4.17",
+    covers=("003:fig4.13",),
     summary="E10 on Cla: all muscles in S mode, k_s = 50/100/200/400; push, release, return; tension change vs k_s",
     params=[
         Param("k_s_list", "50,100,200,400", "software springs, thesis units (ADC counts / encoder counts)"),
@@ -81,11 +82,11 @@ experiment(
     ],
     checks=[
         Check("tension_change_monotone", "==", 1, "§4.5.2 / Figs. 4.14–4.17: the larger k_s, the larger the "
-              "tension change for the same displacement"),
+              "tension change for the same displacement", kind="consistency"),
         Check("max_return_error_deg", "<=", 2.0, "§4.5.2 (Fig. 4.13): released, the spine returns; derived: the "
-              "dead band T_t / k_s over the pitch moment arm is ≤ 1.1° for the softest spring"),
+              "dead band T_t / k_s over the pitch moment arm is ≤ 1.1° for the softest spring", kind="reproduction"),
         Check("max_spring_law_error_n", "<=", 0.05 * KGF_N + 0.2, "eq. 4.39: at rest |T − k_s(l_0 − l)| stays within "
-              "the dead band T_t (0.05 kgf) plus sensor quantisation"),
+              "the dead band T_t (0.05 kgf) plus sensor quantisation", kind="consistency"),
     ],
     thesis={"k_s": ThesisValue("50, 100, 200, 400 (ADC counts / encoder counts)", "§4.5.2"),
             "trend": ThesisValue("larger k_s → larger tension change for a small length change", "§4.5.2")},

@@ -50,6 +50,7 @@ def grid_optimum(f, step: float) -> tuple[np.ndarray, float]:
 @scenario(
     "spine.sq43-design",
     source="seed 003 §3.2.3, Table 3.1, eqs. 3.1–3.2",
+    covers=("003:table3.1",),
     summary="SQ43: compass search over (a1, a2, a3) from the four Table 3.1 starts; lifted-foot height objective",
     params=(
         Param("step_deg", sq43.STEP_DEG, "search step δa_i/δt (thesis: 0.5°)", lo=0.05, hi=5.0),
@@ -59,10 +60,10 @@ def grid_optimum(f, step: float) -> tuple[np.ndarray, float]:
     ),
     checks=(
         Check("local_max_violations", "==", 0,
-              "thesis eq. 3.2: the search stops only where no ±0.5° neighbour is better"),
-        Check("bound_violations", "==", 0, "thesis §3.2.3: |a_i| ≤ 30° for all four parts, a4 from eq. 3.1"),
+              "thesis eq. 3.2: the search stops only where no ±0.5° neighbour is better", kind="consistency"),
+        Check("bound_violations", "==", 0, "thesis §3.2.3: |a_i| ≤ 30° for all four parts, a4 from eq. 3.1", kind="consistency"),
         Check("torsional_stiffness_gain", ">", 1.0,
-              "thesis §3.2.3: the reshaping is to raise the spine's torsional stiffness (best end vs its start)"),
+              "thesis §3.2.3: the reshaping is to raise the spine's torsional stiffness (best end vs its start)", kind="consistency"),
     ),
     thesis={
         "best_start": ThesisValue(2, "§3.2.3 Fig. 3.4 ('start 2 reached the highest evaluation')", "best_start"),

@@ -24,6 +24,7 @@ def _positive_integers(text: str) -> bool:
 @scenario(
     "spine.teach-playback",
     source="seed 003 §4.2, §4.6.4, §5.9.2",
+    covers=("003:s4.2.2",),
     summary="E9 on Cla: LL encoder zeroing, 1 kgf tension-hold teaching, L-mode replay sped up 1×…8× by decimation",
     params=[
         Param("speedups", "1,2,3,4,8", "comma list of decimation factors"),
@@ -33,14 +34,15 @@ def _positive_integers(text: str) -> bool:
     ],
     checks=[
         *[Check(f"speedup_{k}.relative_length_error", "<=", 0.1,
-                f"§4.2.2: {k}× replay 'moved at {k}× speed' — tracks within 10 % of the motion (derived)")
+                f"§4.2.2: {k}× replay 'moved at {k}× speed' — tracks within 10 % of the motion (derived)",
+                kind="consistency")
           for k in (2, 3, 4)],
         Check("speedup_8.saturated_fraction", ">=", 0.05,
-              "§4.2.2: 8× 'exceeded the motors' maximum speed' — the motors saturate (derived: ≥ 5 % of ticks)"),
+              "§4.2.2: 8× 'exceeded the motors' maximum speed' — the motors saturate (derived: ≥ 5 % of ticks)", kind="consistency"),
         Check("speedup_8.relative_length_error", ">", "speedup_4.relative_length_error",
-              "§4.2.2: at 8× 'the fast parts did not follow'", name="speedup_8_tracks_worse"),
+              "§4.2.2: at 8× 'the fast parts did not follow'", name="speedup_8_tracks_worse", kind="consistency"),
         Check("key_posture_error_deg", "<=", 3.0, "§4.2.1: replaying the recorded lengths reproduces the taught "
-              "posture (derived: within the ~1° of encoder/wire compliance plus margin)"),
+              "posture (derived: within the ~1° of encoder/wire compliance plus margin)", kind="consistency"),
     ],
     thesis={"speedup_ok": ThesisValue("2×, 3×, 4× tracked", "§4.2.2"),
             "speedup_fail": ThesisValue("8× exceeded the motor maximum speed; fast parts not followed", "§4.2.2"),
