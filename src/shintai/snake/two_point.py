@@ -244,3 +244,25 @@ class TwoPointController(Module):
                        f"{p}.sigma_a": step.sigma_a, f"{p}.sigma_b": step.sigma_b, f"{p}.V_m": step.V_m,
                        f"{p}.V_u": step.V_u, f"{p}.slip": snapshot["slip"]})
         return {"phi_dot": step.u, "grounded": grounded.astype(float)}
+
+
+class ModeSelection(Module):
+    """Mode selection of §3.2.4 alone (step 1 above): the candidate maximising V_m (3.19) at t = 0 and every
+    ``select_period`` s, written to the ``grounded`` set channel — for a joint-rate command from elsewhere
+    (a learning agent, :mod:`shintai.gym`). ``select_period=None`` keeps the mode chosen at t = 0."""
+
+    def __init__(self, law: TwoPointLaw, select_period: float | None = CH3_GAINS.t_sigma, name: str = "modes"):
+        super().__init__(name, period=law.gains.dt)
+        self.law = law
+        self.select_every = None if select_period is None else whole_multiple(select_period, law.gains.dt,
+                                                                              "select_period")
+        self.calls, self.mode = 0, 0
+
+    def reset(self, snapshot) -> None:
+        self.calls = 0
+
+    def update(self, snapshot):
+        if self.calls == 0 or (self.select_every and self.calls % self.select_every == 0):
+            self.mode, _ = self.law.select_mode(snapshot["w_h"], snapshot["phi"])
+        self.calls += 1
+        return {"grounded": self.law.candidates[self.mode].astype(float)}

@@ -1,0 +1,30 @@
+"""Gymnasium environments over shintai's bodies and modules (``pip install shintai[gym]``).
+
+``import shintai.gym`` registers:
+
+==============================  =====================================================================
+``shintai/SnakeTwoPoint-v0``    seed 001 §3.3: head and tail targets, joint-rate actions, mode switching on
+                                or off (:mod:`shintai.gym.snake`)
+``shintai/ClaPosture-v0``       seed 003 §4.7: Cla's muscle spine holds a bend, muscle length commands
+                                (:mod:`shintai.gym.spine`)
+==============================  =====================================================================
+
+Every environment renders ``rgb_array`` frames, resets from a seed, and states its spaces with units in its
+module's docstring. Each wraps the same bodies and control modules the scenarios run.
+"""
+
+from __future__ import annotations
+
+try:
+    import gymnasium
+except ImportError as exc:  # the optional extra
+    raise ImportError("shintai.gym needs gymnasium: pip install 'shintai[gym]'") from exc
+
+ENVIRONMENTS = {
+    "shintai/SnakeTwoPoint-v0": ("shintai.gym.snake:SnakeTwoPointEnv", 600),
+    "shintai/ClaPosture-v0": ("shintai.gym.spine:ClaPostureEnv", 60),
+}
+
+for _id, (_entry, _steps) in ENVIRONMENTS.items():
+    if _id not in gymnasium.registry:
+        gymnasium.register(id=_id, entry_point=_entry, max_episode_steps=_steps)
