@@ -55,9 +55,9 @@ ARM3_XML = """
     </body>
   </worldbody>
   <actuator>
-    <position name="j0" joint="j0" kp="40" kv="1.2" ctrlrange="-2.967 2.967"/>
-    <position name="j1" joint="j1" kp="40" kv="1.2" ctrlrange="-2.618 2.618"/>
-    <position name="j2" joint="j2" kp="40" kv="1.2" ctrlrange="-2.618 2.618"/>
+    <position name="j0" joint="j0" kp="40" kv="1.2"/>
+    <position name="j1" joint="j1" kp="40" kv="1.2"/>
+    <position name="j2" joint="j2" kp="40" kv="1.2"/>
   </actuator>
   <sensor><framepos name="tip" objtype="site" objname="tip"/></sensor>
 </mujoco>

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import signal
 import sys
 import threading
 import time
@@ -329,15 +330,27 @@ class ServerThread:
 
 
 async def serve(nerve: Nerve, host: str = DEFAULT_HOST, port: int = 0, rc: str | None = None,
-                announce: Callable[[str], None] = print) -> None:
-    """``shintai nervous serve``: the start-up file, then listen; ``announce`` gets
-    ``nervous: listening on HOST:PORT`` once connections are accepted."""
-    server = Server(nerve, host, port)
+                announce: Callable[[str], None] = print, **options) -> None:
+    """``shintai nervous serve``: the start-up file, then listen until SIGINT or SIGTERM; ``announce`` gets
+    ``nervous: listening on HOST:PORT`` once connections are accepted. Stopping runs every running
+    plugin's destructor (a log file is closed) and closes the interface."""
+    server = Server(nerve, host, port, **options)
     if rc is not None:
         server.run_rc(rc)
     await server.start()
+    loop = asyncio.get_running_loop()
+    stop = asyncio.Event()
+    handled = []
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        with contextlib.suppress(NotImplementedError, RuntimeError, ValueError):
+            loop.add_signal_handler(sig, stop.set)
+            handled.append(sig)
     announce(f"nervous: listening on {server.address}")
+    stopping = asyncio.create_task(stop.wait())
     try:
-        await server.serve_forever()
+        await asyncio.wait({server._packets, stopping}, return_when=asyncio.FIRST_COMPLETED)
     finally:
+        stopping.cancel()
+        for sig in handled:
+            loop.remove_signal_handler(sig)
         await server.close()

@@ -30,6 +30,7 @@ class Null(Plugin):
     def process(self, state):
         self.packets += 1
         if self.fail:
+            self.fail = False  # one-shot: a restarted null runs again
             raise PluginFault(f"{self.instance}: raised on request at packet {state['seq']}")
         if self.cost_s:
             end = time.perf_counter() + self.cost_s
