@@ -58,6 +58,13 @@ def add_parser(sub) -> None:
     d.set_defaults(fn=cmd_describe, registry=False)
 
 
+def build_serve_parser_defaults() -> dict:
+    """The defaults of ``shintai nervous serve`` (the tests check the bind is loopback)."""
+    parser = argparse.ArgumentParser()
+    add_parser(parser.add_subparsers())
+    return vars(parser.parse_args(["nervous", "serve", "--robot", "arm3"]))
+
+
 def usage_error(message: str) -> int:
     print(f"shintai: error: {message}", file=sys.stderr)
     return 2

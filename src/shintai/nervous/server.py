@@ -28,6 +28,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import signal
+import socket
 import sys
 import threading
 import time
@@ -103,10 +104,12 @@ class Server:
     """nervous's TCP server around a :class:`~shintai.nervous.nerve.Nerve`."""
 
     def __init__(self, nerve: Nerve, host: str = DEFAULT_HOST, port: int = 0, max_queue: int = MAX_QUEUE,
-                 hard_limit: int = HARD_LIMIT):
+                 hard_limit: int = HARD_LIMIT, send_buffer: int | None = None):
         self.nerve, self.host, self.port = nerve, host, port
         self.max_queue, self.hard_limit = max_queue, hard_limit
+        self.send_buffer = send_buffer  # the kernel's send buffer per client (bytes; None: the system's)
         self.connections: set[Connection] = set()
+        self._handlers: set[asyncio.Task] = set()
         self._count = 0
         self._server: asyncio.base_events.Server | None = None
         self._packets: asyncio.Task | None = None
@@ -154,6 +157,8 @@ class Server:
             self._server.close()
         for conn in list(self.connections):
             conn.close()
+        if self._handlers:
+            await asyncio.wait(list(self._handlers), timeout=5)
         if self._packets is not None:
             self._packets.cancel()
             with contextlib.suppress(asyncio.CancelledError):
@@ -177,6 +182,11 @@ class Server:
 
     async def _handle(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
         self._count += 1
+        sock = writer.get_extra_info("socket")
+        if self.send_buffer is not None and sock is not None:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, self.send_buffer)
+        task = asyncio.current_task()
+        self._handlers.add(task)
         conn = Connection(self, reader, writer, self._count)
         self.connections.add(conn)
         self.nerve.clients.add(conn)
@@ -197,6 +207,7 @@ class Server:
             writing.cancel()
             with contextlib.suppress(asyncio.CancelledError, Exception):
                 await writing
+            self._handlers.discard(task)
 
     @staticmethod
     async def _flushed(conn: Connection) -> None:
@@ -292,8 +303,7 @@ class ServerThread:
             self._ready.set()
             return
         self._ready.set()
-        with contextlib.suppress(asyncio.CancelledError):
-            self.loop.run_until_complete(self.server.serve_forever())
+        self.loop.run_forever()
 
     def __enter__(self) -> ServerThread:
         self.thread.start()
@@ -311,6 +321,10 @@ class ServerThread:
         return self.server.host
 
     @property
+    def nerve(self) -> Nerve:
+        return self.server.nerve
+
+    @property
     def port(self) -> int:
         return self.server.port
 
@@ -324,8 +338,11 @@ class ServerThread:
         if self.loop.is_closed():
             return
         if self.thread.is_alive():
-            asyncio.run_coroutine_threadsafe(self.server.close(), self.loop).result(30)
-            self.thread.join(30)
+            try:
+                asyncio.run_coroutine_threadsafe(self.server.close(), self.loop).result(30)
+            finally:
+                self.loop.call_soon_threadsafe(self.loop.stop)
+                self.thread.join(30)
         self.loop.close()
 
 
