@@ -166,7 +166,8 @@ def test_log_writes_a_file_numpy_loads(tmp_path):
     ticks(n, 20)
     assert run(n, ["stop lg"]) == ["ok stopped lg"]
     data = np.genfromtxt(tmp_path / "run.txt", names=True)
-    assert data.dtype.names[:4] == ("t", "seq", "angle_vector_0", "angle_vector_1")
+    assert data.dtype.names[:5] == ("t", "seq", "target_0", "target_1", "target_2")
+    assert data.dtype.names[5:7] == ("angle_vector_0", "angle_vector_1")
     assert len(data) == 10 and data["seq"].tolist() == list(range(0, 20, 2))
     assert data["reference_2"][-1] == 30.0
     assert run(n, ["create-plugin l2 log ../escape.txt", "create-plugin l3 log /etc/passwd"]) == [
@@ -196,3 +197,13 @@ def test_switching_the_interface_keeps_the_client_script(nerve):
         results[kind] = nerve.state()["angle-vector"]
     assert np.allclose(results["sim"], results["dummy"], atol=2.0)
     assert run(nerve, ["set-interface serinerve"])[0].startswith("error: set-interface: unknown interface")
+
+
+def test_pyproject_declares_the_shipped_plugins_as_entry_points():
+    import tomllib
+    from pathlib import Path
+
+    from shintai.nervous.plugins import BUILTIN
+
+    project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())
+    assert project["project"]["entry-points"]["shintai.nervous.plugins"] == BUILTIN

@@ -1,6 +1,8 @@
 """``log`` — logging (App. C.3.6 ``logplugin.c``, "ログ保存に関するプラグイン"): every N-th sensor packet as one
 line of a text file a user loads with ``numpy.loadtxt(path)`` (``numpy.genfromtxt(path, names=True)`` for
-the column names) — time, packet number, the vector sent, the measured angle vector, the sensors.
+the column names) — the packet's time and number, this packet's set-point ``target`` (NaN when no plugin
+set one), the measured angle vector, the ``reference`` (the vector sent in answer to the previous packet),
+the sensors.
 
 ``create-plugin log log FILE [EVERY]``; the file is opened by ``start`` (the constructor) and closed by
 ``stop`` (the destructor). FILE is a plain file name, written in the server's log directory
@@ -39,11 +41,13 @@ class Log(Plugin):
         self.written = 0
 
     def start(self, state):
-        keys = [k for k in state if k not in ("t", "seq", "target")]
+        n = self.host.description.n
+        keys = ["target"] + [k for k in state if k not in ("t", "seq", "target")]
         self.keys = keys
+        self.blank = np.full(n, np.nan)  # no set-point this packet
         names = ["t", "seq"]
         for k in keys:
-            size = np.size(state[k])
+            size = np.size(state.get(k, self.blank))
             names += [f"{k}_{i}".replace("-", "_") for i in range(size)] if size > 1 else [k.replace("-", "_")]
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.file = open(self.path, "w", encoding="utf-8")  # noqa: SIM115 - closed by stop()
@@ -53,7 +57,7 @@ class Log(Plugin):
         if state["seq"] % self.every == 0:
             values = [float(state["t"]), float(state["seq"])]
             for k in self.keys:
-                values.extend(np.ravel(state.get(k, np.nan)).tolist())
+                values.extend(np.ravel(state.get(k, self.blank)).tolist())
             self.lines.append(" ".join(f"{v:.9g}" for v in values))
             if len(self.lines) >= FLUSH_LINES:
                 self._flush()

@@ -142,6 +142,8 @@ class Sequence(Plugin):
     def push(self, target, ms: float, call, clear: bool = False, velocity=None) -> None:
         """Queue a checked posture (also the s-expression ``:angle-vector``)."""
         player = self._running()
+        player.update(self.host.state())  # the motion starts at the latest packet, not at the last routine's
+        self._finish_reached()
         motion = call.motion()
         if clear:
             self._end_all("cleared")
