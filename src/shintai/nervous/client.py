@@ -61,6 +61,7 @@ class NerveClient:
         self._buffer = b""
         self.states: deque[dict] = deque(maxlen=keep_states)
         self.done: dict[str, str] = {}
+        self.finished: list[str] = []  # the ids of done lines in the order they came
         self.events: list[str] = []
 
     def __enter__(self) -> NerveClient:
@@ -102,6 +103,7 @@ class NerveClient:
         elif line.startswith("done "):
             parts = line.split()
             self.done[parts[1]] = parts[2] if len(parts) > 2 else "done"
+            self.finished.append(parts[1])
         elif line.startswith("event "):
             self.events.append(line[6:])
         else:

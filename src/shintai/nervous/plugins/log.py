@@ -58,7 +58,7 @@ class Log(Plugin):
             values = [float(state["t"]), float(state["seq"])]
             for k in self.keys:
                 values.extend(np.ravel(state.get(k, self.blank)).tolist())
-            self.lines.append(" ".join(f"{v:.9g}" for v in values))
+            self.lines.append(" ".join(f"{v:.12g}" for v in values))
             if len(self.lines) >= FLUSH_LINES:
                 self._flush()
         return None
