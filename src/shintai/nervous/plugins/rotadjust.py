@@ -34,6 +34,7 @@ from shintai.spine.actuators import tilt
 from shintai.spine.geometry import uniform_posture
 
 G = 9.81
+TARGET_STILL = 1e-6  # units per packet: a set-point that moves less is holding (float noise of a hold)
 STILL_FRACTION = 0.02  # chosen: |a| within 2 % of g counts as still (the self-motion §5.2.2 warns of)
 DEFAULTS = {"gain": 0.8, "deadband_deg": 0.3, "settle_ms": 300.0, "window_ms": 100.0, "move_ms": 500.0,
             "max_deg": 30.0}  # chosen: the thesis prints no parameter of §5.2.2
@@ -78,7 +79,8 @@ class RotAdjust(Plugin):
     def process(self, state):
         t = float(state["t"])
         target = state.get("target")
-        moving_target = target is not None and self.last_target is not None and not np.array_equal(target, self.last_target)
+        moving_target = (target is not None and self.last_target is not None
+                         and np.abs(np.asarray(target) - self.last_target).max() > TARGET_STILL)
         self.last_target = None if target is None else np.array(target, dtype=float)
         acc = np.asarray(state["acc_chest"], dtype=float)
         still = abs(np.linalg.norm(acc) - G) < STILL_FRACTION * G and not moving_target
