@@ -262,7 +262,7 @@ def _stats(nerve, args, call):
     s = nerve.stats
     period = f"{1e3 * s.period.last:.3f}/{1e3 * s.period.mean:.3f}/{1e3 * s.period.max:.3f}"
     cost = f"{1e3 * s.cost.last:.3f}/{1e3 * s.cost.mean:.3f}/{1e3 * s.cost.max:.3f}"
-    dropped = sum(c.dropped for c in nerve.clients)
+    dropped = nerve.dropped_gone + sum(c.dropped for c in nerve.clients)
     plugins = " ".join(f"{i.name}={i.module.timing.us()}" for i in nerve.instances.values() if i.running)
     return (f"packets={s.ticks} packet_ms={fmt(1e3 * s.packet_period)} period_ms={period} cost_ms={cost} "
             f"overruns={s.overruns} late={s.late} resyncs={nerve.interface.resyncs} clients={len(nerve.clients)} "

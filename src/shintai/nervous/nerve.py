@@ -141,6 +141,7 @@ class Nerve:
         self.loaded: dict[str, type[Plugin]] = {}
         self.instances: dict[str, Instance] = {}
         self.clients: set[Client] = set()
+        self.dropped_gone = 0  # stream lines dropped for clients that have left
         self.halted: str | None = None
         self.events: list[str] = []
         self._open(interface)

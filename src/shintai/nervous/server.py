@@ -197,6 +197,7 @@ class Server:
             pass
         finally:
             self.nerve.clients.discard(conn)
+            self.nerve.dropped_gone += conn.dropped
             self.nerve.motions.forget(conn)
             self.connections.discard(conn)
             if not conn.closed:  # let the last replies go out, then close
