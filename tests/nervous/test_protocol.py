@@ -120,3 +120,14 @@ def test_a_command_may_carry_an_id_and_hears_done(nerve):
     assert c.received == []
     ticks(nerve, 2)
     assert c.received == ["done m1"]
+
+
+def test_the_thesis_client_reads_cla_tensions():
+    """§6.3.3: `(send *ns* :state :tension-vector)` — the key is the sensor's name, `-vector` optional."""
+    from shintai.nervous.nerve import Nerve
+
+    n = Nerve("cla", "dummy")
+    n.interface.sensors["tension"][:] = np.arange(8.0)
+    n.tick()
+    assert run(n, ["(send *ns* :state :tension-vector)", "state tension", "(send *ns* :state :tension)"]) == [
+        "ok #f(0 1 2 3 4 5 6 7)", "ok t=0.001000 seq=1 tension=0,1,2,3,4,5,6,7", "ok #f(0 1 2 3 4 5 6 7)"]

@@ -3,6 +3,7 @@ once, bounded output for slow clients, abrupt disconnects, `wait` without a race
 
 import os
 import re
+import select
 import signal
 import socket
 import struct
@@ -188,6 +189,8 @@ def test_the_command_line_contract(tmp_path):
                              "dummy", "--port", "0", "--rc", str(rc)], env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     try:
+        ready, _, _ = select.select([proc.stdout], [], [], 60)
+        assert ready, "the server printed nothing within 60 s"
         line = proc.stdout.readline()
         match = re.fullmatch(r"nervous: listening on 127\.0\.0\.1:(\d+)\n", line)
         assert match, line
