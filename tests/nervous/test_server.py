@@ -2,6 +2,7 @@
 once, bounded output for slow clients, abrupt disconnects, `wait` without a race, the CLI contract."""
 
 import os
+import queue
 import re
 import select
 import signal
@@ -9,6 +10,7 @@ import socket
 import struct
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -214,3 +216,23 @@ def test_serve_refuses_bad_arguments_in_one_line(capsys):
     assert main(["nervous", "serve", "--robot", "r2d2", "--port", "0"]) == 2
     assert "unknown (robots: arm3, cla, hrp2, snake)" in capsys.readouterr().err
     assert main(["nervous", "send", "--port", "1", "dof"]) == 2
+
+
+def test_the_console_reads_standard_input():
+    """C.2.1: nervous interprets "socket(と標準入力)" — `serve --stdin` takes the operator's lines too."""
+    env = {**os.environ, "PYTHONPATH": SRC}
+    proc = subprocess.Popen([sys.executable, "-m", "shintai", "nervous", "serve", "--robot", "arm3", "--interface",
+                             "dummy", "--port", "0", "--stdin"], env=env, stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        proc.stdin.write("# comment\nload-plugin seqplugin\ndof\nnope\n")
+        proc.stdin.flush()
+        got = queue.Queue()
+        threading.Thread(target=lambda: [got.put(line.rstrip("\n")) for line in proc.stdout], daemon=True).start()
+        lines = [got.get(timeout=60) for _ in range(4)]
+        assert lines[0].startswith("nervous: listening on 127.0.0.1:")
+        assert lines[1].startswith("ok sequence (set)") and lines[2] == "ok 3 j0 j1 j2"
+        assert lines[3].startswith("error: unknown command 'nope'")
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        assert proc.wait(timeout=30) == 0

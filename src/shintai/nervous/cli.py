@@ -42,6 +42,8 @@ def add_parser(sub) -> None:
     s.add_argument("--log-dir", default=".", help="folder the log plugin writes into (default: here)")
     s.add_argument("--plugin-dir", action="append", default=[], help="folder of NAME.py plugins (repeatable)")
     s.add_argument("--max-queue", type=int, default=MAX_QUEUE, help="stream lines queued per client")
+    s.add_argument("--stdin", action="store_true", help="also read commands from standard input (the thesis's "
+                   "console); replies go to standard output")
     s.set_defaults(fn=cmd_serve, registry=False)
 
     c = nsub.add_parser("send", help="send lines to a server, print what comes back")
@@ -83,7 +85,7 @@ def cmd_serve(args: argparse.Namespace) -> int:
         print(line, flush=True)
 
     try:
-        asyncio.run(serve(nerve, args.host, args.port, args.rc, announce, max_queue=args.max_queue))
+        asyncio.run(serve(nerve, args.host, args.port, args.rc, announce, stdin=args.stdin, max_queue=args.max_queue))
     except OSError as exc:
         return usage_error(f"cannot listen on {args.host}:{args.port}: {exc.strerror or exc}")
     print("nervous: stopped", file=sys.stderr)

@@ -100,6 +100,19 @@ class Connection(Client):
                 self.writer.close()
 
 
+class Console(Client):
+    """Standard input's client: what it is sent is printed."""
+
+    closed = False
+
+    def __init__(self, out):
+        super().__init__("console")
+        self.out = out
+
+    def send(self, line: str, droppable: bool = False) -> None:
+        print(line, file=self.out, flush=True)
+
+
 class Server:
     """nervous's TCP server around a :class:`~shintai.nervous.nerve.Nerve`."""
 
@@ -240,16 +253,38 @@ class Server:
                 if not await self._line(conn, raw):
                     return
 
-    async def _line(self, conn: Connection, raw: bytes) -> bool:
+    async def read_stdin(self, stream=None, out=None) -> None:
+        """The operator's console (C.2.1: nervous reads "socket(と標準入力)"): lines from standard input are
+        interpreted like a client's, as trusted as the start-up file; replies and events go to ``out``."""
+        loop = asyncio.get_running_loop()
+        reader = asyncio.StreamReader(limit=MAX_LINE_BYTES + 1)
+        await loop.connect_read_pipe(lambda: asyncio.StreamReaderProtocol(reader), stream or sys.stdin)
+        console = Console(out or sys.stdout)
+        self.nerve.clients.add(console)
+        try:
+            while True:
+                try:
+                    raw = await reader.readline()
+                except (ValueError, asyncio.LimitOverrunError):
+                    console.send(error(f"line too long (the limit is {MAX_LINE_BYTES} bytes)"))
+                    continue
+                if not raw:
+                    return
+                if not await self._line(console, raw.rstrip(b"\n"), trusted=True):
+                    return
+        finally:
+            self.nerve.clients.discard(console)
+
+    async def _line(self, conn: Connection, raw: bytes, trusted: bool = False) -> bool:
         """Interpret one line and answer it; False when the client asked to quit."""
-        while len(conn.outbox) >= self.max_queue + 64 and not conn.closed:  # a client not reading: stop reading it
+        while len(getattr(conn, "outbox", ())) >= self.max_queue + 64 and not conn.closed:  # not reading: stop reading it
             await asyncio.sleep(0.005)
         try:
             text = decode(raw)
         except ProtocolError as exc:
             conn.send(error(str(exc)))
             return True
-        reply = self.nerve.execute(text, conn)
+        reply = self.nerve.execute(text, conn, trusted=trusted)
         if reply.wait is not None:
             await self._wait(conn, reply)
         if reply.text is not None:
@@ -348,7 +383,7 @@ class ServerThread:
 
 
 async def serve(nerve: Nerve, host: str = DEFAULT_HOST, port: int = 0, rc: str | None = None,
-                announce: Callable[[str], None] = print, **options) -> None:
+                announce: Callable[[str], None] = print, stdin: bool = False, **options) -> None:
     """``shintai nervous serve``: the start-up file, then listen until SIGINT or SIGTERM; ``announce`` gets
     ``nervous: listening on HOST:PORT`` once connections are accepted. Stopping runs every running
     plugin's destructor (a log file is closed) and closes the interface."""
@@ -364,11 +399,14 @@ async def serve(nerve: Nerve, host: str = DEFAULT_HOST, port: int = 0, rc: str |
             loop.add_signal_handler(sig, stop.set)
             handled.append(sig)
     announce(f"nervous: listening on {server.address}")
+    console = asyncio.create_task(server.read_stdin()) if stdin else None
     stopping = asyncio.create_task(stop.wait())
     try:
         await asyncio.wait({server._packets, stopping}, return_when=asyncio.FIRST_COMPLETED)
     finally:
         stopping.cancel()
+        if console is not None:
+            console.cancel()
         for sig in handled:
             loop.remove_signal_handler(sig)
         await server.close()
