@@ -215,7 +215,7 @@ class Nerve:
                 else:
                     client.send("state " + self.state_text(client.stream_keys), droppable=True)
 
-    def state_text(self, keys=None, dropped: int | None = None) -> str:
+    def state_text(self, keys=None) -> str:
         """The state as ``t=… seq=… key=v1,v2 …`` (all keys, or the given ones)."""
         snap = self.state()
         parts = [f"t={snap['t']:.6f}", f"seq={snap['seq']}"]

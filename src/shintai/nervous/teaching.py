@@ -18,8 +18,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import numpy as np
-
 from shintai.nervous.client import NerveClient
 from shintai.nervous.protocol import fmt
 
