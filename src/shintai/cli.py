@@ -15,6 +15,7 @@ import threading
 import time
 from pathlib import Path
 
+from shintai.nervous.cli import add_parser as add_nervous_parser
 from shintai.scenarios import registry
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import Progress
@@ -230,6 +231,8 @@ def build_parser() -> argparse.ArgumentParser:
     mo.add_argument("--out", default="out/models", help="output folder (default out/models)")
     mo.set_defaults(fn=cmd_model)
 
+    add_nervous_parser(sub)
+
     b = sub.add_parser("bench", help="run the benchmarks, write bench.json")
     b.add_argument("--only", help="glob over benchmark ids")
     b.add_argument("--out", default="out/bench")
@@ -255,8 +258,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def run_command(args: argparse.Namespace) -> int:
     """Run the parsed sub-command; usage errors exit 2, interruptions 130."""
-    registry.load_all()
-    warn_load_errors()
+    if getattr(args, "registry", True):  # the nervous server needs no scenario registry
+        registry.load_all()
+        warn_load_errors()
     try:
         return args.fn(args)
     except ParameterError as exc:

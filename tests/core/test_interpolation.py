@@ -96,3 +96,19 @@ def test_player_as_a_module_in_the_loop():
     p.push([1.0], 0.1)
     Loop(body, [p]).run(0.2)
     assert body.command["u"][0] == pytest.approx(1.0)
+
+
+def test_a_player_takes_its_minjerksequence_via_rule():
+    """nervous's seqplugin passes its own rule at intermediate postures (App. C.2.2)."""
+    calls = []
+
+    def rule(x_prev, x_via, x_next, T_in, T_out):
+        calls.append((float(x_prev[0]), float(x_via[0]), float(x_next[0])))
+        return np.full(1, 7.0)
+
+    p = SequencePlayer([0.0], method="minjerksequence", via=rule)
+    p.push([60.0], 0.25)
+    p.push([120.0], 0.1)
+    assert calls == [(0.0, 60.0, 120.0)]
+    p.advance(0.25)
+    assert np.allclose(p.state[1], 7.0)

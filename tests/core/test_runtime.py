@@ -185,3 +185,34 @@ def test_run_until_a_time_or_a_predicate_with_decimated_hooks():
         loop.run(0.1, every={0: print})
     with pytest.raises(ValueError, match="duration or until"):
         loop.run(until=lambda s: True)
+
+
+def test_restage_adds_and_removes_modules_between_ticks_without_resetting_the_others():
+    """nervous starts and stops plugins while its loop runs (seed 003 §6.3.4)."""
+    from shintai.core.benchmarks import NullBody
+
+    resets = []
+
+    class Counter(Module):
+        def reset(self, snapshot):
+            resets.append(self.name)
+            self.n = 0
+
+        def update(self, snapshot):
+            self.n += 1
+            return {"u": np.full(1, float(self.n))}
+
+    a, b = Counter("a"), Counter("b")
+    loop = Loop(NullBody(), [a])
+    loop.run(3 * loop.body.dt)
+    assert resets == ["a"] and a.n == 3
+    loop.restage([[a, b]])
+    assert resets == ["a", "b"]  # only the new one is reset
+    loop.step()
+    assert a.n == 4 and b.n == 1 and loop.command["u"][0] == 5.0
+    assert loop.timing["a"].calls == 4 and loop.timing["b"].calls == 1
+    loop.restage([[b]])
+    loop.step()
+    assert a.n == 4 and b.n == 2 and loop.command["u"][0] == 2.0
+    with pytest.raises(ValueError, match="unique"):
+        loop.restage([[b, b]])

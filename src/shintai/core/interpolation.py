@@ -18,6 +18,7 @@ re-targeting keeps position, velocity and acceleration continuous.
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -126,8 +127,9 @@ class SequencePlayer(Module):
     """
 
     def __init__(self, x0, method: str = "minjerk", channel: str = "target", name: str = "sequence",
-                 period: float | None = None):
+                 period: float | None = None, via: Callable = via_velocity):
         super().__init__(name, period)
+        self.via = via  # minjerksequence's velocity rule at an intermediate posture (see via_velocity)
         self.x = np.atleast_1d(np.asarray(x0, dtype=float)).copy()
         self.v = np.zeros_like(self.x)
         self.a = np.zeros_like(self.x)
@@ -185,7 +187,7 @@ class SequencePlayer(Module):
             return entry.velocity
         if self.method == "minjerksequence" and self.queue:
             nxt = self.queue[0]
-            return via_velocity(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
+            return self.via(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
         return np.zeros_like(self.x)
 
     def _start_next(self) -> None:
@@ -206,7 +208,7 @@ class SequencePlayer(Module):
         left = self.segment.T - self.elapsed
         if left <= 0:
             return
-        vf = via_velocity(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
+        vf = self.via(self.start_x, entry.target, nxt.target, entry.duration, nxt.duration)
         self.segment = Segment.minjerk(self.x, self.v, self.a, entry.target, vf, np.zeros_like(self.x), left)
         self.elapsed = 0.0
 

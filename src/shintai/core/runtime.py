@@ -344,6 +344,30 @@ class Loop:
             m.reset(snap)
         self._started = True
 
+    def restage(self, stages: Sequence[Sequence[Module]]) -> None:
+        """Replace the modules between two ticks (seed 003 §6.3.4: nervous's plugins are started,
+        stopped and unloaded while the loop runs). A module that stays keeps its state, its held
+        contribution and its timing; a new one is reset with the current view if the loop has
+        started (the others are not reset again)."""
+        stages = [list(s) for s in stages]
+        modules = [m for stage in stages for m in stage]
+        names = [m.name for m in modules]
+        if len(set(names)) != len(names):
+            raise ValueError(f"loop: module names must be unique, got {names}")
+        every = [ticks_per_period(m.period, self.body.dt, m.name) for m in modules]
+        old = {id(m): i for i, m in enumerate(self.modules)}
+        self.held = [self.held[old[id(m)]] if id(m) in old else None for m in modules]
+        self.timing = {m.name: self.timing[m.name] if id(m) in old else ModuleTiming() for m in modules}
+        self.stages, self.modules, self.every = stages, modules, every
+        self._bounds = np.cumsum([0] + [len(s) for s in stages]).tolist()
+        fresh = [m for m in modules if id(m) not in old]
+        for m in fresh:
+            m.attach(self.recorder)
+        if self._started and fresh:
+            snap = self.view(self.body.snapshot())
+            for m in fresh:
+                m.reset(snap)
+
     def _combine(self, command: Command, lo: int, hi: int, set_writers: dict) -> None:
         for i in range(lo, hi):
             part = self.held[i]
