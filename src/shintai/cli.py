@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import json
+import os
 import signal
 import sys
 import threading
@@ -266,6 +267,9 @@ def run_command(args: argparse.Namespace) -> int:
     except ParameterError as exc:
         print(f"shintai: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader went away (`shintai list | head`): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except KeyboardInterrupt:
         print("shintai: interrupted (finished results are kept)", file=sys.stderr)
         return 130

@@ -23,7 +23,7 @@ from dataclasses import fields
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Body, Loop, whole_multiple
+from shintai.core.runtime import Body, FunctionModule, Loop, whole_multiple
 from shintai.nervous.robot import Description, position_servos
 from shintai.sim.body import MujocoBody
 from shintai.spine.bodies_mujoco import SpineBody
@@ -157,10 +157,11 @@ class MuscleRobot(SimRobot):
         self.body = body
         self.control = MuscleControl(body.robot.m, gains)
         zero_encoders(body, self.control, CALIBRATION_N)
-        body.hold(None)
         self.control.set_modes(Mode.L)
         self.faulty = FaultyBody(body)
-        self.loop = Loop(self.faulty, [self.control])
+        self.hand: np.ndarray | None = None  # the posture a human hand holds the spine at (the body's channel)
+        hand = FunctionModule(lambda snap: None if self.hand is None else {"hand": self.hand}, name="hand")
+        self.loop = Loop(self.faulty, [self.control, hand])
         self.loop.start()
         self._base_quat = body.model.body_quat[body.id("body", "link0")].copy()
 
@@ -225,10 +226,7 @@ class MuscleRobot(SimRobot):
     def hold(self, whole_deg=None) -> None:
         """A human hand holds the top link at the uniform bend ``whole_deg`` (roll, pitch, yaw of the whole
         spine), or lets go (None)."""
-        if whole_deg is None:
-            self.spine.hold(None)
-        else:
-            self.spine.hold(uniform_posture(np.radians(whole_deg), self.spine.robot.n))
+        self.hand = None if whole_deg is None else uniform_posture(np.radians(whole_deg), self.spine.robot.n)
 
     def tilt(self, roll_deg: float, pitch_deg: float = 0.0) -> None:
         """The seat under the pelvis tilts by (roll, pitch) from level (the pelvis is fixed to it)."""
