@@ -13,3 +13,16 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 __version__ = "0.1.0"
+
+
+def body_modules(leaf: str) -> list[str]:
+    """``shintai.<package>.<leaf>`` for every subpackage that has such a module or package, found on disk
+    without importing the subpackages (an optional one, like ``shintai.gym``, may need an extra)."""
+    from pathlib import Path
+
+    found = []
+    for root in __path__:
+        for pkg in sorted(Path(root).iterdir()):
+            if (pkg / "__init__.py").is_file() and ((pkg / f"{leaf}.py").is_file() or (pkg / leaf / "__init__.py").is_file()):
+                found.append(f"shintai.{pkg.name}.{leaf}")
+    return found

@@ -18,8 +18,6 @@ when its scenario covers that row. Only reproduction checks decide (DESIGN.md, `
 from __future__ import annotations
 
 import importlib
-import importlib.util
-import pkgutil
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -63,10 +61,10 @@ class Row:
 def all_rows() -> dict[str, Row]:
     """Every row of every body's ``coverage.py``, by key (duplicate keys are an error)."""
     rows: dict[str, Row] = {}
-    for pkg in pkgutil.iter_modules(shintai.__path__):
-        if not pkg.ispkg or pkg.name == "scenarios" or importlib.util.find_spec(f"shintai.{pkg.name}.coverage") is None:
+    for name in shintai.body_modules("coverage"):
+        if name == "shintai.scenarios.coverage":
             continue
-        for row in importlib.import_module(f"shintai.{pkg.name}.coverage").ROWS:
+        for row in importlib.import_module(name).ROWS:
             if row.key in rows:
                 raise ValueError(f"coverage row {row.key!r} is listed twice")
             if row.seed not in SEEDS:

@@ -268,17 +268,10 @@ LOAD_ERRORS: dict[str, str] = {}  # module -> one-line error, for packages whose
 def experiment_modules() -> list[str]:
     """Every module of every ``shintai.<body>.experiments`` package, and each body's ``benchmarks``."""
     names = []
-    for pkg in pkgutil.iter_modules(shintai.__path__):
-        if not pkg.ispkg:
-            continue
-        spec = importlib.util.find_spec(f"shintai.{pkg.name}.experiments")
-        if spec is not None and spec.submodule_search_locations:
-            names += [f"shintai.{pkg.name}.experiments.{m.name}"
-                      for m in pkgutil.iter_modules(spec.submodule_search_locations) if not m.ispkg]
-        for leaf in ("scenarios", "benchmarks"):
-            if importlib.util.find_spec(f"shintai.{pkg.name}.{leaf}") is not None:
-                names.append(f"shintai.{pkg.name}.{leaf}")
-    return names
+    for package in shintai.body_modules("experiments"):
+        folder = Path(shintai.__path__[0]) / package.split(".")[1] / "experiments"
+        names += [f"{package}.{m.name}" for m in pkgutil.iter_modules([str(folder)]) if not m.ispkg]
+    return names + shintai.body_modules("benchmarks")
 
 
 def load_all() -> None:

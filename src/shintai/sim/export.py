@@ -10,8 +10,6 @@ built from a spec). :func:`export` writes ``<DIR>/<id>.xml``; models here carry 
 from __future__ import annotations
 
 import importlib
-import importlib.util
-import pkgutil
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -48,10 +46,8 @@ def model(id: str, summary: str):
 
 def load_models() -> dict[str, ModelEntry]:
     """Import every body's ``models`` module (once) and return the registry."""
-    for pkg in pkgutil.iter_modules(shintai.__path__):
-        name = f"shintai.{pkg.name}.models"
-        if pkg.ispkg and importlib.util.find_spec(name) is not None:
-            importlib.import_module(name)
+    for name in shintai.body_modules("models"):
+        importlib.import_module(name)
     return MODELS
 
 
