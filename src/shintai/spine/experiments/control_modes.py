@@ -8,7 +8,8 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine import pictures
 from shintai.spine.cla import SPRING_LAWS
 from shintai.spine.modes import (
-    ABLATION, AXES, MODE_CONFIGS, TABLE_4_8, TABLE_COLUMNS, THESIS_ROW, mode_metrics, mode_rig, rows_until_lost,
+    ABLATION, AXES, MODE_CONFIGS, TABLE_4_7, TABLE_4_7_COLUMNS, TABLE_4_8, TABLE_COLUMNS, THESIS_ROW, mode_metrics,
+    mode_rig, rows_until_lost,
 )
 from shintai.spine.robots import K_S_UNIT_N_M
 
@@ -56,7 +57,8 @@ def plots(ctx, runs, params):
                                                                     "high": params["k_s_high"] * K_S_UNIT_N_M}}
     pictures.table_4_8(ctx, {m: table[m] for m in modes}, TABLE_4_8, TABLE_COLUMNS)
     pictures.posture_errors(ctx, {m: {a: rows_until_lost(rows) + [r for r in rows if not r.held][:1]
-                                      for a, rows in by_axis.items()} for m, by_axis in rows_all.items()}, modes)
+                                      for a, rows in by_axis.items()} for m, by_axis in rows_all.items()}, modes,
+                            TABLE_4_7, TABLE_4_7_COLUMNS)
     pictures.mode_time_series(ctx, modes)
     states = {v: run.state.picture for v, run in runs.items() if run.state.picture is not None}
     if states:
