@@ -6,6 +6,7 @@ import pytest
 
 from shintai.spine.modes import (
     TABLE_4_7, TABLE_4_7_COLUMNS, max_held, mode_metrics, rows_until_lost, summarise_mode, table_4_7_gap,
+    table_4_7_held,
 )
 from shintai.spine.postures import PostureRow
 
@@ -60,3 +61,14 @@ def test_held_cells_count_changes_between_the_hold_tests():
     assert metrics["held_cells"] == 4 and metrics["held_cells_changed_fall30"] == 1
     assert metrics["held_cells_changed_window"] == 0
     assert metrics["held_cells_agree"] == 3 and metrics["held_cells_agree_fall30"] == 4  # all-LL pitch: thesis 10
+
+
+def test_table_4_7_held_counts_postures_before_the_first_dash():
+    """Table 4.7's "—" (the spine caught by hand) starts after 7 pitch postures for all-LL and 8 for all-S-mid
+    (held to +10 and +20); ours are counted the same way, over the printed rows only (roll: 11, no final 0)."""
+    assert table_4_7_held("all_ll", "pitch") == 7 and table_4_7_held("all_s_mid", "pitch") == 8
+    assert table_4_7_held("all_l", "pitch") == 12 and table_4_7_held("all_l", "roll") == 11
+    rows = [PostureRow(t, t, 1.0, 0.0, 0.0, True, 0.3, 0.1) for t in (-10, -20, -30, -20, -10, 0, 10, 20, 30, 20, 10, 0)]
+    assert summarise_mode({"roll": rows}, 30, "all_l")["t47_postures_held_roll"] == 11
+    rows[2].held = False
+    assert summarise_mode({"roll": rows}, 30, "all_l")["t47_postures_held_roll"] == 2

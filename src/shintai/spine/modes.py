@@ -82,7 +82,7 @@ SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_d
                 "mean_tension_kgf", "mean_current_a", "mean_sway_deg", "collapsed", "max_pitch_held_window_deg",
                 "max_roll_held_window_deg", "collapsed_window", "max_pitch_held_fall30_deg",
                 "max_roll_held_fall30_deg", "collapsed_fall30", "mean_current_posture_a", "max_error_held_deg",
-                "t47_error_gap_pitch_deg", "t47_error_gap_roll_deg")
+                "t47_error_gap_pitch_deg", "t47_error_gap_roll_deg", "t47_postures_held_pitch", "t47_postures_held_roll")
 
 
 def mode_rig(config: str, axis_name: str, p: dict, log: bool = True, picture: bool = False) -> Rig:
@@ -161,13 +161,20 @@ def table_4_7_gap(mode: str, axis_name: str, rows: list[PostureRow]) -> float:
     return float(abs(ours - thesis))
 
 
+def table_4_7_held(mode: str, axis_name: str) -> int:
+    """How many postures of the sequence Table 4.7 has data for before its first "—" (the spine caught)."""
+    column = [row[TABLE_4_7_COLUMNS.index(mode)] for row in TABLE_4_7[axis_name]]
+    return next((i for i, v in enumerate(column) if v is None), len(column))
+
+
 def summarise_mode(rows_by_axis: dict[str, list[PostureRow]], max_deg: int, mode: str = "") -> dict[str, float]:
     """Per mode: Table 4.8's columns, the overall means, and whether the spine collapsed — over the
     postures before the first lost one (``held``, the thesis's criterion); plus the max-held angles and
     collapse flags of the 30° rule (``*_fall30``) and the window-only test (``*_window``), the current
     averaged over whole postures (move, hold and window) rather than the measuring window
-    (``mean_current_posture_a``), the largest error of a held posture, and the gap to Table 4.7
-    (:func:`table_4_7_gap`, when ``mode`` names one of its columns)."""
+    (``mean_current_posture_a``), the largest error of a held posture, the gap to Table 4.7
+    (:func:`table_4_7_gap`, when ``mode`` names one of its columns) and the number of postures held before
+    the first lost, over Table 4.7's printed rows (``t47_postures_held_*``, for :func:`table_4_7_held`)."""
     out = {}
     every = []
     for axis_name, rows in rows_by_axis.items():
@@ -179,6 +186,8 @@ def summarise_mode(rows_by_axis: dict[str, list[PostureRow]], max_deg: int, mode
         out[f"mean_tension_{axis_name}_kgf"] = _mean([r.tension_kgf for r in held])
         out[f"mean_current_{axis_name}_a"] = _mean([r.current_a for r in held])
         out[f"t47_error_gap_{axis_name}_deg"] = table_4_7_gap(mode, axis_name, rows)
+        # postures held before the first lost, counted over Table 4.7's printed rows (roll: 11, no final 0)
+        out[f"t47_postures_held_{axis_name}"] = min(len(held), len(TABLE_4_7[axis_name]))
     out["mean_sway_deg"] = _mean([r.sway_deg for r in every])
     out["mean_tension_kgf"] = _mean([r.tension_kgf for r in every])
     out["mean_current_a"] = _mean([r.current_a for r in every])

@@ -92,6 +92,7 @@ class PostureRow:
     held_fall30: bool = True  # the 30° rule: error ≤ HOLD_LIMIT_DEG and worst_posture_deg ≤ HOLD_FALL_DEG
     range_end: bool = False  # a joint came within RANGE_END_MARGIN_DEG of its stop while the posture was commanded
     drift_deg: float = 0.0  # growth of |Θ_true − Θ_ref| across the window (mean of its last fifth − first fifth)
+    range_end_joint: int = -1  # the first joint direction (index into θ, 3 per joint: roll, pitch, yaw) at its stop
 
 
 class PostureObserver(Module):
@@ -124,11 +125,12 @@ class PostureObserver(Module):
             return None
         r = k % (self.moving + self.window)
         if r == 0:
-            self.worst, self.current, self.acc, self.range_end = 0.0, 0.0, 0.0, False
+            self.worst, self.current, self.acc, self.range_end, self.range_end_joint = 0.0, 0.0, 0.0, False, -1
             self.w_posture, self.w_tension, self.w_current, self.w_true, self.w_off = 0.0, 0.0, 0.0, [], []
         axis, snap = self.axis, snapshot
         if self.stops is not None and not self.range_end:
-            self.range_end = bool(np.any(np.abs(snap["theta"]) >= self.stops))
+            at_stop = np.flatnonzero(np.abs(snap["theta"]) >= self.stops)
+            self.range_end, self.range_end_joint = bool(at_stop.size), int(at_stop[0]) if at_stop.size else -1
         if r < self.moving:
             self.worst = max(self.worst, abs(math.degrees(float(snap["theta"][axis::3].sum())
                                                           - snap["whole_ref"][axis])))
@@ -167,7 +169,7 @@ class PostureObserver(Module):
         current_posture = (self.current + w_current * n) / (self.moving + n)
         self.rows.append(PostureRow(target, measured, error, worst, float(np.std(true)), held,
                                     self.w_tension / n / KGF_N, w_current, worst_posture, held_window,
-                                    current_posture, held_fall30, self.range_end, drift))
+                                    current_posture, held_fall30, self.range_end, drift, self.range_end_joint))
         self.picture_due = target == self.picture_deg
         every_test_lost = all(any(not getattr(row, test) for row in self.rows) for test in HOLD_TESTS)
         self.stopped = every_test_lost or len(self.rows) == len(self.targets)
