@@ -60,6 +60,9 @@ def test_teach_playback_short_run(tmp_path):
     assert m["speedup_8.saturated_fraction"] > 0.05
     assert m["speedup_8.relative_length_error"] > 2 * m["speedup_4.relative_length_error"]
     assert m["speedup_8.duration_s"] == pytest.approx(m["speedup_1.duration_s"] / 8, abs=0.03)
+    # the band of demonstration speeds the outcome implies: 1/8 … 1/4 of the drive's no-load wire speed
+    assert m["implied_band_hi_mm_s"] == pytest.approx(2 * m["implied_band_lo_mm_s"])
+    assert all(c["kind"] == "consistency" for c in result["checks"])  # the outcome follows from the chosen speed
 
 
 def test_software_spring_short_run(tmp_path):
