@@ -18,13 +18,14 @@ def test_e11_max_held_and_means_follow_the_thesis_criterion():
     def row(target, error, held=True, fall30=True, window=True, current=0.1):
         return PostureRow(target, target + error, error, 2.0, 1.0, held, 0.3, current, 5.0, window, 0.2, fall30)
 
-    pitch = [row(-10, 1.0), row(0, 1.0), row(10, 2.0, fall30=False), row(20, 1.0, held=False, fall30=False, current=9.0),
-             row(30, 5.0, held=False, window=False, current=9.0)]
+    pitch = [row(-10, 1.0), row(0, 1.0), row(10, 2.0, fall30=False),
+             row(20, 1.0, held=False, fall30=False, current=9.0), row(30, 5.0, held=False, window=False, current=9.0)]
     assert max_held(pitch, 30) == 10.0 and max_held(pitch, 30, "held_fall30") == 0.0
     assert max_held(pitch, 30, "held_window") == 20.0
     assert [r.target_deg for r in rows_until_lost(pitch)] == [-10, 0, 10]
     out = summarise_mode({"pitch": pitch}, 30, "all_l")
-    assert (out["max_pitch_held_deg"], out["max_pitch_held_fall30_deg"], out["max_pitch_held_window_deg"]) == (10, 0, 20)
+    held = (out["max_pitch_held_deg"], out["max_pitch_held_fall30_deg"], out["max_pitch_held_window_deg"])
+    assert held == (10, 0, 20)
     assert out["collapsed"] == out["collapsed_fall30"] == out["collapsed_window"] == 1
     assert out["mean_error_pitch_deg"] == pytest.approx(4.0 / 3) and out["mean_current_a"] == pytest.approx(0.1)
     assert out["mean_current_posture_a"] == pytest.approx(0.2) and out["max_error_held_deg"] == 2.0
@@ -68,7 +69,8 @@ def test_table_4_7_held_counts_postures_before_the_first_dash():
     (held to +10 and +20); ours are counted the same way, over the printed rows only (roll: 11, no final 0)."""
     assert table_4_7_held("all_ll", "pitch") == 7 and table_4_7_held("all_s_mid", "pitch") == 8
     assert table_4_7_held("all_l", "pitch") == 12 and table_4_7_held("all_l", "roll") == 11
-    rows = [PostureRow(t, t, 1.0, 0.0, 0.0, True, 0.3, 0.1) for t in (-10, -20, -30, -20, -10, 0, 10, 20, 30, 20, 10, 0)]
+    sequence = (-10, -20, -30, -20, -10, 0, 10, 20, 30, 20, 10, 0)
+    rows = [PostureRow(t, t, 1.0, 0.0, 0.0, True, 0.3, 0.1) for t in sequence]
     assert summarise_mode({"roll": rows}, 30, "all_l")["t47_postures_held_roll"] == 11
     rows[2].held = False
     assert summarise_mode({"roll": rows}, 30, "all_l")["t47_postures_held_roll"] == 2

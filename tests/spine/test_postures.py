@@ -99,4 +99,4 @@ def test_a_spine_still_moving_away_or_at_its_stops_is_lost():
     assert creeping.rows[0].held  # drifts less than REST_DRIFT_DEG across the window
     stops = PostureObserver(axis=1, targets_deg=[0], settle=5, moving=10, window=10, limits_rad=LIMITS)
     Loop(_StillBody(5 * 18.0), [stops]).run(0.05)
-    assert stops.rows[0].range_end and not stops.rows[0].held
+    assert stops.rows[0].range_end and not stops.rows[0].held and stops.rows[0].range_end_joint == 1  # joint 1 pitch

@@ -82,7 +82,8 @@ SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_d
                 "mean_tension_kgf", "mean_current_a", "mean_sway_deg", "collapsed", "max_pitch_held_window_deg",
                 "max_roll_held_window_deg", "collapsed_window", "max_pitch_held_fall30_deg",
                 "max_roll_held_fall30_deg", "collapsed_fall30", "mean_current_posture_a", "max_error_held_deg",
-                "t47_error_gap_pitch_deg", "t47_error_gap_roll_deg", "t47_postures_held_pitch", "t47_postures_held_roll")
+                "t47_error_gap_pitch_deg", "t47_error_gap_roll_deg", "t47_postures_held_pitch",
+                "t47_postures_held_roll")
 
 
 def mode_rig(config: str, axis_name: str, p: dict, log: bool = True, picture: bool = False) -> Rig:
