@@ -84,7 +84,7 @@ def grid_optimum(f, step: float) -> tuple[np.ndarray, float]:
     thesis={
         "best_start": ThesisValue(2, "§3.2.3 Fig. 3.4 ('start 2 reached the highest evaluation')", "best_start"),
         "stuck_immediately": ThesisValue("starts 1 and 3 fell into local optima right after starting",
-                                         "§3.2.3 Fig. 3.4", "steps_start1"),
+                                         "§3.2.3 Fig. 3.4", "travel_deg_start1"),
         "start4_joins": ThesisValue(1, "§3.2.3 ('start 4 followed nearly the same path as start 1')",
                                     "start4_joins_path"),
         "optimum": ThesisValue("not in the text (Fig. 3.5 only)", "§3.2.3", "best_a1_deg"),
