@@ -33,8 +33,20 @@ def test_control_modes_short_run(control_modes):
     assert m["all_l.mean_error_pitch_deg"] < 5 and m["all_l.mean_error_roll_deg"] < 5
     assert m["l_t.collapsed"] == 1 and m["l_t.collapsed_window"] == 1
     assert m["all_l.max_pitch_held_window_deg"] == 20 and 0 < m["all_l.mean_current_posture_a"] < 1.1
+    # the three hold tests: L + T falls onto its stops, lost by every one; all-L at rest within its range
+    assert m["l_t.collapsed_fall30"] == 1 and m["all_l.max_roll_held_fall30_deg"] == 20
+    assert m["held_cells_changed_fall30"] >= 0 and m["held_cells_changed_window"] >= 0
+    assert "held_cells_agree" not in m  # only over the thesis's ±30° range
+    rows = result["extra"]["postures"]["all_l"]["pitch"]
+    assert all(r["held"] and not r["range_end"] and abs(r["drift_deg"]) < 1 for r in rows)
+    assert any(r["range_end"] and r["range_end_joint"] >= 0 for r in result["extra"]["postures"]["l_t"]["pitch"])
+    # Table 4.7: a finite gap for all-L over the shared postures, none for L + T; postures before the first lost
+    assert 0 <= m["all_l.t47_error_gap_pitch_deg"] < 10 and m["all_l.t47_postures_held_pitch"] == len(rows)
+    assert m["l_t.t47_error_gap_pitch_deg"] is None or math.isnan(m["l_t.t47_error_gap_pitch_deg"])  # not in 4.7
     checks = {c["name"]: c for c in result["checks"]}
     assert checks["l_t.collapsed"]["ok"] and checks["all_l.mean_error_pitch_deg"]["ok"]
+    assert {c["row"] for c in checks.values() if c["kind"] == "reproduction"} == {"003:table4.7", "003:table4.8"}
+    assert checks["all_l.t47_error_gap_roll_deg"]["threshold"] == 2.0 and "l_t.max_roll_held_deg" in checks
     table = result["extra"]["table_4_8"]
     assert table["all_l"]["thesis"]["mean_error_pitch_deg"] == 4.73 and "mean_current_a" in table["all_l"]["ours"]
     for png in ("table_4_8", "posture_errors", "posture_time_series", "spine_3d"):
@@ -60,6 +72,9 @@ def test_teach_playback_short_run(tmp_path):
     assert m["speedup_8.saturated_fraction"] > 0.05
     assert m["speedup_8.relative_length_error"] > 2 * m["speedup_4.relative_length_error"]
     assert m["speedup_8.duration_s"] == pytest.approx(m["speedup_1.duration_s"] / 8, abs=0.03)
+    # the band of demonstration speeds the outcome implies: 1/8 … 1/4 of the drive's no-load wire speed
+    assert m["implied_band_hi_mm_s"] == pytest.approx(2 * m["implied_band_lo_mm_s"])
+    assert all(c["kind"] == "consistency" for c in result["checks"])  # the outcome follows from the chosen speed
 
 
 def test_software_spring_short_run(tmp_path):
@@ -102,6 +117,14 @@ def test_bebe_tracking_short_run(tmp_path):
 
 
 def test_sq43_design_short_run(tmp_path):
-    """§3.2.3: the four compass searches end at local optima within |a_i| ≤ 30°, the best reported."""
+    """§3.2.3: the four compass searches end at local optima within |a_i| ≤ 30° (consistency); the thesis's
+    outcome — which start wins, which stall at once, which path start 4 joins — is compared by reproduction
+    checks on values of ours that are well defined (whatever they are)."""
     result = run_scenario("spine.sq43-design", out=tmp_path, quiet=True, overrides={"step_deg": "2"})
-    assert result["ok"], [c for c in result["checks"] if not c["ok"]]
+    checks = {c["name"]: c for c in result["checks"]}
+    assert all(c["ok"] for c in checks.values() if c["kind"] == "consistency"), checks
+    outcome = {"best_start", "start4_joins_path", "travel_deg_start1", "travel_deg_start3"}
+    assert outcome <= {n for n, c in checks.items() if c["kind"] == "reproduction"}
+    m = result["metrics"]
+    assert m["best_start"] in (1, 2, 3, 4) and m["start4_joins_path"] in (0, 1, 2, 3)
+    assert m["travel_deg_start1"] == 2 * m["steps_start1"] and m["travel_deg_start3"] == 2 * m["steps_start3"]

@@ -31,10 +31,10 @@ ROWS = (
                "の最適化とほぼ同一の経路をたどっており，ほぼ等しい評価値で収束' (Fig. 3.4, no number); the chosen "
                "optimum is '一番目の経路で収束した際の設計変数' (ambiguous: the first path, or the best one) and is "
                "shown only as a model (Fig. 3.5)",
-        why_not="no check compares with the thesis's outcome (all three are properties of the search or follow "
-                "from its objective); on our compliant-spine model (the FEM model is not reproducible: no mesh, "
-                "material, L, l or evaluation time) start 3 ends best (8.76 mm), start 4 joins start 2, starts 1 "
-                "and 3 do not stall at once (28 and 50 steps), and every start stops on the a4 = ±30° bound",
+        why_not="the thesis's outcome is not reproduced on our compliant-spine stand-in for its FEM model (no mesh, "
+                "material, L, l or evaluation time in the text): start 3 ends best (8.76 mm; thesis start 2), start "
+                "4 joins start 2 (thesis: start 1), starts 1 and 3 travel 14° and 25° before stopping (declared "
+                "'right after starting': ≤ 5°), every start stops on the a4 = ±30° bound",
     ),
     Row(
         key="003:fig3.6",
@@ -102,10 +102,9 @@ ROWS = (
         result="§3.5.3: 'シリコンゴムの非線形性のため、挙動 2 における弾性部品の弾性係数は挙動 1 におけるそれよりも"
                "大きい … 挙動 2 の脊椎は、挙動 1 の脊椎よりも硬くなる'; §3.5.4: '外部からの力に対しての剛性が増す"
                "．このことを脊椎を横から押すことで確認した (Fig. 3.28)' — soft vs hard photographs, no number",
-        difference="quasi-static model with a chosen cubic disc law (the thesis gives no silicone curve): lateral "
-                   "stiffness 0.71 → 8.45 N/mm over 0–1.5 mm of pre-compression (×11.9); a linear disc stiffens "
-                   "too (×4.7, from the taut muscles), so the thesis's mechanism — the nonlinearity — is only part "
-                   "of the effect in our model",
+        difference="stiffer when pulled, as claimed (0.71 → 8.45 N/mm, ×11.9, on a quasi-static model with a chosen "
+                   "cubic disc law — no silicone curve in the text; a linear disc stiffens too, ×4.7, from the taut "
+                   "muscles); the size has no thesis number and the nonlinear share follows from the chosen law",
     ),
     Row(
         key="003:fig3.34",
@@ -151,10 +150,9 @@ ROWS = (
         result="§4.2.2: 'ログから 1 つおきにデータを取り出し再生すると倍の速さで動作した。2つおきにすると3倍になった"
                "。4倍・8倍も試行したところ、4倍は4倍の速さで動作したが、8倍はモータの最高速度を超えたようで、速い動"
                "作の部分は追従しきれなかった' — no error number, no demonstration speed",
-        why_not="no check compares independently of our input: the demonstration's peak muscle speed (15 mm/s) is "
-                "chosen inside the band the thesis's outcome implies (v0/8–v0/4 = 10–21 mm/s of Table 3.2's "
-                "83 mm/s no-load wire speed), so 2–4× tracking (0.9–2.8 % error) and 8× saturation (32 % of "
-                "ticks, 19 % error) follow from it",
+        why_not="nothing compared: the thesis prints no demonstration speed or error, and ours (15 mm/s peak muscle "
+                "speed) was chosen inside the band its outcome implies (10.4–20.7 mm/s, 1/8–1/4 of Table 3.2's "
+                "82.9 mm/s), so 2–4× tracking (0.9–2.8 % error) and 8× saturation (32 % of ticks) follow from it",
     ),
     Row(
         key="003:table4.2",
@@ -203,8 +201,9 @@ ROWS = (
                "7.17, 4.20 — larger on the way back; '—' where the spine could not hold and the experimenter "
                "supported it by hand; L + T buckled, no data. (Its columns order S-high before S-mid; §4.7.2 says "
                "'7種類' for the 8 listed modes)",
-        why_not="no check compares per-posture errors with Table 4.7; ours are smaller (all-L 1.35° pitch / "
-                "0.38° roll mean against the table's 4.73° / 3.68°)",
+        why_not="our errors are 1.6–10× smaller than Table 4.7's (all-L 1.35° / 0.42° against 5.40° / 3.68°; 11 of "
+                "14 mode–axis means beyond the declared 2°), and its '—' (the spine caught by hand) starts where ours "
+                "is lost in 8 of 14 sequences (lost = not at rest: a joint at its stop or still falling)",
     ),
     Row(
         key="003:table4.8",
@@ -218,11 +217,10 @@ ROWS = (
                "0.26/0.41, 0.86/0.99; 8. L + S high 6.87/4.47, ≥30/≥30, 0.25/0.33, 1.29/1.04. §4.7.3: LL, S-mid "
                "and L + LL cannot hold large pitch against gravity; modes 7 and 8 have larger errors and mean "
                "currents",
-        why_not="L + S-mid loses pitch at +20° (held to 10°; thesis ≥30°) and L + S draws the least current, not "
-                "the most (0.022 A against up to 0.038 A; thesis 0.86–1.29 A: our currents are the motor's own, "
-                "0.006–0.04 A, while the thesis's 0.1 Ω shunt read-out has no stated gain or offset); all-S-mid "
-                "holds pitch only to 10° (thesis 20°), L + T holds 10° before falling; 10 of 16 held-angle cells "
-                "agree, with a 30° fall limit that is ours",
+        why_not="9 of 16 held-angle cells agree at the thesis's own criterion (lost = the spine does not come to rest: "
+                "a joint at its stop or still falling; the former 30° rule: 10): S-high, L + S-mid, L + S-high lose "
+                "pitch at ±30 and all-S-mid, L + S-mid roll at −20 / −30 (thesis ≥30), L + T holds 10° (thesis 0); "
+                "L + S draws the least current, not the most (0.022 vs 0.038 A)",
     ),
     Row(
         key="003:tableA",
@@ -233,9 +231,9 @@ ROWS = (
                "−20 (returning) 3.82 A mean; per-muscle posture means reach 7.92 A (A.20, L + S mid), maxima "
                "10.08 A (A.27); blank where the spine collapsed and was held by hand; L + T "
                "'データを取ることができなかった'",
-        why_not="no check compares; per-muscle posture means of up to 7.92 A exceed the 1.1 A stall current "
-                "derived from Table 3.2 (24 V nominal, 17 800 rpm, 14.2 mN·m), so they cannot be the motor's "
-                "holding current; ours are 0.006–0.04 A",
+        why_not="nothing compared: the tensions (A.1–A.14) were used to build the model (clavicle height, routing), "
+                "so a load-pattern check would be consistency; the currents have no read-out scale, and 221 of the "
+                "1,200 per-muscle posture means exceed the 1.1 A stall current derived from Table 3.2 (up to 7.92 A)",
     ),
     Row(
         key="003:fig4.42",

@@ -89,29 +89,10 @@ def table_4_8(ctx, ours: dict, thesis: dict, columns) -> None:
                      fontsize=9)
 
 
-# Table 4.7 as printed (columns: all L, all LL, all S high, all S mid, L+LL, L+S mid, L+S high;
-# spec §3.4 finds columns 2 and 5 swapped against Table 4.8; pitch rows follow §4.7.2's sequence
-# from −10, roll rows are printed from +10 — order and sign differ from the text, spec §6.12)
-TABLE_4_7_COLUMNS = ("all_l", "all_ll", "all_s_high", "all_s_mid", "l_ll", "l_s_mid", "l_s_high")
-TABLE_4_7 = {
-    "pitch": [(0.65, 2.24, 1.50, 8.37, 0.26, 1.20, 3.52), (2.83, 1.01, 0.91, 3.46, 1.27, 0.86, 2.44),
-              (4.17, 3.65, 3.03, 1.76, 3.57, 0.10, 1.89), (9.33, 9.50, 7.75, 7.31, 7.95, 8.98, 11.36),
-              (7.17, 2.68, 6.27, 6.37, 2.80, 13.54, 13.34), (4.20, 2.89, 3.72, 1.70, 1.22, 10.58, 8.67),
-              (2.04, 0.14, 2.09, 3.38, 6.35, 3.33, 4.04), (4.98, None, 3.27, 6.07, None, 0.67, 0.74),
-              (4.95, None, 6.52, None, None, 6.23, 0.57), (9.79, None, 9.34, None, None, 5.29, 2.87),
-              (8.29, None, 9.65, None, None, 7.15, 4.26), (6.42, None, 7.08, None, None, 6.71, 5.30)],
-    "roll": [(1.81, 3.07, 2.14, 3.53, 1.60, 3.93, 2.13), (4.41, 6.38, 5.84, 5.88, 4.28, 7.15, 6.14),
-             (8.01, 8.69, 9.92, 10.28, 7.39, 18.48, 14.45), (6.04, 5.97, 6.88, 9.59, 4.80, 4.11, 11.71),
-             (2.97, 3.39, 3.71, 4.99, 2.45, 4.30, 5.91), (0.70, 1.06, 0.77, 1.98, 0.54, 1.24, 1.95),
-             (1.34, 1.39, 1.70, 0.03, 0.96, 1.74, 0.59), (3.20, 3.17, 3.07, 0.28, 1.29, 3.93, 1.54),
-             (4.97, 5.42, 4.11, 1.56, 6.69, 5.15, 1.70), (4.32, 4.11, 4.31, 2.64, 0.04, 2.72, 1.20),
-             (2.69, 2.29, 3.47, 1.91, 2.18, 1.46, 1.21)],
-}
-
-
-def posture_errors(ctx, rows_all: dict, names) -> None:
+def posture_errors(ctx, rows_all: dict, names, table_4_7: dict, columns) -> None:
     """Table 4.7 as plots: |error| at each posture of the pitch and roll sequences, per mode —
-    ours (top; × = posture lost) and the thesis's (bottom; gaps = "—")."""
+    ours (top; × = posture lost) and the thesis's (bottom; gaps = "—"; ``table_4_7`` as printed, its
+    ``columns`` the modes)."""
     colour = {m: f"C{i % 10}" for i, m in enumerate(MODE_LABEL)}
     with ctx.figure("posture_errors", 2, 2, figsize=(13, 7.5)) as (fig, axes):
         for col, axis_name in enumerate(("pitch", "roll")):
@@ -128,8 +109,8 @@ def posture_errors(ctx, rows_all: dict, names) -> None:
             ax.set_xticks(np.arange(len(seq)), [f"{t:+.0f}" for t in seq], fontsize=7)
             ax.set_title(f"ours — {axis_name} sequence", fontsize=9)
             thesis = axes[1, col]
-            rows = TABLE_4_7[axis_name]
-            for j, mode in enumerate(TABLE_4_7_COLUMNS):
+            rows = table_4_7[axis_name]
+            for j, mode in enumerate(columns):
                 thesis.plot(np.arange(len(rows)), [np.nan if r[j] is None else r[j] for r in rows], "-o", ms=3,
                             color=colour[mode], label=MODE_LABEL[mode])
             printed = [-10, -20, -30, -20, -10, 0, 10, 20, 30, 20, 10, 0] if axis_name == "pitch" else \

@@ -6,9 +6,10 @@ another, played to the muscle controller, and measured.
   player's posture become the encoder targets ``l_r`` (and S mode's natural lengths ``l_0``) that the
   muscle controller reads in the next stage; ``whole_ref`` carries the player's posture for observers.
 * :class:`PostureObserver` — per commanded posture: the moving and holding part (the largest fall off
-  the reference, the current) and the static measuring window at its end (the accelerometer angle of
-  eq. 3.4, tension, current, sway) → a :class:`PostureRow`; the sequence stops at the first posture
-  lost in the window (the thesis's "—": the experimenter caught the spine).
+  the reference, whether a joint reached its stop, the current) and the static measuring window at its
+  end (the accelerometer angle of eq. 3.4, tension, current, sway, and whether the spine is still moving
+  away from the reference) → a :class:`PostureRow` with three hold tests (:data:`HOLD_TESTS`); the
+  sequence stops once every test has lost a posture (the thesis's "—": the experimenter caught the spine).
 """
 
 from __future__ import annotations
@@ -23,11 +24,17 @@ from shintai.core.interpolation import SequencePlayer
 from shintai.core.runtime import SET, Channel, Module, Snapshot
 from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
-from shintai.spine.robots import HOLD_FALL_DEG, HOLD_LIMIT_DEG
+from shintai.spine.robots import HOLD_FALL_DEG, HOLD_LIMIT_DEG, RANGE_END_MARGIN_DEG, REST_DRIFT_DEG
 
 GOAL = Channel("goal", SET, doc="the next uniform-bend posture Θ = (φ_s, θ_s, ψ_s) [rad], on the tick it is "
                                 "commanded")
 WHOLE_REF = Channel("whole_ref", SET, doc="the posture player's whole-spine reference Θ this tick [rad]")
+
+# The hold tests of a posture (robots.py): ``held`` — the thesis's criterion as a
+# simulation can apply it: the spine came to rest at the posture (no joint at its stop while commanded, not
+# still moving away from the reference at the end of the hold); ``held_fall30`` — the earlier 30° rule;
+# ``held_window`` — the window-only test. Only ``held`` decides Table 4.8's columns.
+HOLD_TESTS = ("held", "held_fall30", "held_window")
 
 
 def axis_sequence(max_deg: int) -> list[int]:
@@ -76,12 +83,16 @@ class PostureRow:
     error_deg: float
     worst_deg: float  # largest |true whole-spine angle − target| during the window
     sway_deg: float  # standard deviation of the true whole-spine angle during the window
-    held: bool  # error ≤ HOLD_LIMIT_DEG and worst_posture_deg ≤ HOLD_FALL_DEG
+    held: bool  # came to rest: not range_end and drift_deg ≤ REST_DRIFT_DEG (the thesis's criterion, robots.py)
     tension_kgf: float  # mean over the 8 muscles and the measuring window
     current_a: float  # mean |I| over the 8 muscles and the window
     worst_posture_deg: float = float("nan")  # largest |true angle − reference| over the whole posture
     held_window: bool = True  # the window-only test: error ≤ HOLD_LIMIT_DEG and worst_deg ≤ HOLD_FALL_DEG
     current_posture_a: float = float("nan")  # mean |I| over the 8 muscles and the whole posture
+    held_fall30: bool = True  # the 30° rule: error ≤ HOLD_LIMIT_DEG and worst_posture_deg ≤ HOLD_FALL_DEG
+    range_end: bool = False  # a joint came within RANGE_END_MARGIN_DEG of its stop while the posture was commanded
+    drift_deg: float = 0.0  # growth of |Θ_true − Θ_ref| across the window (mean of its last fifth − first fifth)
+    range_end_joint: int = -1  # the first joint direction (index into θ, 3 per joint: roll, pitch, yaw) at its stop
 
 
 class PostureObserver(Module):
@@ -90,30 +101,36 @@ class PostureObserver(Module):
     Timing in ticks: ``settle`` before the first posture, then per posture ``moving`` ticks (move and
     hold) and ``window`` ticks of static measurement; ``targets_deg`` are the commanded angles about
     ``axis`` (0 roll, 1 pitch). With ``log_every``, the accelerometer angle averaged over that many
-    ticks, the reference and the mean tension are logged during the moving part. ``stopped`` is set
-    at the end of the first posture lost in the window; ``picture_due`` at the end of the posture at
-    ``picture_deg``.
+    ticks, the reference and the mean tension are logged during the moving part. ``limits_rad``: the
+    joints' stops (3n,), for the range-end test (None: no stops). ``stopped`` is set at the end of the
+    posture by which every hold test has lost one (or the last); ``picture_due`` at the end of the posture
+    at ``picture_deg``.
     """
 
     def __init__(self, axis: int, targets_deg, settle: int, moving: int, window: int, log_every: int | None = None,
-                 picture_deg: float | None = None, name: str = "observer"):
+                 picture_deg: float | None = None, limits_rad=None, name: str = "observer"):
         super().__init__(name)
         self.axis, self.targets = axis, list(targets_deg)
         self.settle, self.moving, self.window = settle, moving, window
         self.log_every, self.picture_deg = log_every, picture_deg
+        self.stops = None if limits_rad is None else np.abs(np.asarray(limits_rad, dtype=float)) - math.radians(
+            RANGE_END_MARGIN_DEG)
         self.rows: list[PostureRow] = []
         self.k, self.stopped, self.picture_due = 0, False, False
         self.picture: dict | None = None  # what the rig captured when picture_due (modes.mode_rig)
 
     def update(self, snapshot: Snapshot):
         k, self.k = self.k - self.settle, self.k + 1
-        if k < 0:
+        if k < 0 or k >= len(self.targets) * (self.moving + self.window):  # before the first, after the last
             return None
         r = k % (self.moving + self.window)
         if r == 0:
-            self.worst, self.current, self.acc = 0.0, 0.0, 0.0
-            self.w_posture, self.w_tension, self.w_current, self.w_true = 0.0, 0.0, 0.0, []
+            self.worst, self.current, self.acc, self.range_end, self.range_end_joint = 0.0, 0.0, 0.0, False, -1
+            self.w_posture, self.w_tension, self.w_current, self.w_true, self.w_off = 0.0, 0.0, 0.0, [], []
         axis, snap = self.axis, snapshot
+        if self.stops is not None and not self.range_end:
+            at_stop = np.flatnonzero(np.abs(snap["theta"]) >= self.stops)
+            self.range_end, self.range_end_joint = bool(at_stop.size), int(at_stop[0]) if at_stop.size else -1
         if r < self.moving:
             self.worst = max(self.worst, abs(math.degrees(float(snap["theta"][axis::3].sum())
                                                           - snap["whole_ref"][axis])))
@@ -130,6 +147,7 @@ class PostureObserver(Module):
         self.w_tension += float(np.mean(snap["tension_true"]))
         self.w_current += float(np.mean(np.abs(snap["current"])))
         self.w_true.append(float(np.degrees(whole_spine(snap["theta"])[axis])))
+        self.w_off.append(float(np.degrees(np.linalg.norm(whole_spine(snap["theta"]) - snap["whole_ref"]))))
         if r == self.moving + self.window - 1:
             self._row(self.targets[k // (self.moving + self.window)])
         return None
@@ -144,10 +162,14 @@ class PostureObserver(Module):
         worst_posture = max(self.worst, worst)
         ok = bool(np.isfinite(error) and error <= HOLD_LIMIT_DEG)
         held_window = ok and worst <= HOLD_FALL_DEG
-        held = ok and worst_posture <= HOLD_FALL_DEG
+        held_fall30 = ok and worst_posture <= HOLD_FALL_DEG
+        fifth = max(1, n // 5)
+        drift = float(np.mean(self.w_off[-fifth:]) - np.mean(self.w_off[:fifth]))
+        held = not self.range_end and bool(np.isfinite(drift)) and drift <= REST_DRIFT_DEG
         current_posture = (self.current + w_current * n) / (self.moving + n)
         self.rows.append(PostureRow(target, measured, error, worst, float(np.std(true)), held,
                                     self.w_tension / n / KGF_N, w_current, worst_posture, held_window,
-                                    current_posture))
+                                    current_posture, held_fall30, self.range_end, drift, self.range_end_joint))
         self.picture_due = target == self.picture_deg
-        self.stopped = not held_window or len(self.rows) == len(self.targets)
+        every_test_lost = all(any(not getattr(row, test) for row in self.rows) for test in HOLD_TESTS)
+        self.stopped = every_test_lost or len(self.rows) == len(self.targets)

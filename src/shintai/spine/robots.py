@@ -669,14 +669,27 @@ CALIBRATION_KGF = 0.3  # "just taut" for the LL encoder zeroing (§4.6.4), chose
 # the count law's stiffness at its rest point (cla.cla_spring); calibrated once so that all-S-high's pitch
 # errors in E11 are of Table 4.8's size (notes/control-modes.md)
 K_S_UNIT_N_M = 30.0
-# E11 (§4.7.2): a posture is "held" if its mean error stays within 20° — above every error Table 4.7 records
-# for a held posture (max 18.48°); "—" there means the spine fell and was caught …
+# E11 (§4.7.2): when is a posture lost — Table 4.7's "—", the end of Table 4.8's "最大姿勢保持角"? The thesis
+# gives no angle, only what happened: "表中で — となっている部分は、姿勢を保持できずに大きく崩れてしまい実験者が
+# 手で支えたためデータが取れなかった部分" (§4.7.2, Table 4.7), "重力に負けて脊椎が崩れてしまい手で支えた" (App.
+# A.2), "脊椎が姿勢を保持しきれなくなって大きく曲がってしまい、手で支えられた" (§4.7.2) — a collapse under
+# gravity, caught by hand. A simulation has no hand: an uncaught collapse runs on until the spine lies on its
+# stops. So, as a simulation can apply the thesis's criterion (chosen from these lines before the runs were
+# looked at, issue 18): a posture is lost if the spine does not come to rest at it — a joint reaches the end of
+# its range (within RANGE_END_MARGIN_DEG of its stop) at any time while the posture is commanded, or the spine
+# is still moving away from the reference at the end of the hold (its distance from the reference grows by
+# more than REST_DRIFT_DEG across the measuring window). The size of the error is not part of it: the thesis
+# records errors of postures it counts as held up to 18.48° (Table 4.7, L + S-mid, roll 30) and gives no limit.
+RANGE_END_MARGIN_DEG = 0.5  # chosen: MuJoCo's soft joint limit stops a loaded joint within a fraction of a degree
+# chosen (the thesis gives no rate): "still moving away" = the distance from the reference grows by more than 1°
+# between the means of the window's first and last fifths (1 s window at the defaults; a fast sway averages out)
+REST_DRIFT_DEG = 1.0
+# The two earlier tests, kept as metrics only, neither with a basis in the text: the window-only test (the
+# window's mean error ≤ HOLD_LIMIT_DEG — above every error Table 4.7 records for a held posture, max 18.48° —
+# and the true angle within HOLD_FALL_DEG of the target during the window), and the 30° rule (the same, but
+# within HOLD_FALL_DEG of the reference over the whole posture: move, hold and window; the 30° is ours). The
+# ``*_held_window_deg`` and ``*_held_fall30_deg`` metrics.
 HOLD_LIMIT_DEG = 20.0
-# … and it did not fall: its true angle never left the reference by more than 30° while the posture was
-# commanded — move, hold and window (chosen; a spine swinging about the posture, S mode's oscillation
-# §4.7.3, still counts as held). Over the whole posture, because the thesis's experimenter caught the spine
-# whenever it collapsed: "姿勢を保持できずに大きく崩れてしまい実験者が手で支えた" (§4.7.2), "重力に負けて脊椎
-# が崩れてしまい手で支えた" (App. A.2). The window-only test survives as the ``*_held_window_deg`` metrics.
 HOLD_FALL_DEG = 30.0
 E11_SETTLE_S = 0.5  # chosen: the spine settles after the zeroing before the first posture is commanded
 E11_LOG_S = 0.02  # chosen: the E11 time series are logged as means over 20 ms
