@@ -104,7 +104,8 @@ def status_of(row: Row, results: Mapping[str, Mapping[str, Any]], covering: Mapp
     if errors:
         return RowStatus(row, NOT_REPRODUCED, "run failed — " + "; ".join(errors), ids, checks)
     if not checks:
-        return RowStatus(row, NOT_REPRODUCED, "no check compares our result with the thesis's", ids, checks)
+        return RowStatus(row, NOT_REPRODUCED, row.why_not or "no check compares our result with the thesis's", ids,
+                         checks)
     failed = [c["name"] for c in checks if not c.get("ok")]
     if failed:
         return RowStatus(row, NOT_REPRODUCED, row.why_not or f"fails: {', '.join(failed)}", ids, checks)

@@ -66,6 +66,11 @@ def thesis_vs_ours(result: dict[str, Any]) -> list[tuple[str, str, str, str]]:
     return rows
 
 
+def cell(text: str) -> str:
+    """Text for one Markdown table cell."""
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
 def status(result: dict[str, Any]) -> str:
     if "error" in result:
         return "error"
@@ -132,7 +137,6 @@ def write_markdown(out: Path, results: list[dict[str, Any]], statuses: list[RowS
     lines += ["", "## Thesis experiments", "", "| row | where | thesis result | scenarios | status | reason |",
               "|---|---|---|---|---|---|"]
     for s in statuses:
-        cell = lambda t: t.replace("|", "\\|").replace("\n", " ")  # noqa: E731
         lines.append(f"| {s.row.key} | {cell(s.row.where)} | {cell(s.row.result)} | {', '.join(s.scenarios) or '—'} | "
                      f"{s.status} | {cell(s.reason)} |")
     lines += ["", "## Scenarios", "", f"{passed} of {len(results)} scenarios pass all their checks "
@@ -233,6 +237,29 @@ Thesis values are quoted beside ours; ours are computed from the simulation.</p>
     path = out / "index.html"
     path.write_text(page)
     return path
+
+
+README_BEGIN = "<!-- reproduction:begin"
+README_END = "<!-- reproduction:end -->"
+
+
+def readme_section(results: list[dict[str, Any]], statuses: list[RowStatus]) -> str:
+    """The README's reproduction table: the summary per thesis and one line per thesis experiment (status,
+    reason, our reproduction checks), from the same statuses as REPORT.md — so the two agree."""
+    counts = summary_counts(statuses)
+    commits = sorted({r.get("commit") for r in results if r.get("commit")})
+    lines = [f"{README_BEGIN} (written by scripts/readme_table.py from `shintai reproduce` at "
+             f"{', '.join(commits) or 'an unknown commit'}) -->", "",
+             "| thesis | " + " | ".join(STATUSES) + " |", "|---|" + "---|" * len(STATUSES)]
+    for seed, name in SEEDS.items():
+        lines.append(f"| {seed} {name} | " + " | ".join(str(counts[seed][s]) for s in STATUSES) + " |")
+    lines += ["", "| row | where | scenarios | status | why | our reproduction checks |", "|---|---|---|---|---|---|"]
+    for s in statuses:
+        checks = "; ".join(f"{'✓' if c['ok'] else '✗'} {c['name']} {fmt(c['value'])} {c['op']} {fmt(c['threshold'])}"
+                           for c in s.checks) or "—"
+        lines.append(f"| {s.row.key} | {cell(s.row.where)} | {', '.join(f'`{i}`' for i in s.scenarios) or '—'} | "
+                     f"{s.status} | {cell(s.reason)} | {cell(checks)} |")
+    return "\n".join(lines + ["", README_END])
 
 
 def write_report(out: Path, ids: list[str], title: str = "shintai reproduction report") -> list[dict[str, Any]]:
