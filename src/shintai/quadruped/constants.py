@@ -129,6 +129,10 @@ INCIDENCE_LIMIT_DEG = 15.0
 # 5° steps put the hit points of a beam ~0.03-0.04 m apart along an edge 0.3-0.5 m away.
 SWEEP_HALF_DEG = 30.0
 SWEEP_STEP_DEG = 5.0
+# Robustness curves of quadruped.sensing-ablation (chosen, not in the paper): the range-noise std [m]
+# and the incidence limits [deg] the sensed walks of the training environments are repeated for.
+NOISE_SWEEP = (0.0, 0.005, 0.01, 0.02, 0.05, 0.1)
+INCIDENCE_SWEEP = (5.0, 10.0, 15.0, 25.0, 45.0)
 # Height measurement by raising the leg until the echo stops (Fig. 8): the beam is raised in steps of
 # HEIGHT_STEP from BEAM_HEIGHT to BEAM_HEIGHT + RAISE_MAX above the foot's surface; the first height
 # without the echo is the obstacle's height estimate (quantised up: the error is in [0, HEIGHT_STEP)).

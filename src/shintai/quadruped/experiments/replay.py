@@ -1,0 +1,134 @@
+"""``quadruped.replay``: the paper's action tables (Table 3 of §5.2, Tables 6 and 7 of §6.2) replayed by
+dead reckoning and by the crawl executor in their environments, and Tables 3-5's comparison of the
+swing-order strategies by body movement Br. No network and no loop over time: a compute experiment."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.quadruped import constants as C
+from shintai.quadruped import replay as P
+from shintai.quadruped import swing_order as S
+from shintai.quadruped import world as W
+from shintai.scenarios.registry import Check, ThesisValue, scenario
+
+CLIMBERS = {"table3": "legs 2 and 4", "table6": "leg 1 (leg 3 steps over)", "table7": "legs 2 and 4"}
+
+
+def _draw_obstacles(ax, env: W.Environment) -> None:
+    for o in env.obstacles:
+        poly = np.vstack([o.polygon, o.polygon[:1]])
+        ax.fill(poly[:, 0], poly[:, 1], color="0.3" if not o.surmountable else "tab:orange", alpha=0.5)
+        ax.annotate(f"{o.height:g} m", o.polygon.mean(0), fontsize=7, ha="center")
+
+
+def plot_paths(ctx, replays: dict) -> None:
+    from matplotlib.patches import Circle
+
+    with ctx.figure("paths", nrows=1, ncols=3, figsize=(11, 5.0)) as (fig, axes):
+        for ax, (name, rep) in zip(axes, replays.items()):
+            env = P.TABLES[name][2]()
+            _draw_obstacles(ax, env)
+            body = np.array([r.body_poses[-1, :2] for r in rep.records])
+            ax.plot(np.r_[0, body[:, 0]], np.r_[0, body[:, 1]], "k.-", lw=1, label="CoG after each cycle")
+            for leg, color in zip(range(4), ("tab:blue", "tab:red", "tab:cyan", "tab:pink")):
+                feet = np.array([r.footholds[leg] for r in rep.records])
+                on = feet[:, 2] > 0
+                ax.scatter(feet[~on, 0], feet[~on, 1], s=10, color=color, label=f"leg {leg + 1} ({C.LEG_NAMES[leg]})")
+                ax.scatter(feet[on, 0], feet[on, 1], s=30, marker="^", color=color, edgecolors="k")
+            ax.add_patch(Circle(env.destination, C.GOAL_RADIUS, fill=False, ls="--"))
+            ax.set_aspect("equal")
+            ax.set_title(f"{name}: climbs with {CLIMBERS[name]} (▲ = on top)", fontsize=8)
+            ax.set_xlabel("x [m]")
+        axes[0].set_ylabel("y [m]")
+        axes[0].legend(fontsize=6, loc="lower left")
+
+
+def plot_br(ctx, comparison: P.BodyMovementComparison) -> None:
+    k = np.arange(1, 11)
+    with ctx.figure("body_movement", nrows=1, ncols=2, figsize=(10, 4)) as (fig, (ax0, ax1)):
+        for values, label, style in ((C.TABLE3_BR, "Table 3 fixed", "o-"), (C.TABLE4_BR, "Table 4 all 24", "s-"),
+                                     (C.TABLE5_BR, "Table 5 RBFNN", "^-")):
+            ax0.plot(k, values, style, ms=4, lw=1, label=label)
+        for values, label, style in ((comparison.fixed, "fixed 4→2→3→1", "o-"),
+                                     (comparison.exhaustive, "exhaustive", "s-"),
+                                     (comparison.rbfnn, "paper's RBFNN orders", "^-")):
+            ax1.plot(k, values, style, ms=4, lw=1, label=label)
+        ax0.set_title("paper: Br per cycle", fontsize=9)
+        ax1.set_title("this executor: Br of the same actions", fontsize=9)
+        for ax in (ax0, ax1):
+            ax.set_xlabel("walking cycle k")
+            ax.set_ylabel("Br [mm]")
+            ax.legend(fontsize=7)
+
+
+REPLAY_CHECKS = tuple(
+    Check(f"{t}_final_error_deviation_m", "<=", C.REPLAY_TOLERANCE,
+          f"spec §6.5 check 4: dead-reckoned final |e| = {C.DEAD_RECKONED[t][0]} m within about 1 cm")
+    for t in P.TABLES) + tuple(
+    Check(f"{t}_first_entry_cycle", "==", C.DEAD_RECKONED[t][1],
+          "thesis: the walk ends at the first cycle inside the 0.2 m goal circle (Tables 3, 6, 7)")
+    for t in P.TABLES) + (
+    Check("executor_failed_cycles", "==", 0,
+          "thesis §5.2, §6.2: the printed cycles were executed without collision or joint-limit violation"),
+    Check("br_exhaustive_mm", "<=", "br_rbfnn_mm", "thesis Tables 4-5: ΣBr all-24 search <= RBFNN orders",
+          name="exhaustive_not_worse_than_rbfnn"),
+    Check("br_rbfnn_mm", "<", "br_fixed_mm", "thesis Tables 3, 5: RBFNN orders move the body less than fixed",
+          name="rbfnn_better_than_fixed"),
+)
+
+
+@scenario(
+    "quadruped.replay",
+    source="seed 004 §5.2, §6.2 (Tables 3-7)",
+    summary="replay the paper's action tables: dead reckoning, the crawl executor in their environments, Br of "
+            "the swing-order strategies",
+    checks=REPLAY_CHECKS,
+    thesis={
+        "table3_final_error_m": ThesisValue(0.073, "seed 004 §6.2.2 ((0.068, -0.027) m, quoted as the §4.2.2 run)",
+                                            "table3_final_error_m"),
+        "table6_final_error_m": ThesisValue(0.032, "seed 004 §6.2.1 ((-0.017, -0.027) m)", "table6_final_error_m"),
+        "table7_final_error_m": ThesisValue(0.023, "seed 004 §6.2.2 ((-0.018, -0.014) m)", "table7_final_error_m"),
+        "br_fixed_mm": ThesisValue(4579.794, "seed 004 Table 3 (sum)", "br_fixed_mm"),
+        "br_exhaustive_mm": ThesisValue(4284.435, "seed 004 Table 4 (sum)", "br_exhaustive_mm"),
+        "br_rbfnn_mm": ThesisValue(4285.733, "seed 004 Table 5 (sum)", "br_rbfnn_mm"),
+        "optimal_orders_table4": ThesisValue(
+            "2→4→3→1, 4→2→3→1 x3, 2→4→3→1, 4→2→3→1 x2, 3→1→4→2 x3", "seed 004 Table 4", "exhaustive_orders"),
+        "rows_as_table4": ThesisValue(10, "seed 004 Table 4 (rows whose optimal order we reproduce)",
+                                      "exhaustive_orders_as_table4"),
+    },
+)
+def replay(ctx) -> dict:
+    metrics: dict = {}
+    replays = {}
+    for i, name in enumerate(P.TABLES):
+        reck, rep = P.dead_reckon(name), P.replay_executor(name)
+        replays[name] = rep
+        metrics[f"{name}_final_error_m"] = reck.final_distance
+        metrics[f"{name}_final_error_deviation_m"] = abs(reck.final_distance - C.DEAD_RECKONED[name][0])
+        metrics[f"{name}_first_entry_cycle"] = reck.first_entry
+        metrics[f"{name}_previous_distance_m"] = reck.previous_distance
+        metrics[f"{name}_executor_final_error_m"] = rep.reckoning.final_distance
+        metrics[f"{name}_climbing_legs"] = "".join(
+            str(leg + 1) for leg in sorted({leg for r in rep.records for leg in np.flatnonzero(r.stands_on >= 0)}))
+        for r in rep.records:
+            ctx.recorder.record(r.k, **{f"{name}.pose": r.body_poses[-1], f"{name}.br_mm": r.br_mm,
+                                        f"{name}.zr": r.zr, f"{name}.min_margin": r.margins.min()})
+        ctx.progress((i + 1) / 4)
+    metrics["executor_failed_cycles"] = sum(r.collided or r.limit or r.unstable
+                                            for rep in replays.values() for r in rep.records)
+    metrics["executor_min_stability_margin_m"] = min(float(r.margins.min()) for rep in replays.values()
+                                                     for r in rep.records)
+    comparison = P.body_movement_comparison()
+    metrics["br_fixed_mm"], metrics["br_exhaustive_mm"], metrics["br_rbfnn_mm"] = comparison.sums
+    metrics["exhaustive_orders"] = S.order_names(comparison.exhaustive_orders)
+    metrics["exhaustive_orders_as_table4"] = int(np.sum(comparison.exhaustive_orders == np.array(C.TABLE4_ORDERS)))
+    agree, total = P.zr_agreement()
+    metrics["zr_rule_agreement"] = agree / total
+    ctx.extra["br_per_cycle_mm"] = {"fixed": comparison.fixed, "exhaustive": comparison.exhaustive,
+                                    "rbfnn_orders": comparison.rbfnn, "paper_fixed": C.TABLE3_BR,
+                                    "paper_exhaustive": C.TABLE4_BR, "paper_rbfnn": C.TABLE5_BR}
+    plot_paths(ctx, replays)
+    plot_br(ctx, comparison)
+    ctx.progress(1.0)
+    return metrics
