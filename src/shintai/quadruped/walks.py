@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from shintai.quadruped import constants as C
 from shintai.quadruped import plots as PL
 from shintai.quadruped import robot as R
 from shintai.quadruped import swing_order as S
@@ -20,15 +21,29 @@ from shintai.scenarios.registry import Check, Param
 
 WEIGHTS = Param("weights", "", "action-network .npz (empty: the shipped fixed-order network)")
 
-AVOID_CHECKS = (
-    Check("reached", "==", 1, "thesis §4.2: the robot reaches the 0.2 m goal circle"),
-    Check("collisions", "==", 0, "thesis §4.2: the wall is avoided (no collision)"),
-    Check("limit_violations", "==", 0, "thesis §4.1.2: joint angles stay within their ranges"),
-    Check("min_stability_margin_m", ">", 0.0, "thesis §2.2: the CoG stays inside the support polygon"),
-    Check("final_error_m", "<", 0.2, "issue: the CoG ends within the goal circle (paper 0.059 / 0.054 m)"),
-    Check("cycles", "<=", 12, "spec §6.5 check 8: about 9 walking cycles (target ≤ 12)"),
-    Check("climbed_surmountable", "==", 1, "thesis §4.2: the legs on the low obstacle's side climb over it"),
-)
+MARGIN_BASIS = ("consistency: the executor shifts the body so that the CoG stays inside the support triangle "
+                "(thesis §2.2, §4.1.1) and stops a walk that cannot; a reached walk holds it by construction")
+
+
+def avoid_checks(section: str, climbers: str, grounded: str) -> tuple[Check, ...]:
+    """The checks of a §4.2 walk: ``climbers`` are the legs the thesis puts on the surmountable obstacle
+    (e.g. "1 and 3"), ``grounded`` the legs it keeps on the ground, both quoted from ``section``."""
+    return (
+        Check("reached", "==", 1, f"thesis {section}: the robot's CoG reaches the 0.2 m goal circle "
+              "('ロボットが目的地まで移動していることが確認できる')", kind="reproduction"),
+        Check("collisions", "==", 0, f"thesis {section}: the wall is avoided (no collision)", kind="reproduction"),
+        Check("limit_violations", "==", 0, "consistency: thesis §4.1.2 stops a walk at a joint-limit violation "
+              "(eq. 11), and so does the executor: a reached walk has none", kind="consistency"),
+        Check("min_stability_margin_m", ">", 0.0, MARGIN_BASIS, kind="consistency"),
+        Check("final_error_m", "<", 0.2, "consistency: the goal is the 0.2 m circle (thesis §4.1.1), so a reached "
+              "walk ends inside it; the thesis's own error is a thesis value, not this bound", kind="consistency"),
+        Check("cycles", "<=", 9, f"thesis {section}: 'ゴールまでに要した歩行周期回数は9回' (9 walking cycles)",
+              kind="reproduction"),
+        Check("climbed_thesis_legs", "==", 2, f"thesis {section}: legs {climbers} climb the surmountable obstacle "
+              "('乗り越え動作により障害物を回避')", kind="reproduction"),
+        Check("climbed_other_legs", "==", 0, f"thesis {section}: legs {grounded} stay on the ground "
+              "('脚を地面に接地している')", kind="reproduction"),
+    )
 
 
 def weights_path(text: str) -> Path | None:
@@ -52,11 +67,15 @@ def passing_x(env: W.Environment, records: list[R.CycleRecord]) -> float | None:
     return None
 
 
-def walk_metrics(ep: Episodes, env: W.Environment, records: list[R.CycleRecord]) -> dict:
-    """Outcome of one recorded walk (the quantities the paper reports for §4.2 and §6.2)."""
+def walk_metrics(ep: Episodes, env: W.Environment, records: list[R.CycleRecord], climbers=()) -> dict:
+    """Outcome of one recorded walk (the quantities the paper reports for §4.2 and §6.2). ``climbers``:
+    the legs (1-4) the thesis puts on the surmountable obstacle; ``climbed_thesis_legs`` counts those
+    that stood on it, ``climbed_other_legs`` the other legs that did; ``min_step_cycles`` the cycles
+    at the smallest forward step of the command range (ΔYr = 150 mm, constants.COMMAND_RANGE)."""
     error = ep.final_error[0]
     on_top = sorted({leg + 1 for r in records for leg in np.flatnonzero(r.stands_on >= 0)})
     surmountable = [k for k, o in enumerate(env.obstacles) if o.surmountable]
+    on_low = {leg + 1 for r in records for leg in np.flatnonzero(np.isin(r.stands_on, surmountable))}
     return {
         "reached": int(T.success(ep)[0]),
         "final_error_m": float(np.hypot(*error)),
@@ -71,6 +90,9 @@ def walk_metrics(ep: Episodes, env: W.Environment, records: list[R.CycleRecord])
         "passing_x_m": passing_x(env, records),
         "legs_on_obstacle": "".join(map(str, on_top)) or "none",
         "climbed_surmountable": int(any(np.isin(r.stands_on, surmountable).any() for r in records)),
+        "climbed_thesis_legs": len(on_low & set(climbers)),
+        "climbed_other_legs": len(on_low - set(climbers)),
+        "min_step_cycles": int(sum(r.command[1] <= C.COMMAND_RANGE[0][1] + 1e-9 for r in records)),
     }
 
 
@@ -126,9 +148,9 @@ def outcome_rates(ep: Episodes) -> dict:
             "mean_final_error_m": float(error[ok].mean()) if ok.any() else None}
 
 
-def avoid(ctx, env: W.Environment) -> dict:
+def avoid(ctx, env: W.Environment, climbers: tuple[int, ...]) -> dict:
     """§4.2's walk of the fixed-order action network (``weights``) in ``env``: recorded, tabled,
-    drawn and, with ``--video``, filmed."""
+    drawn and, with ``--video``, filmed; ``climbers`` as :func:`walk_metrics`."""
     genome = T.load_action(weights_path(ctx.params["weights"]))
     ep, records = walk(genome, env)
     ctx.progress(0.5, "walked")
@@ -137,4 +159,4 @@ def avoid(ctx, env: W.Environment) -> dict:
     PL.plot_walks(ctx, "walk", {f"{env.name}: fixed order 4→2→3→1, trained action network": (env, records)})
     if ctx.video:
         QV.render(records, env, ctx.video_path)
-    return walk_metrics(ep, env, records)
+    return walk_metrics(ep, env, records, climbers)

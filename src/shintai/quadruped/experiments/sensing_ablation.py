@@ -97,16 +97,21 @@ def plot_success(ctx, rates: dict, noise_curve: list, incidence_curve: list, p: 
             WEIGHTS],
     checks=(
         Check("known_success_rate", ">=", 0.9,
-              "derived: the GA optimised eq. (9) on these environments with known features (as generalization)"),
+              "consistency: the GA optimised eq. (9) on these environments with known features (as generalization)",
+              kind="consistency"),
         Check("sensed_box_excess_m", "<=", "sensed_box_bound_m",
               "model: every echo point lies on its leg's side's obstacle boundary, so the sensed bounding box lies "
-              "inside the true one (noise 0: 1e-6 m; with range noise σ: 1e-6 + 6σ)", name="sensed_box_inside_true"),
+              "inside the true one (noise 0: 1e-6 m; with range noise σ: 1e-6 + 6σ)", name="sensed_box_inside_true",
+              kind="consistency"),
         Check("feature_error_z_max_m", "<=", C.HEIGHT_STEP,
               "model (Fig. 8): raising the beam in HEIGHT_STEP steps overestimates a climbable top by less than one "
-              "step; an obstacle still echoing at the top of the raise is a wall"),
+              "step; an obstacle still echoing at the top of the raise is a wall", kind="consistency"),
         Check("detected_fraction", "==", 1.0,
-              "thesis §3.2 (Figs. 12, 24): the forward and side sensors measure an edge of each obstacle in front"),
+              "thesis §3.3 (Fig. 12), §4.3 (Fig. 24): the forward and side sensors measure an edge of each obstacle "
+              "in front ('障害物の一辺を計測していることが確認できる')", kind="reproduction"),
     ),
+    covers=("004:fig12",),
+    stochastic=True,
     thesis={
         "sensed_success_rate": ThesisValue(
             "one real-robot walk with its ultrasonic sensors reached the goal (9 cycles, (0.137, 0.075) m); no rate",
