@@ -176,6 +176,10 @@ class CrawlBody(Body):
         if self._snap is None:
             rows = np.flatnonzero(self.active)
             st, env = self.state.take(rows), self.envs.take(rows)
+            if len(rows) == 0:  # every walk has stopped
+                self._cycle = (rows, st, env, np.zeros(0))
+                self._snap = {"t": self.t, "rows": rows, "zr": np.zeros(0), "inputs": np.zeros((0, C.ACTION_INPUTS))}
+                return self._snap
             zr = R.body_height(st.pose, st.feet, env)
             features = None if self.perception is None else self.perception(self.k, rows, st, env)
             self._cycle = (rows, st, env, zr)
@@ -187,6 +191,10 @@ class CrawlBody(Body):
 
     def step(self) -> None:
         rows, st, env, zr = self._cycle
+        if len(rows) == 0 or self.k >= self.max_cycles:  # every walk has stopped: time passes, nothing moves
+            self.t = float(self.k)
+            self._snap = None
+            return
         command, order = self._command["command"], self._command["order"].astype(int)
         ep, k = self.episodes, self.k
         out = R.crawl_cycle(st, command, ORDERS[order], zr, env)
