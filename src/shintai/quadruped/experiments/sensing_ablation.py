@@ -87,7 +87,7 @@ def plot_success(ctx, rates: dict, noise_curve: list, incidence_curve: list, p: 
 
 @scenario(
     "quadruped.sensing-ablation",
-    source="seed 004 §1.4, eqs. 3–6, §2.2",
+    source="seed 004 §3.1–3.3, eqs. 3–6 (spec §1.4, §2.2)",
     summary="the shipped fixed-order action network with its 12 obstacle features from simulated ultrasonic "
             "sensors (eqs. 3-6 corrected, Figs. 7-8) instead of the known corners",
     params=[Param("noise_std", 0.0, "Gaussian range noise of every reading [m] (seeded by --seed)", lo=0.0, hi=0.5),
