@@ -157,6 +157,5 @@ def avoid(ctx, env: W.Environment, climbers: tuple[int, ...]) -> dict:
     record_walk(ctx, "", records)
     write_cycle_table(ctx, "cycles", records, env)
     PL.plot_walks(ctx, "walk", {f"{env.name}: fixed order 4→2→3→1, trained action network": (env, records)})
-    if ctx.video:
-        QV.render(records, env, ctx.video_path)
+    QV.film_walk(ctx, records, env)
     return walk_metrics(ep, env, records, climbers)

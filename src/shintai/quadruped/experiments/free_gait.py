@@ -88,8 +88,7 @@ def free_gait(ctx) -> dict:
         metrics.update(m)
         walks[f"{env.name}: free gait, re-trained network"] = (env, records)
         walks[f"{env.name}: fixed order, fixed-order network"] = (env, base)
-        if ctx.video:
-            QV.render(records, env, ctx.video_path if key == "s621" else ctx.out / "video_s6.2.2.mp4")
+        QV.film_walk(ctx, records, env, None if key == "s621" else "s6.2.2")
         ctx.progress(0.5 * (i + 1))
     metrics["order_changes"] = metrics["s621_order_changes"] + metrics["s622_order_changes"]
     train = F.training_batch()  # the same comparison over the 96 training environments
