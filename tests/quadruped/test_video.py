@@ -1,5 +1,7 @@
 """The kinematically driven TITAN-VIII MJCF of ``quadruped.video``."""
 
+from types import SimpleNamespace
+
 import mujoco
 import numpy as np
 
@@ -35,8 +37,11 @@ def test_the_model_puts_its_feet_where_the_executor_does():
         assert np.allclose(body.body_pos("trunk"), [pose[0], pose[1], zr])
 
 
-def test_a_walk_renders_to_an_mp4(tmp_path):
+def test_a_walk_is_filmed_through_the_runners_idiom(tmp_path):
+    """One frame per key frame and the initial stance, into video_<variant>.mp4 as film() names it."""
     env, records = two_cycles()
-    frames = V.render(records[:1], env, tmp_path / "walk.mp4", width=96, height=72)
-    assert frames == 5 * V.SHIFT_FRAMES + 4 * V.SWING_FRAMES + 1
-    assert (tmp_path / "walk.mp4").stat().st_size > 0
+    ctx = SimpleNamespace(video=True, view=False, out=tmp_path)
+    replay = V.film_walk(ctx, records[:1], env, "one")
+    assert replay.shown == len(replay.frames) == 5 * V.SHIFT_FRAMES + 4 * V.SWING_FRAMES
+    assert (tmp_path / "video_one.mp4").stat().st_size > 0
+    assert V.film_walk(SimpleNamespace(video=False, view=False, out=tmp_path), records[:1], env) is None

@@ -7,6 +7,8 @@
                                 or off (:mod:`shintai.gym.snake`)
 ``shintai/ClaPosture-v0``       seed 003 §4.7: Cla's muscle spine holds a bend, muscle length commands
                                 (:mod:`shintai.gym.spine`)
+``shintai/QuadrupedCrawl-v0``   seed 004 §4: TITAN-VIII to its destination past a wall and a low obstacle,
+                                one walking cycle's displacement per action (:mod:`shintai.gym.quadruped`)
 ==============================  =====================================================================
 
 Every environment renders ``rgb_array`` frames, resets from a seed, and states its spaces with units in its
@@ -23,6 +25,7 @@ except ImportError as exc:  # the optional extra
 ENVIRONMENTS = {
     "shintai/SnakeTwoPoint-v0": ("shintai.gym.snake:SnakeTwoPointEnv", 600),
     "shintai/ClaPosture-v0": ("shintai.gym.spine:ClaPostureEnv", 60),
+    "shintai/QuadrupedCrawl-v0": ("shintai.gym.quadruped:QuadrupedCrawlEnv", 50),  # seed 004 §4.1.2: 50 cycles
 }
 
 for _id, (_entry, _steps) in ENVIRONMENTS.items():

@@ -11,9 +11,12 @@ RBF networks trained by a genetic algorithm (Yamaguchi), as a kinematic, quasi-s
 * ``replay``      the paper's action tables replayed (dead reckoning, executor, Br comparison);
 * ``training``    the GA training of both networks (seed §4.1.2, §5.1, §6.1) and the trained weights
   (``trained/*.npz``, made by ``shintai run quadruped.train``);
+* ``walks``       one recorded walk's outcome, its per-cycle table (Tables 3-7), outcome rates;
+* ``ablation``    sensed-feature walks and their comparison with the known features;
 * ``plots``       path, leg-height and learning-curve figures;
 * ``video``       a kinematically driven TITAN-VIII MJCF rendered to MP4;
-* ``scenarios``   registered scenarios (``quadruped.replay``, ``.train``, ``.avoid-known``,
-  ``.avoid-unseen``, ``.swing-order``, ``.free-gait``, ``.generalization``);
+* ``experiments/`` one file per scenario (``quadruped.replay``, ``.train``, ``.avoid-known``,
+  ``.avoid-unseen``, ``.swing-order``, ``.free-gait``, ``.generalization``, ``.sensing-ablation``),
+  their accounts in ``notes/``;
 * ``benchmarks``  one GA generation: naive serial vs vectorised vs process pool.
 """

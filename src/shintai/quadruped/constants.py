@@ -129,6 +129,10 @@ INCIDENCE_LIMIT_DEG = 15.0
 # 5° steps put the hit points of a beam ~0.03-0.04 m apart along an edge 0.3-0.5 m away.
 SWEEP_HALF_DEG = 30.0
 SWEEP_STEP_DEG = 5.0
+# Robustness curves of quadruped.sensing-ablation (chosen, not in the paper): the range-noise std [m]
+# and the incidence limits [deg] the sensed walks of the training environments are repeated for.
+NOISE_SWEEP = (0.0, 0.005, 0.01, 0.02, 0.05, 0.1)
+INCIDENCE_SWEEP = (5.0, 10.0, 15.0, 25.0, 45.0)
 # Height measurement by raising the leg until the echo stops (Fig. 8): the beam is raised in steps of
 # HEIGHT_STEP from BEAM_HEIGHT to BEAM_HEIGHT + RAISE_MAX above the foot's surface; the first height
 # without the echo is the obstacle's height estimate (quantised up: the error is in [0, HEIGHT_STEP)).
@@ -280,8 +284,14 @@ TABLE7_ACTIONS = np.array([
     [-23.440, 241.344, 0.167, 360.0], [-23.620, 239.286, 0.087, 300.0], [-24.022, 237.751, 0.013, 300.0],
     [-24.397, 236.259, -0.060, 300.0], [-24.746, 234.816, -0.131, 300.0]])
 TABLE7_ORDERS = (21,) * 3 + (11,) * 2 + (10,) + (21,) * 5
-# Final destination errors the paper prints for these runs [m] (seed §6.2.2, §6.2.1).
+# Final destination errors (x_de, y_de) [m] and walking cycles the paper's text gives for these runs:
+# Table 6 §6.2.1 ('歩行周期回数は10回 ... (x_de, y_de) = (-0.017, -0.027)'), Table 7 §6.2.2 ('11回 ...
+# (-0.018, -0.014)'), Table 3 at the end of §6.2.2, the fixed-order walk without re-training ('10回 ...
+# (0.068, -0.027)'). That text says the run is "shown in §4.2.2", but §4.2.2 is another environment
+# with 9 cycles and (-0.048, 0.024) m; §6.2.2's environment is §5.2's exactly and 10 cycles are Table
+# 3's 10 rows, so it is the walk of Table 3 (§5.2.1).
 PAPER_FINAL_ERROR = {"table3": (0.068, -0.027), "table6": (-0.017, -0.027), "table7": (-0.018, -0.014)}
+PAPER_CYCLES = {"table3": 10, "table6": 10, "table7": 11}
 # Dead-reckoned reference values of §5.7 / §6.5 check 4: final |e| [m], cycle of first entry into the
 # goal circle, distance one cycle earlier [m].
 DEAD_RECKONED = {"table3": (0.076, 10, 0.250), "table6": (0.034, 10, 0.235), "table7": (0.026, 11, 0.249)}

@@ -12,6 +12,13 @@ Per walking cycle k of every active episode (all batched):
 5. one crawl cycle; the walk stops at a collision, a joint-limit violation or lost stability (the
    cycle is not executed, the robot stays where it was), when the CoG is within 0.2 m of the
    destination after a cycle, or after 50 cycles (seed §4.1.1-4.1.2).
+
+This runs on the shared runtime (issue 12): :class:`CrawlBody` is a batched Body whose step is one
+walking cycle (1-2 are its snapshot, 5 its step); the action network is the set-point stage
+(:class:`ActionModule`, 3, writing the loop channel ``displacement``) and the swing order the next
+stage (:class:`SwingOrderModule`, 4, writing the body's set channels ``command`` and ``order``);
+:func:`rollout` runs that Loop until every walk has stopped. Results are bit-identical to the
+hand-written cycle loop it replaced.
 """
 
 from __future__ import annotations
@@ -22,6 +29,7 @@ from typing import Protocol
 
 import numpy as np
 
+from shintai.core.runtime import SET, Body, Channel, Loop, Module, declare
 from shintai.quadruped import constants as C
 from shintai.quadruped import robot as R
 from shintai.quadruped import world as W
@@ -127,44 +135,139 @@ class Episodes:
     records: list | None = None
 
 
-def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPolicy | None = None,
-            max_cycles: int = C.MAX_CYCLES, record: bool = False,
-            command_range: tuple | None = C.COMMAND_RANGE, perception: Perception | None = None) -> Episodes:
-    """Run one episode per environment row in lock-step (module docstring); the action policy's
-    commands are clipped to ``command_range`` ``(low, high)`` (``None``: not clipped). ``perception``
-    supplies the obstacle features (``None``: the known obstacles, :func:`obstacle_features`)."""
-    if perception is not None:
-        perception.reset(envs)
-    n = len(envs)
-    state = R.CrawlState.initial(n)
-    active = np.ones(n, dtype=bool)
-    ep = Episodes(np.zeros(n, int), np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool),
-                  np.zeros((n, 2)), np.full((n, max_cycles + 1, 3), np.nan), np.full((n, max_cycles, 3), np.nan),
-                  np.full((n, max_cycles), np.nan), np.full((n, max_cycles), -1), np.full((n, max_cycles), np.nan),
-                  [[] for _ in range(n)] if record else None)
-    ep.poses[:, 0] = state.pose
-    for k in range(max_cycles):
-        rows = np.flatnonzero(active)
-        if len(rows) == 0:
-            break
-        st, env = state.take(rows), envs.take(rows)
-        zr = R.body_height(st.pose, st.feet, env)
-        features = None if perception is None else perception(k, rows, st, env)
-        command = np.asarray(action_policy(action_inputs(st, zr, env, features), rows), dtype=float)
-        if command_range is not None:
-            command = np.clip(command, *command_range)
-        order = np.full(len(rows), CRAWL) if order_policy is None else np.asarray(order_policy(zr, command))
+class CrawlBody(Body):
+    """The batched crawl as a :class:`~shintai.core.runtime.Body`: one step is one walking cycle of every
+    active episode (quasi-static: ``dt`` = 1, body time counts cycles).
+
+    Snapshot: ``rows`` (the active episodes), their body heights ``zr`` by the body-raise rule and the
+    24 action-network ``inputs`` (features from the known obstacles, or from ``perception``); it is
+    taken once per cycle (a perception is stateful). Channels (set: one writer each): ``command``
+    (ΔXr, ΔYr, Δθr) and ``order`` (Table 2 numbers) of the active rows. A step executes the cycle
+    (``robot.crawl_cycle``) and stores it into :attr:`episodes`; a row stops at a collision, a joint
+    limit or lost stability (the cycle is not executed), or inside the goal circle.
+    """
+
+    dt = 1.0
+    channels = declare("command", "order", kind=SET)
+
+    def __init__(self, envs: W.EnvBatch, max_cycles: int = C.MAX_CYCLES, record: bool = False,
+                 perception: Perception | None = None):
+        if perception is not None:
+            perception.reset(envs)
+        n = len(envs)
+        self.envs, self.max_cycles, self.record, self.perception = envs, max_cycles, record, perception
+        self.state = R.CrawlState.initial(n)
+        self.active = np.ones(n, dtype=bool)
+        self.episodes = Episodes(np.zeros(n, int), np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool),
+                                 np.zeros(n, bool), np.zeros((n, 2)), np.full((n, max_cycles + 1, 3), np.nan),
+                                 np.full((n, max_cycles, 3), np.nan), np.full((n, max_cycles), np.nan),
+                                 np.full((n, max_cycles), -1), np.full((n, max_cycles), np.nan),
+                                 [[] for _ in range(n)] if record else None)
+        self.episodes.poses[:, 0] = self.state.pose
+        self.k, self.t = 0, 0.0
+        self._snap: dict | None = None
+        self._command: dict = {}
+
+    @property
+    def done(self) -> bool:
+        return not self.active.any()
+
+    def snapshot(self) -> dict:
+        if self._snap is None:
+            rows = np.flatnonzero(self.active)
+            st, env = self.state.take(rows), self.envs.take(rows)
+            if len(rows) == 0:  # every walk has stopped
+                self._cycle = (rows, st, env, np.zeros(0))
+                self._snap = {"t": self.t, "rows": rows, "zr": np.zeros(0), "inputs": np.zeros((0, C.ACTION_INPUTS))}
+                return self._snap
+            zr = R.body_height(st.pose, st.feet, env)
+            features = None if self.perception is None else self.perception(self.k, rows, st, env)
+            self._cycle = (rows, st, env, zr)
+            self._snap = {"t": self.t, "rows": rows, "zr": zr, "inputs": action_inputs(st, zr, env, features)}
+        return self._snap
+
+    def apply(self, command: dict) -> None:
+        self._command = command
+
+    def step(self) -> None:
+        rows, st, env, zr = self._cycle
+        if len(rows) == 0 or self.k >= self.max_cycles:  # every walk has stopped: time passes, nothing moves
+            self.t = float(self.k)
+            self._snap = None
+            return
+        command, order = self._command["command"], self._command["order"].astype(int)
+        ep, k = self.episodes, self.k
         out = R.crawl_cycle(st, command, ORDERS[order], zr, env)
-        _store(ep, k, rows, out, command, order, record)
+        _store(ep, k, rows, out, command, order, self.record)
         ok = ~out.failed
-        state.put(rows[ok], out.state.take(ok))
+        self.state.put(rows[ok], out.state.take(ok))
         ep.poses[rows[ok], k + 1] = out.state.pose[ok]
         ep.cycles[rows] = k + 1
         ep.reached[rows[ok]] = W.length(env.destination[ok] - out.state.pose[ok, :2]) <= C.GOAL_RADIUS
-        active[rows[out.failed]] = False
-        active[rows[ok & ep.reached[rows]]] = False
-    ep.final_error = envs.destination - state.pose[:, :2]
-    return ep
+        self.active[rows[out.failed]] = False
+        self.active[rows[ok & ep.reached[rows]]] = False
+        self.k += 1
+        self.t = float(self.k)
+        self._snap = None
+
+    def finish(self) -> Episodes:
+        """The episodes, with the final destination errors where each walk stopped."""
+        self.episodes.final_error = self.envs.destination - self.state.pose[:, :2]
+        return self.episodes
+
+
+DISPLACEMENT = Channel("displacement", SET, doc="(ΔXr, ΔYr, Δθr) of the active rows, the action network's "
+                                                 "set-point that the swing-order stage reads in the same cycle")
+
+
+class ActionModule(Module):
+    """The action network (seed §4, Fig. 16): the 24 inputs → (ΔXr, ΔYr, Δθr), clipped to the robot's
+    displacement range ``command_range`` (``None``: not clipped); writes the ``displacement`` set-point."""
+
+    def __init__(self, policy: ActionPolicy, command_range: tuple | None = C.COMMAND_RANGE):
+        super().__init__("action network")
+        self.policy, self.command_range = policy, command_range
+
+    def update(self, snapshot: dict) -> dict:
+        command = np.asarray(self.policy(snapshot["inputs"], snapshot["rows"]), dtype=float)
+        if self.command_range is not None:
+            command = np.clip(command, *self.command_range)
+        return {"displacement": command}
+
+
+class SwingOrderModule(Module):
+    """The cycle's command: the displacement set-point with a swing order — the crawl order 4→2→3→1
+    (seed §4, ``policy=None``) or a swing-order policy of (Zr, displacement) (seed §6, Fig. 29)."""
+
+    def __init__(self, policy: OrderPolicy | None = None):
+        super().__init__("swing order")
+        self.policy = policy
+
+    def update(self, snapshot: dict) -> dict:
+        d = snapshot["displacement"]
+        order = np.full(len(d), CRAWL) if self.policy is None else np.asarray(self.policy(snapshot["zr"], d))
+        return {"command": d, "order": order}
+
+
+def crawl_loop(body: CrawlBody, action_policy: ActionPolicy, order_policy: OrderPolicy | None = None,
+               command_range: tuple | None = C.COMMAND_RANGE) -> Loop:
+    """The crawl's Loop: the action network as the set-point stage, the swing order as the next."""
+    return Loop(body, stages=[[ActionModule(action_policy, command_range)], [SwingOrderModule(order_policy)]],
+                channels=[DISPLACEMENT])
+
+
+def rollout(envs: W.EnvBatch, action_policy: ActionPolicy, order_policy: OrderPolicy | None = None,
+            max_cycles: int = C.MAX_CYCLES, record: bool = False,
+            command_range: tuple | None = C.COMMAND_RANGE, perception: Perception | None = None) -> Episodes:
+    """Run one episode per environment row in lock-step (module docstring) through the Loop, one
+    step per walking cycle, up to ``max_cycles`` or until every walk has stopped; the action policy's
+    commands are clipped to ``command_range`` ``(low, high)`` (``None``: not clipped). ``perception``
+    supplies the obstacle features (``None``: the known obstacles, :func:`obstacle_features`)."""
+    body = CrawlBody(envs, max_cycles, record, perception)
+    if len(envs):
+        crawl_loop(body, action_policy, order_policy, command_range).run(max_cycles * body.dt,
+                                                                         until=lambda _: body.done)
+    return body.finish()
 
 
 def _store(ep: Episodes, k: int, rows: np.ndarray, out: R.CycleOutcome, command: np.ndarray, order: np.ndarray,

@@ -1,7 +1,8 @@
 """Figures of the quadruped scenarios: top views of walks (the paper's path figures, e.g. Figs. 18,
 20, 30-35), leg and body heights per cycle (Figs. 19, 21, 34, 36), learning curves.
 
-Every function draws into axes it is given; the scenarios own the figures (``ctx.figure``).
+Every ``draw_*`` function draws into axes it is given; the experiments own the figures (``ctx.figure``);
+:func:`plot_walks` is the figure pair of the walking experiments.
 """
 
 from __future__ import annotations
@@ -83,3 +84,21 @@ def draw_curve(ax, best: np.ndarray, mean: np.ndarray, title: str) -> None:
     ax.set_ylabel("fitness (minimised)")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7)
+
+
+def plot_walks(ctx, name: str, walks: dict) -> None:
+    """Top views and per-cycle heights of one or more walks ``{title: (env, records)}``."""
+    n = len(walks)
+    with ctx.figure(f"{name}_path", nrows=1, ncols=n, figsize=(5.2 * n, 6.2), squeeze=False) as (fig, axes):
+        for ax, (title, (env, records)) in zip(axes[0], walks.items()):
+            draw_walk(ax, env, records)
+            ax.set_title(title, fontsize=8)
+        axes[0, 0].legend(fontsize=6, loc="best")
+    with ctx.figure(f"{name}_legs", nrows=n, ncols=3, figsize=(12, 3.2 * n), squeeze=False) as (fig, axes):
+        for row, (title, (_, records)) in zip(axes, walks.items()):
+            draw_heights(*row, records)
+            row[0].set_title(title, fontsize=8)
+
+
+CURVE_TITLES = {"action": "action network, fixed order: eq. (9)", "order": "swing-order network: eq. (13)",
+                "free": "action network re-trained with the free gait: eq. (9)"}

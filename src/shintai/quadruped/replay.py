@@ -127,3 +127,17 @@ def body_movement_comparison() -> BodyMovementComparison:
     best, best_br = S.best_orders(zr, command)
     rows = np.arange(len(br))
     return BodyMovementComparison(br[:, S.CRAWL], 1000 * best_br, br[rows, list(C.TABLE5_ORDERS)], best)
+
+
+def zr_agreement() -> tuple[int, int]:
+    """Cycles of Tables 3, 6, 7 whose printed Zr the body-raise rule reproduces, and their number."""
+    agree = total = 0
+    for actions, orders, env in TABLES.values():
+        envs = W.EnvBatch.of([env()])
+        zr, command = S.actions_to_si(actions[:, 3], actions[:, 0], actions[:, 1], actions[:, 2])
+        state = R.CrawlState.initial(1)
+        for z, c, o in zip(zr, command, orders):
+            agree += int(np.isclose(R.body_height(state.pose, state.feet, envs)[0], z))
+            total += 1
+            state = R.crawl_cycle(state, c[None], S.ORDERS[[o]], np.array([z]), envs).state
+    return agree, total

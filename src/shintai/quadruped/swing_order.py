@@ -119,3 +119,36 @@ def teacher_set(per_order: int = C.TEACHER_PER_ORDER, draws: int = C.TEACHER_DRA
         xs.append(mine[:per_order])
         ys.append(np.full(len(xs[-1]), k))
     return TeacherSet(np.concatenate(xs), np.concatenate(ys), optimal)
+
+
+def orders_body_movement(records: list[R.CycleRecord], env: W.Environment) -> np.ndarray:
+    """Br [mm] ``(n, 24)`` of every swing order for each executed cycle of a walk, from the state the
+    cycle started in and with its action and Zr, in ``env``; ``inf`` where the order fails (a
+    collision, a joint limit or no stable body position)."""
+    n = len(records)
+    feet = [R.CrawlState.initial(1).feet[0]] + [r.footholds for r in records[:-1]]
+    state = R.CrawlState(np.repeat([r.body_poses[0] for r in records], 24, axis=0),
+                         np.repeat([r.zr for r in records], 24), np.repeat(feet, 24, axis=0))
+    out = R.crawl_cycle(state, np.repeat([r.command for r in records], 24, axis=0), np.tile(ORDERS, (n, 1)),
+                        state.zr, W.EnvBatch.of([env]).tile(24 * n))
+    return 1000 * np.where(out.failed, np.inf, out.br).reshape(n, 24)
+
+
+def exhaustive_choice(br: np.ndarray) -> np.ndarray:
+    """The order of least Br per row (ties go to the crawl order, then the lower number; as
+    :func:`best_orders`)."""
+    tied = br <= br.min(axis=1, keepdims=True) + 1000 * TIE
+    return np.where(tied[:, CRAWL], CRAWL, np.argmax(tied, axis=1))
+
+
+def strategies(br: np.ndarray, network: np.ndarray) -> dict:
+    """ΣBr [mm] and orders of the fixed order, the exhaustive search and the network's choices."""
+    rows = np.arange(len(br))
+    best = exhaustive_choice(br)
+    return {"fixed": br[:, CRAWL], "exhaustive": br[rows, best], "network": br[rows, network],
+            "orders": {"fixed": [CRAWL] * len(br), "exhaustive": best.tolist(), "network": network.tolist()}}
+
+
+def order_names(orders) -> str:
+    """Table 2 numbers as ``"4→2→3→1, ..."``."""
+    return ", ".join(format_order(int(o)) for o in orders)

@@ -10,7 +10,8 @@ horizontal, l2 at the *absolute* angle θ2 (GDA: knee joint = θ2 - θ1), and l3
 (ankle joint = -90° - θ2). Frames are interpolated between the executor's key poses
 (:class:`robot.CycleRecord`): per swing the body shifts in four-leg support, then the swing foot
 lifts to its apex, moves and lands while the body stands still (seed §3.2, §4.1.1); joint angles come
-from the IK of eq. (2) (:func:`robot.leg_angles`), ``qpos`` is set and ``mj_forward`` run per frame.
+from the IK of eq. (2) (:func:`robot.leg_angles`), ``qpos`` is set and ``mj_forward`` run per frame by
+:class:`WalkReplay`, a Body the runner films like any MuJoCo run (:func:`film_walk`).
 """
 
 from __future__ import annotations
@@ -19,9 +20,11 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from shintai.core.runtime import Body, Loop
 from shintai.quadruped import constants as C
 from shintai.quadruped import robot as R
 from shintai.quadruped import world as W
+from shintai.scenarios.experiment import film
 
 FPS = 30
 SHIFT_FRAMES = 4  # frames per body shift (chosen: about 0.13 s at 30 fps)
@@ -130,21 +133,59 @@ def joint_qpos(pose: np.ndarray, zr: float, feet: np.ndarray, previous: np.ndarr
     return np.concatenate([[pose[0], pose[1], zr], quat, legs.ravel()])
 
 
-def render(records: list[R.CycleRecord], env: W.Environment, path, width: int = 480, height: int = 360) -> int:
-    """Render an executed walk to an MP4 at ``path``; returns the number of frames."""
-    from shintai.sim.body import MujocoBody
-    from shintai.sim.render import VideoRecorder
+class WalkReplay(Body):
+    """An executed walk as a Body the runner can film (its one video idiom, ``scenarios.experiment.film``):
+    each step shows the next key frame on TITAN-VIII's MJCF (kinematics only, ``dt`` = 1/FPS); ``mj`` is
+    the MujocoBody that is filmed. The first frame is the initial stance."""
 
-    body = MujocoBody(titan_mjcf(env))
-    envs = W.EnvBatch.of([env])
-    start = R.CrawlState.initial(1)
-    qpos = _show(body, joint_qpos(start.pose[0], C.ZR_NOMINAL, start.feet[0], None), 0.0)
-    with VideoRecorder(body, path, fps=FPS, width=width, height=height, track="trunk", distance=2.4,
-                       azimuth=60, elevation=-30) as video:
-        for n, (pose, zr, feet) in enumerate(key_frames(records, envs), 1):
-            qpos = _show(body, joint_qpos(pose, zr, feet, qpos), n / FPS)
-            video.capture()
-        return video.frames
+    channels: dict = {}
+
+    def __init__(self, records: list[R.CycleRecord], env: W.Environment):
+        from shintai.sim.body import MujocoBody  # MuJoCo is loaded only when a walk is filmed
+
+        self.mj = MujocoBody(titan_mjcf(env))
+        self.dt = 1.0 / FPS
+        self.frames = list(key_frames(records, W.EnvBatch.of([env])))
+        start = R.CrawlState.initial(1)
+        self.qpos = _show(self.mj, joint_qpos(start.pose[0], C.ZR_NOMINAL, start.feet[0], None), 0.0)
+        self.shown = 0
+
+    @property
+    def t(self) -> float:
+        return self.mj.t
+
+    @property
+    def duration(self) -> float:
+        return len(self.frames) * self.dt
+
+    def snapshot(self) -> dict:
+        return {"t": self.t}
+
+    def apply(self, command: dict) -> None:
+        pass
+
+    def step(self) -> None:
+        pose, zr, feet = self.frames[self.shown]
+        self.shown += 1
+        self.qpos = _show(self.mj, joint_qpos(pose, zr, feet, self.qpos), self.shown * self.dt)
+        for callback in self.mj.after_step:
+            callback()
+
+
+VIEW = {"fps": FPS, "track": "trunk", "distance": 2.4, "azimuth": 60, "elevation": -30}
+
+
+def film_walk(ctx, records: list[R.CycleRecord], env: W.Environment, variant: str | None = None
+              ) -> WalkReplay | None:
+    """Film an executed walk through the runner's idiom: ``video.mp4`` (``video_<variant>.mp4``) with
+    ``--video``, the live viewer with ``--view``; the replay runs in a Loop of its own (not at all when
+    the run asked for neither)."""
+    if not (ctx.video or getattr(ctx, "view", False)):
+        return None
+    body = WalkReplay(records, env)
+    with film(ctx, body, variant, **VIEW):
+        Loop(body, []).run(body.duration)
+    return body
 
 
 def _show(body, qpos: np.ndarray, time: float) -> np.ndarray:
