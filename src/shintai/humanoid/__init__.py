@@ -5,7 +5,7 @@
 * :mod:`~shintai.humanoid.robots.kenshiro` — Kenshiro's sagittal legs on a crank (§3.5.5).
 * :mod:`~shintai.humanoid.vehicles.tricycle` — the tricycle of App. A.1.1.
 * :mod:`~shintai.humanoid.riding` — the humanoid seated on the tricycle, as a ``MujocoBody``.
-* :mod:`~shintai.humanoid.ik` — damped-least-squares IK on MuJoCo site Jacobians.
+* :mod:`~shintai.sim.ik` (shared) — damped-least-squares IK on MuJoCo site Jacobians.
 
 This module holds the MjSpec building blocks the models share: the scene (floor, light,
 integrator), hinges, position servos and 6-axis force/torque sensors, and the collision groups.
