@@ -52,9 +52,10 @@ import numpy as np
 from shintai.core.runtime import ADD, Channel, Module
 from shintai.humanoid import quat_axis
 from shintai.humanoid.active import grip_plan
-from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
-                                        IMPEDANCE, SADDLE_CROWN_RADIUS, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH,
-                                        SIT_BONE_RADIUS, SIT_BONE_Y, TRICYCLE)
+from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, FOOT_FOLLOW_F_TRG,
+                                        HRP2_LINKS, IMPEDANCE, PEDAL_FRICTION, RIDER_PERIOD, SADDLE_CROWN_RADIUS,
+                                        SADDLE_FRICTION, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH, SIT_BONE_RADIUS,
+                                        SIT_BONE_Y, STEER_RATE, TRICYCLE)
 from shintai.humanoid.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.navigation import OBSTACLE_GROUP
 from shintai.humanoid.passive import ActiveImpedance
@@ -72,13 +73,6 @@ REFS = ("ref:theta_h", "ref:crank_rate", "ref:chest_roll", "ref:com_shift", "ref
 # the loop's reference channels: seen one control period after they are written, 0 until then
 REF_CHANNELS = tuple(Channel(name, ADD, delay=1, default=0.0) for name in REFS)
 CRANK_MOTOR = "crank_motor"
-# Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover). Seat geometry: constants.py.
-SADDLE_FRICTION = 0.5
-PEDAL_FRICTION = 1.5  # chosen: a studded pedal under a rubber sole
-# Chosen: the rider's whole-body IK runs at 50 Hz (every 5th control period); the servos hold
-# its output between solves. Steering rate limit 15°/s (the thesis: 5° per 1.6 s sample, E7 faster).
-RIDER_PERIOD = 5 * CONTROL_PERIOD
-STEER_RATE = 15 * DEG
 
 
 @dataclass(frozen=True)
@@ -124,7 +118,6 @@ def add_seat(spec: mujoco.MjSpec) -> None:
     """The hip–saddle contact (Table 4.2, unilateral): two sit-bone capsules along x under the waist,
     ±:data:`SIT_BONE_Y` apart, on the crowned saddle hull; placed so that both touch the crown in the
     ``ride`` keyframe (waist origin :attr:`~Hrp2Links.hip_cover` above the saddle top)."""
-    from shintai.humanoid.constants import HRP2_LINKS
     friction = [SADDLE_FRICTION, 0.005, 0.0001]
     r, rc = SIT_BONE_RADIUS, SADDLE_CROWN_RADIUS
     z = -HRP2_LINKS.hip_cover - rc + np.sqrt((rc + r) ** 2 - SIT_BONE_Y ** 2)

@@ -512,6 +512,15 @@ STEP_HEIGHT = 0.010  # m, "≈10 mm" steps (§7.3.1)
 BOARD_THICKNESS = 0.014  # m, the 14 mm wooden board (Fig. 4.22)
 SLIP_START_S = 2.0  # s, chosen: the seat slip of humanoid.sitting-recovery grows from this time on
 
+# Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover); studded pedals under a rubber sole
+# (soles hold on them while pushing hard: PPDM, STAND).
+SADDLE_FRICTION = 0.5
+PEDAL_FRICTION = 1.5
+# Chosen: the ch. 4 rider's whole-body IK runs at 50 Hz (every 5th control period); the servos hold
+# its output between solves. Steering rate limit 15°/s (the thesis: 5° per 1.6 s sample, E7 faster).
+RIDER_PERIOD = 5 * CONTROL_PERIOD
+STEER_RATE = 15 * DEG
+
 # Crank motor standing in for the legs (drive=motor, NOT the thesis's method): velocity servo.
 CRANK_MOTOR_KV = 200.0  # N m s/rad
 CRANK_MOTOR_TORQUE = 60.0  # N m, ≈ a 480 N push at r = 0.125 m
