@@ -35,7 +35,7 @@ def rig(params, variant):
     state = SimpleNamespace(body=body, nav=nav, rider=rider, goal=goal, dof=dof, t_wall=t_wall, ticks=0,
                             clearance=[np.inf], path=[vehicle_pose2d(body)])
 
-    def signals(snap):
+    def signals(snap):  # sampled after control ticks 25, 50, … (the path and clearance the metrics use)
         state.ticks += 1
         if state.ticks % EVERY:
             return {}
