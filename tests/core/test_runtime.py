@@ -216,3 +216,26 @@ def test_restage_adds_and_removes_modules_between_ticks_without_resetting_the_ot
     assert a.n == 4 and b.n == 2 and loop.command["u"][0] == 2.0
     with pytest.raises(ValueError, match="unique"):
         loop.restage([[b, b]])
+
+
+def test_a_group_is_one_switched_system_whose_members_add_and_restart_with_it():
+    """Group: members' contributions add; a slow member runs on the group's first tick after each
+    reset (switched in) and is held between its updates; inactive, the whole group is held."""
+    from shintai.core.runtime import Group
+
+    body = NullBody(dt=0.01)
+    fast, slow = Counter("fast", value=1.0), Counter("slow", period=0.03, value=10.0)
+    idle = Counter("idle", value=-1.0)
+    group = Group("pair", [fast, slow], period=0.01)
+    sw = Switcher([group, idle], [("pair", "idle", lambda s: 0.04 - 1e-9 <= s["t"] < 0.06 - 1e-9),
+                                  ("idle", "pair", lambda s: s["t"] >= 0.06 - 1e-9)])
+    loop = Loop(body, [sw])
+    seen = []
+    for _ in range(10):
+        loop.step()
+        seen.append(body.command["u"][0])
+    assert seen == [11.0] * 4 + [-1.0] * 2 + [11.0] * 4
+    assert slow.calls == 2 + 2  # ticks 0 and 3, then again at its restart (tick 6) and 3 later (tick 9)
+    assert fast.calls == 8 and fast.resets == slow.resets == 2
+    with pytest.raises(ValueError):
+        Group("bad", [Counter("odd", period=0.015)], period=0.01)

@@ -6,19 +6,29 @@ import math
 import numpy as np
 import pytest
 
-from shintai.core.runtime import FunctionModule, Loop
+from shintai.core.runtime import ChannelError, FunctionModule, Loop
 from shintai.humanoid import ch4_riding as cr
 from shintai.humanoid.constants import DEG, TRICYCLE
 from shintai.humanoid.navigation import crank_rate
 
 
-def test_reference_channels_echo_and_reject_unknown():
+def test_reference_channels_are_seen_one_tick_later_and_unknown_ones_rejected():
+    """The ref:* channels are the loop's own, declared with a one-tick delay (0 before anything is
+    written, and on a tick nobody writes them); an undeclared one is a ChannelError."""
     body = cr.build_ch4(hip="weld")
-    body.apply({"ref:theta_h": 0.1, "ref:com_shift": 0.02})
-    snap = body.snapshot()
-    assert snap["ref:theta_h"] == 0.1 and snap["ref:com_shift"] == 0.02 and snap["ref:hip_lift"] == 0.0
-    with pytest.raises(KeyError):
-        body.apply({"ref:nonsense": 1.0})
+    seen = []
+    writes = FunctionModule(lambda s: {"ref:theta_h": 0.1, "ref:com_shift": 0.02} if s["t"] < 0.002 else None,
+                            name="writes")
+    reads = FunctionModule(lambda s: seen.append((float(s["ref:theta_h"]), float(s["ref:com_shift"]),
+                                                  float(s["ref:hip_lift"]))), name="reads")
+    loop = Loop(body, [writes, reads], channels=cr.REF_CHANNELS)
+    for _ in range(3):
+        loop.step()
+    assert seen == [(0.0, 0.0, 0.0), (0.1, 0.02, 0.0), (0.0, 0.0, 0.0)]
+    assert "ref:theta_h" not in body.channels  # never sent to the body
+    bad = Loop(body, [FunctionModule(lambda s: {"ref:nonsense": 1.0}, name="bad")], channels=cr.REF_CHANNELS)
+    with pytest.raises(ChannelError):
+        bad.step()
 
 
 def test_roll_sign_convention():
@@ -46,7 +56,7 @@ def test_seated_robot_drives_and_steers_with_the_motor():
     rider = cr.Rider(body)
     refs = FunctionModule(lambda s: {"ref:crank_rate": crank_rate(0.3) if s["t"] > 0.5 else 0.0,
                                      "ref:theta_h": 0.2 if s["t"] > 2.0 else 0.0}, name="refs")
-    loop = Loop(body, [refs, rider, cr.CrankMotor()])
+    loop = Loop(body, [refs, rider, cr.CrankMotor()], channels=cr.REF_CHANNELS)
     loop.run(3.5)
     crank0, x0 = body.data.joint("crank").qpos[0], cr.vehicle_pose2d(body)
     loop.run(2.0)
@@ -68,7 +78,8 @@ def test_freewheel_backpedalling_does_not_move_the_tricycle():
     wheel = cr.Freewheel(body)
     rider = cr.Rider(body)
     rate = {"w": -0.8}
-    loop = Loop(body, [FunctionModule(lambda s: {"ref:crank_rate": rate["w"]}, name="refs"), rider, cr.CrankMotor()])
+    loop = Loop(body, [FunctionModule(lambda s: {"ref:crank_rate": rate["w"]}, name="refs"), rider, cr.CrankMotor()],
+                channels=cr.REF_CHANNELS)
     crank0, x0 = body.data.joint("crank").qpos[0], cr.vehicle_pose2d(body)[0]
     loop.run(2.0)
     assert body.data.joint("crank").qpos[0] < crank0 - 1.0  # the crank went back > 57°
@@ -94,7 +105,7 @@ def test_grip_grasp_holds_both_bar_points():
 
 def test_seat_slip_builds_with_driving_and_restarts_after_lift(monkeypatch):
     """SeatSlip: grows only while the crank turns and the hip sits; zero and restarted once the hip lifts."""
-    from shintai.humanoid.ch4_scenarios import SeatSlip
+    from shintai.humanoid.ch4_drive import SeatSlip
     body = cr.build_ch4(hip="contact")
     seated = {"fz": 300.0}
     monkeypatch.setattr(body, "contact_force", lambda name: np.array([0.0, 0.0, seated["fz"]]))

@@ -20,6 +20,7 @@ Composition rules (DESIGN.md):
   else is a :class:`ChannelError`, the one error type of channel misuse;
 * a channel is **additive** (contributions sum: corrections added to a trajectory, seed 000 §7.3) or
   **set** (exactly one writer per tick: a wheel mask, a contact code, a chosen order);
+* several modules that must be switched in and out together form a :class:`Group`;
 * modules run in **stages**: what an earlier stage writes to a loop channel is in the snapshot the
   later stages see in the same tick, so a set-point feeds a controller without a hidden delay; a
   loop channel with ``delay=d`` is seen ``d`` ticks later instead (a declared delay).
@@ -253,6 +254,44 @@ class Switcher(Module):
                 raise RuntimeError(f"switcher {self.name!r}: its guards keep switching at t = {snapshot['t']} "
                                    f"(a cycle of transitions that all hold)")
         return self.modules[self.active].update(snapshot)
+
+
+class Group(Module):
+    """Several modules run as one (their contributions add): a :class:`Switcher` child made of more
+    than one module (seed 000 §7.4.1: the sitting recovery with the legs' IK is one switched system).
+
+    The group runs every ``period`` seconds; a member runs every ``member.period / period`` group
+    updates (``None``: every one), counted from the group's last :meth:`reset` — so a switched-in
+    group starts all its members on its first tick, as a fresh system would, and holds each member's
+    last contribution between its updates (as the :class:`Loop` does).
+    """
+
+    def __init__(self, name: str, modules: Sequence[Module], period: float):
+        super().__init__(name, period)
+        self.modules = list(modules)
+        self.every = [ticks_per_period(m.period, period, m.name) for m in self.modules]
+        self._tick = 0
+        self._held: list[Command | None] = [None] * len(self.modules)
+
+    def attach(self, recorder: Recorder | None) -> None:
+        super().attach(recorder)
+        for m in self.modules:
+            m.attach(recorder)
+
+    def reset(self, snapshot: Snapshot) -> None:
+        for m in self.modules:
+            m.reset(snapshot)
+        self._tick = 0
+        self._held = [None] * len(self.modules)
+
+    def update(self, snapshot: Snapshot) -> Command | None:
+        total: Command = {}
+        for i, m in enumerate(self.modules):
+            if self._tick % self.every[i] == 0:
+                self._held[i] = m.update(snapshot)
+            add_into(total, self._held[i])
+        self._tick += 1
+        return total
 
 
 Hook = Callable[[Snapshot], None]

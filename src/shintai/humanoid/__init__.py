@@ -5,7 +5,11 @@
 * :mod:`~shintai.humanoid.robots.kenshiro` — Kenshiro's sagittal legs on a crank (§3.5.5).
 * :mod:`~shintai.humanoid.vehicles.tricycle` — the tricycle of App. A.1.1.
 * :mod:`~shintai.humanoid.riding` — the humanoid seated on the tricycle, as a ``MujocoBody``.
-* :mod:`~shintai.humanoid.ik` — damped-least-squares IK on MuJoCo site Jacobians.
+* :mod:`~shintai.sim.ik` (shared) — damped-least-squares IK on MuJoCo site Jacobians.
+* the wiring several experiments share: :mod:`~shintai.humanoid.tricycle_rig` (the limbs on the
+  operation algorithm, ch. 3), :mod:`~shintai.humanoid.ride` (steering and pedalling together),
+  :mod:`~shintai.humanoid.ch4_drive` (the ch. 4 drives and corrections' rig pieces),
+  :mod:`~shintai.humanoid.plots`; one file per scenario in ``experiments/``, its account in ``notes/``.
 
 This module holds the MjSpec building blocks the models share: the scene (floor, light,
 integrator), hinges, position servos and 6-axis force/torque sensors, and the collision groups.

@@ -3,9 +3,9 @@
 Two configurations of the riding body, each run for the same simulated time:
 
 * ``pedaling`` — the legs' role switcher (E2/E4: Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19) with the
-  scenario's per-tick logging (:func:`~shintai.humanoid.tricycle_scenarios.pedal_run`);
-* ``driving`` — arms and legs together on the E3 slalom script (:class:`~shintai.humanoid.
-  driving_scenarios.Ride`), Δt scaled so that steering, pedalling and role swaps all happen.
+  experiment's per-tick recording (:func:`~shintai.humanoid.tricycle_rig.pedal_rig`);
+* ``driving`` — arms and legs together on the E3 slalom script (:class:`~shintai.humanoid.ride.Ride`),
+  Δt scaled so that steering, pedalling and role swaps all happen.
 
 Each is compared with bare ``mujoco.mj_step`` on the same model for the same number of physics
 steps (from the same seated keyframe, the servos holding it). The ratio is the controller + IK +
@@ -47,14 +47,13 @@ import time
 
 import mujoco
 
-from shintai.core.recorder import Recorder
 from shintai.humanoid import riding
-from shintai.humanoid.constants import CONTROL_PERIOD, D_THETA_C, D_THETA_H, DEG, DELTA_C, DELTA_T
-from shintai.humanoid.driving_scenarios import Ride, slalom_goals
+from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, DELTA_T
 from shintai.humanoid.hrp2_limbs import riding_limbs
-from shintai.humanoid.operation import SIDES, OperationSchedule, role_switcher
-from shintai.humanoid.switching import active_leg
-from shintai.humanoid.tricycle_scenarios import LEG_GAINS, crank_diagnostic, crank_schedule, foot_plan, pedal_run
+from shintai.humanoid.operation import OperationSchedule
+from shintai.humanoid.ride import Ride, slalom_goals
+from shintai.humanoid.tricycle_rig import crank_schedule, legs_switcher, pedal_rig
+from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
 
 
@@ -74,12 +73,10 @@ def pedaling_run(seconds: float):
     schedule = crank_schedule(seconds / (2 * dt) * D_THETA_C / (2 * 3.141592653589793), dt)
     body = riding.build_riding(crank_error=(0.01, 0.0))
     feet = riding_limbs(body, "foot")
-    diag = crank_diagnostic(feet)
-    legs = role_switcher("legs", "crank", feet, {leg: foot_plan(leg) for leg in SIDES}, diag,
-                         active_leg(0.0, DELTA_C), schedule, LEG_GAINS, CONTROL_PERIOD,
-                         {leg: limb.reachable for leg, limb in feet.items()})
+    legs, diag = legs_switcher(feet, schedule)
+    rig = pedal_rig(body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag)
     t0 = time.perf_counter()
-    pedal_run(Recorder(), "", body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag)
+    run_rig(rig)
     return body, time.perf_counter() - t0
 
 
@@ -88,8 +85,9 @@ def driving_run(seconds: float):
     schedule = OperationSchedule(0.0, 0.0, slalom_goals(30 * DEG, 10 * DEG, 60 * DEG), DELTA_T * 0.25, D_THETA_H, D_THETA_C)
     schedule.samples = schedule.samples[:max(1, int(seconds / (2 * schedule.phase)) - 1)]
     ride = Ride(schedule)
+    rig = ride.rig()
     t0 = time.perf_counter()
-    ride.run(Recorder())
+    run_rig(rig)
     return ride.body, time.perf_counter() - t0
 
 

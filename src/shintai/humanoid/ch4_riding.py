@@ -16,17 +16,18 @@ Model (:func:`build_ch4`, on top of :func:`shintai.humanoid.riding.riding_spec`)
 * **crank motor** (``drive=motor``): a velocity servo on the crank standing in for the legs — NOT the
   thesis's method; scenarios label it. The feet then ride the pedals (active impedance, 150 N each).
 
-Runtime wiring (nervous-style, seed 000 §7.2 / seed 003 §6.3.4): :class:`Ch4Body` accepts reference
-channels ``ref:*`` next to the servo channels and echoes their sum into the next snapshot; the
-correction modules (navigation, posture control, sitting recovery, PPDM) contribute to them in a
-:class:`~shintai.core.runtime.Loop` (parallel: they add) or under a
+Runtime wiring (nervous-style, seed 000 §7.2 / seed 003 §6.3.4): the correction modules (navigation,
+posture control, sitting recovery, PPDM) write the reference channels ``ref:*`` — the loop's own
+channels :data:`REF_CHANNELS` — in a :class:`~shintai.core.runtime.Loop` (parallel: they add) or under a
 :class:`~shintai.core.runtime.Switcher` (switching); :class:`Rider` reads them and solves the
 whole-body IK on the robot's *reference model* (the vehicle at the origin, the waist on the seat
 displaced by the commanded base correction — the way hrpsys solves on its reference model, §7.4.1
 "model A"), putting hands on the grips at ``ref:theta_h`` and, unless the legs pedal by themselves,
-soles on the pedals at the crank angle.
+soles on the pedals at the crank angle. Every reference is seen one control period after it is
+written (``delay=1``, 4 ms; 0 before anything is written): the modules of one tick all read the
+previous tick's references — a declared delay, which the results depend on.
 
-Reference channels (all summed over modules; missing = 0):
+Reference channels (additive: summed over modules; a tick nobody writes one reads 0):
 
 ==================  ==============================================================================
 ``ref:theta_h``     handle target θ_h^ref [rad] (Eq. 4.21)
@@ -42,18 +43,19 @@ Reference channels (all summed over modules; missing = 0):
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Module, declare
-from shintai.humanoid import ik, quat_axis
+from shintai.core.runtime import ADD, Channel, Module
+from shintai.humanoid import quat_axis
 from shintai.humanoid.active import grip_plan
-from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, DEG, FOOT_FOLLOW_F_TRG,
-                                        IMPEDANCE, SADDLE_CROWN_RADIUS, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH,
-                                        SIT_BONE_RADIUS, SIT_BONE_Y, TRICYCLE)
+from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, FOOT_FOLLOW_F_TRG,
+                                        HRP2_LINKS, IMPEDANCE, PEDAL_FRICTION, RIDER_PERIOD, SADDLE_CROWN_RADIUS,
+                                        SADDLE_FRICTION, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH, SIT_BONE_RADIUS,
+                                        SIT_BONE_Y, STEER_RATE, TRICYCLE)
 from shintai.humanoid.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.navigation import OBSTACLE_GROUP
 from shintai.humanoid.passive import ActiveImpedance
@@ -61,20 +63,16 @@ from shintai.humanoid.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, LEG, SOLE,
                                      riding_posture, riding_spec)
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.vehicles.tricycle import DARK, pedal_position, steer_axis
+from shintai.sim import ik
 from shintai.sim.body import MujocoBody
 
 SEAT = 8  # collision bit: hip pad (contype) – saddle (conaffinity)
 SOLE_BIT, WHEEL_BIT = 2, 4
 REFS = ("ref:theta_h", "ref:crank_rate", "ref:chest_roll", "ref:com_shift", "ref:hip_lift", "ref:foot_fz",
         "ref:foot_fz_l", "ref:foot_fz_r", "ref:crank_target")
+# the loop's reference channels: seen one control period after they are written, 0 until then
+REF_CHANNELS = tuple(Channel(name, ADD, delay=1, default=0.0) for name in REFS)
 CRANK_MOTOR = "crank_motor"
-# Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover). Seat geometry: constants.py.
-SADDLE_FRICTION = 0.5
-PEDAL_FRICTION = 1.5  # chosen: a studded pedal under a rubber sole
-# Chosen: the rider's whole-body IK runs at 50 Hz (every 5th control period); the servos hold
-# its output between solves. Steering rate limit 15°/s (the thesis: 5° per 1.6 s sample, E7 faster).
-RIDER_PERIOD = 5 * CONTROL_PERIOD
-STEER_RATE = 15 * DEG
 
 
 @dataclass(frozen=True)
@@ -86,32 +84,6 @@ class Obstacle:
     pos: tuple[float, float, float]
     rgba: tuple[float, float, float, float] = (0.55, 0.5, 0.42, 1.0)
     yaw: float = 0.0
-
-
-class Ch4Body(MujocoBody):
-    """A MujocoBody that also takes ``ref:*`` channels and shows their sum in the next snapshot."""
-
-    def __init__(self, *args, **kwargs):
-        self.refs = {k: 0.0 for k in REFS}
-        super().__init__(*args, **kwargs)
-        self.channels = {**self.channels, **declare(*REFS)}
-
-    def apply(self, command: Mapping) -> None:
-        self.refs = {k: 0.0 for k in REFS}
-        servo = {}
-        for channel, value in command.items():
-            if channel.startswith("ref:"):
-                if channel not in self.refs:
-                    raise KeyError(f"unknown reference channel {channel!r}; valid: {', '.join(REFS)}")
-                self.refs[channel] = float(np.asarray(value))
-            else:
-                servo[channel] = value
-        super().apply(servo)
-
-    def snapshot(self):
-        snap = super().snapshot()
-        snap.update(self.refs)
-        return snap
 
 
 def ch4_spec(obstacles: Sequence[Obstacle] = (), crank_motor: bool = True, **riding_options) -> mujoco.MjSpec:
@@ -146,7 +118,6 @@ def add_seat(spec: mujoco.MjSpec) -> None:
     """The hip–saddle contact (Table 4.2, unilateral): two sit-bone capsules along x under the waist,
     ±:data:`SIT_BONE_Y` apart, on the crowned saddle hull; placed so that both touch the crown in the
     ``ride`` keyframe (waist origin :attr:`~Hrp2Links.hip_cover` above the saddle top)."""
-    from shintai.humanoid.constants import HRP2_LINKS
     friction = [SADDLE_FRICTION, 0.005, 0.0001]
     r, rc = SIT_BONE_RADIUS, SADDLE_CROWN_RADIUS
     z = -HRP2_LINKS.hip_cover - rc + np.sqrt((rc + r) ** 2 - SIT_BONE_Y ** 2)
@@ -165,7 +136,7 @@ def add_seat(spec: mujoco.MjSpec) -> None:
 
 
 def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_motor: bool = True,
-              theta_c: float = 0.0, start=(0.0, 0.0, 0.0), **riding_options) -> Ch4Body:
+              theta_c: float = 0.0, start=(0.0, 0.0, 0.0), **riding_options) -> MujocoBody:
     """The ch. 4 riding body at keyframe ``ride``, the tricycle at ``start`` = (x, y, yaw) on the floor.
 
     ``hip``: ``"weld"`` (hip welded to the saddle, §3.3.2) or ``"contact"`` (sitting only, Table 4.2).
@@ -185,7 +156,7 @@ def build_ch4(obstacles: Sequence[Obstacle] = (), hip: str = "contact", crank_mo
         qpos[adr:adr + 3] = turned + [start[0], start[1], 0.0]
         mujoco.mju_mulQuat(qpos[adr + 3:adr + 7], rot, q)
     hold_riding_pose(model, qpos, riding_options.get("grasp", "weld"))
-    body = Ch4Body(model, substeps=round(CONTROL_PERIOD / model.opt.timestep), keyframe="ride")
+    body = MujocoBody(model, substeps=round(CONTROL_PERIOD / model.opt.timestep), keyframe="ride")
     body.set_equality(HIP_SADDLE, hip == "weld")
     return body
 
@@ -335,36 +306,6 @@ class CrankMotor(Module):
 def travel_of_crank(omega: float) -> float:
     """Speed [m/s] of the tricycle for a crank rate ω_c (no slip: D_c ω_c / 2π)."""
     return TRICYCLE.travel_per_rev * omega / (2 * np.pi)
-
-
-class Group(Module):
-    """Modules run together as one (their contributions add): a Switcher child made of several
-    modules, e.g. the sitting recovery with the legs' IK."""
-
-    def __init__(self, name: str, modules: Sequence[Module]):
-        super().__init__(name, CONTROL_PERIOD)
-        self.modules = list(modules)
-
-    def attach(self, recorder) -> None:
-        super().attach(recorder)
-        for m in self.modules:
-            m.attach(recorder)
-
-    def reset(self, snapshot) -> None:
-        for m in self.modules:
-            m.reset(snapshot)
-        self._tick = 0
-        self._held = [None] * len(self.modules)
-
-    def update(self, snapshot):
-        from shintai.core.runtime import add_into, ticks_per_period
-        total = {}
-        for i, m in enumerate(self.modules):
-            if self._tick % ticks_per_period(m.period, CONTROL_PERIOD, m.name) == 0:
-                self._held[i] = m.update(snapshot)
-            add_into(total, self._held[i])
-        self._tick += 1
-        return total
 
 
 class Freewheel:

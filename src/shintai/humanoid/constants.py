@@ -17,8 +17,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from shintai.core.constants import GRAVITY  # noqa: F401  (9.81 m/s², shared by every body)
+
 DEG = math.pi / 180.0
-GRAVITY = 9.81  # m/s², chosen standard value
 
 # ------------------------------------------------------------------------------------------------
 # Timing
@@ -412,7 +413,7 @@ PEDAL_FORCE_BAND = 30 * DEG
 
 # ------------------------------------------------------------------------------------------------
 # Ch. 4 corrections (§4.3–4.4, §7.3.1, §7.3.2, §7.4.1) — humanoid/corrections.py, navigation.py,
-# ch4_riding.py, ch4_scenarios.py. The thesis gives none of these numbers unless marked.
+# ch4_riding.py, ch4_drive.py, experiments/. The thesis gives none of these numbers unless marked.
 # ------------------------------------------------------------------------------------------------
 
 WHEELBASE = TRICYCLE.crank_to_front + TRICYCLE.crank_to_back  # L of Eqs. 4.15–4.22: front to back shaft (Fig. A.1)
@@ -497,6 +498,28 @@ POSTURE_T_C = 1.0
 PPDM_RISE = 0.4
 PPDM_WINDOW_S = 2.0
 PPDM_PUSH_FACTOR = 2.0  # "push harder": f_trg doubled (150 → 300 N, near Table 7.6's 320 N)
+
+# The legs turning the crank at a commanded rate (drive=legs, ch4_drive.LeadPedal): Eq. 4.22's Δt for
+# the crank target is the thesis's transition time Δt = 0.8 s (§3.5.1); both soles press with Table
+# 3.4's active-leg target f^trg_z = 150 N.
+LEAD_DT = DELTA_T
+LEGS_FZ = 150.0  # N
+# Chosen cruising speeds ẋ^ref over the 10 mm steps (§7.3.1) and toward the 14 mm board (§4.4.3); the
+# thesis gives none (its ch. 3 pedalling was far slower, T_2π = 57.6 s).
+STEPS_SPEED = 0.3  # m/s
+SMALL_SPEED = 0.3  # m/s
+STEP_HEIGHT = 0.010  # m, "≈10 mm" steps (§7.3.1)
+BOARD_THICKNESS = 0.014  # m, the 14 mm wooden board (Fig. 4.22)
+SLIP_START_S = 2.0  # s, chosen: the seat slip of humanoid.sitting-recovery grows from this time on
+
+# Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover); studded pedals under a rubber sole
+# (soles hold on them while pushing hard: PPDM, STAND).
+SADDLE_FRICTION = 0.5
+PEDAL_FRICTION = 1.5
+# Chosen: the ch. 4 rider's whole-body IK runs at 50 Hz (every 5th control period); the servos hold
+# its output between solves. Steering rate limit 15°/s (the thesis: 5° per 1.6 s sample, E7 faster).
+RIDER_PERIOD = 5 * CONTROL_PERIOD
+STEER_RATE = 15 * DEG
 
 # Crank motor standing in for the legs (drive=motor, NOT the thesis's method): velocity servo.
 CRANK_MOTOR_KV = 200.0  # N m s/rad

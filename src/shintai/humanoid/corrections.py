@@ -27,13 +27,13 @@ from collections import deque
 
 import numpy as np
 
+from shintai.core.constants import GRAVITY
 from shintai.core.runtime import Module
 from shintai.core.search_index import SearchIndex, first_order_gain
 from shintai.humanoid.constants import (CONTROL_PERIOD, POSTURE_K_C, POSTURE_T_C, PPDM_RISE, PPDM_WINDOW_S,
                                         RECOVERY_CRANK_TOLERANCE, RECOVERY_LIFT_M, RECOVERY_PHASE_S, RECOVERY_PUSH_N,
                                         RECOVERY_ROLL_THRESHOLD, THETA_C_INIT)
 
-G = 9.81
 
 
 # --- sitting recovery (§4.3.2, §7.4.1) ------------------------------------------------------------
@@ -69,7 +69,7 @@ class RecoveryTrigger:
 
 def hip_force(mass: float, zdd_g: float, f_feet_z, f_hands_z) -> float:
     """Eq. 4.2: F_hip_z = M (z̈_g + g) − (F_rf_z + F_lf_z + F_rh_z + F_lh_z)."""
-    return mass * (zdd_g + G) - float(np.sum(f_feet_z)) - float(np.sum(f_hands_z))
+    return mass * (zdd_g + GRAVITY) - float(np.sum(f_feet_z)) - float(np.sum(f_hands_z))
 
 
 def recovery_index(y_g0: float, l_hip_cog: float) -> SearchIndex:

@@ -4,7 +4,7 @@
 * ``point`` — forward kinematics of the grasp centre / sole (sites ``s_grasp`` / ``s_sole``).
 * ``force`` — f^msr of Eq. 3.13: the environment's force on the hand / foot from the wrist / ankle
   6-axis F/T sensor (:func:`~shintai.humanoid.robots.hrp2.ft_reaction`; pressing on a pedal gives +z).
-* ``command`` — u of Eqs. 3.10–3.11: the IK (:mod:`shintai.humanoid.ik`) of that limb's joints
+* ``command`` — u of Eqs. 3.10–3.11: the IK (:mod:`shintai.sim.ik`) of that limb's joints
   (7 arm / 6 leg joints, within their Table A.2 ranges) for the target ξ, as joint-servo targets.
   An unreachable ξ (IK does not converge inside the joint limits, the Reachability-Map stand-in)
   keeps the previous command — the second branch of Eq. 3.14 applied to the joint input; such
@@ -31,13 +31,14 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid import ik, quat_axis
+from shintai.humanoid import quat_axis
 from shintai.humanoid.active import R_y
 from shintai.humanoid.constants import PEDAL_SOLE_PITCH
 from shintai.humanoid.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.robots.hrp2 import SIDES
 from shintai.humanoid.switching import estimate_handle_angle
 from shintai.humanoid.vehicles.tricycle import steer_axis
+from shintai.sim import ik
 from shintai.sim.body import MujocoBody
 
 KINDS = ("hand", "foot")

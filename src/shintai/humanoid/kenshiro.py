@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shintai.core.interpolation import SequencePlayer
-from shintai.core.runtime import Module, Switcher
+from shintai.core.runtime import Loop, Module, Switcher
 from shintai.core.search_index import SearchIndex
 from shintai.humanoid.active import R_y, crank_angle_of_phase, pedal_trajectory
 from shintai.humanoid.constants import (
@@ -47,6 +47,7 @@ from shintai.humanoid.constants import (
     KENSHIRO_ON_PEDAL_M,
     KENSHIRO_RELAXED_TENDON,
     KENSHIRO_SAMPLE_PERIOD,
+    KENSHIRO_SETTLE_S,
     KENSHIRO_SWITCH_LEAD,
     KenshiroSpec,
 )
@@ -267,3 +268,9 @@ two). ``relaxed`` scales the passive leg's tendon stiffness."""
                    for leg, other in (("left", "right"), ("right", "left"))]
     return Switcher(children, transitions, initial=f"{first_active}-active", name="kenshiro",
                     period=k.control_period), diagnostic
+
+
+def settle(body, seconds: float = KENSHIRO_SETTLE_S) -> None:
+    """Let the rig come to rest on the pedals under its keyframe servos, no module running (before the
+    pedalling starts)."""
+    Loop(body, []).run(seconds)

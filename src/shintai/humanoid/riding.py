@@ -6,7 +6,7 @@ switchable equality (``hold_l``, ``hold_r``: a weld = the 6-DoF bilateral grasp 
 connect = a point hold, or — ``grip`` — a connect plus a second one on the bar, ``hold_l_bar``,
 ``hold_r_bar``: the hand holds the round grip but can turn in it, E1's choice), and each sole rests
 on its freely turning pedal in unilateral contact (no binding, Table 3.1). The initial posture is
-found by IK (:mod:`shintai.humanoid.ik`): hands on the grips with the bar across the hand, soles flat
+found by IK (:mod:`shintai.sim.ik`): hands on the grips with the bar across the hand, soles flat
 on level pedals, waist leaning forward; every servo holds it (keyframe ``ride``).
 
 :func:`build_riding` makes the body; its options choose which grips are held and how, the crank
@@ -41,11 +41,12 @@ import dataclasses
 import mujoco
 import numpy as np
 
-from shintai.humanoid import fill_keyframe, ik, scene_spec, set_joints
+from shintai.humanoid import fill_keyframe, scene_spec, set_joints
 from shintai.humanoid.constants import (ARM_JOINTS, GRIP_BAR_OFFSET, GRIPPER_CLOSED, HRP2_LINKS, LEG_JOINTS,
                                         RIDING_POSTURE, RIDING_WAIST_PITCH, SUBSTEPS, TRICYCLE)
 from shintai.humanoid.robots.hrp2 import SIDES, add_hrp2, side_posture
 from shintai.humanoid.vehicles.tricycle import add_tricycle, tricycle_state
+from shintai.sim import ik
 from shintai.sim.body import MujocoBody
 
 HOLD = {s: f"hold_{s}" for s in SIDES}  # grip equalities

@@ -19,17 +19,13 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from shintai.core.geometry import wrap_pi
 from shintai.humanoid.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
-from shintai.humanoid.ik import cross
+from shintai.sim.ik import cross
 from shintai.humanoid.vehicles.tricycle import grip_position, steer_axis, steer_point
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
-
-
-def wrap_pi(angle: float) -> float:
-    """An angle in (−π, π]."""
-    return float(np.pi - np.mod(np.pi - angle, 2 * np.pi))
 
 
 def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> float:

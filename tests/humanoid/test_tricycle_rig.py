@@ -122,7 +122,7 @@ def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force():
 def test_active_samples_take_the_active_foots_axis_after_the_swap_transient():
     """active_samples: only ticks where the foot is active and settled, f_z or f_x, with 1/|cos θ_c|."""
     from shintai.core.recorder import Recorder
-    from shintai.humanoid.tricycle_scenarios import active_samples
+    from shintai.humanoid.tricycle_rig import active_samples
 
     rec = Recorder()
     for k in range(6):  # left active for ticks 0-2, right for 3-5; wait = 1 tick

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from shintai.humanoid import ik
+from shintai.sim import ik
 from shintai.humanoid.robots import hrp2
 
 ARM = [f"r_{j}" for j in ("shoulder_pitch", "shoulder_roll", "shoulder_yaw", "elbow_pitch", "wrist_yaw",
@@ -145,7 +145,7 @@ def test_random_reachable_poses_are_reached(robot, fractions):
 
 def test_cached_problem_is_per_model_and_gives_the_same_answer():
     """ik.solve reuses its scratch data per (model, joints); a second model gets its own."""
-    from shintai.humanoid import ik as ik_module
+    from shintai.sim import ik as ik_module
     from shintai.humanoid.robots.hrp2 import build_hrp2
 
     a, b = build_hrp2(), build_hrp2()

@@ -33,7 +33,7 @@ def test_posture_steps_short(tmp_path):
 def test_lead_pedal_follows_commanded_crank_rate():
     """Eq. 4.22 from ω_c^ref: the target reaches θ_c + Δt ω_c^ref at the end of the sample (linearly),
     and stays at the measured angle when the command is 0 (the legs hold the crank)."""
-    from shintai.humanoid.ch4_scenarios import LEAD_DT, LeadPedal
+    from shintai.humanoid.ch4_drive import LEAD_DT, LeadPedal
     angle = {"theta": 0.3}
     lead = LeadPedal("legs", lambda s: angle["theta"], None)
     lead.reset({"t": 0.0, "ref:crank_rate": 0.5})

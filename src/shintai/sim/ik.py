@@ -1,10 +1,10 @@
-"""Inverse kinematics: damped least squares on MuJoCo site Jacobians (``mj_jacSite``).
+"""Inverse kinematics: damped least squares on MuJoCo site Jacobians (``mj_jacSite``), for any MuJoCo body.
 
-Seed 000 needs IK twice: the active limbs' joint inputs u for a target end-effector pose (Eq. 3.10–3.11)
-and the reachability test of the passive law (Eq. 3.14: keep ξ^ref if ξ(t) is outside the
-Reachability Map [133]). The thesis's Reachability Map is not specified (spec §6 item 9); its
-stand-in here is :func:`reachable`: the IK converges to the target within tolerance with every joint
-inside its limits.
+Written for seed 000, which needs IK twice: the active limbs' joint inputs u for a target end-effector
+pose (Eq. 3.10–3.11) and the reachability test of the passive law (Eq. 3.14: keep ξ^ref if ξ(t) is
+outside the Reachability Map [133]). The thesis's Reachability Map is not specified (spec §6 item 9);
+its stand-in here is :func:`reachable`: the IK converges to the target within tolerance with every
+joint inside its limits.
 
 :func:`solve` works on a scratch ``MjData``, so a running simulation is not disturbed. Several sites
 are solved at once; each target is a position, a position and an orientation, or a :class:`Target`

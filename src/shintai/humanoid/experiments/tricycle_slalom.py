@@ -1,0 +1,65 @@
+"""``humanoid.tricycle-slalom``: E3/E5, HRP2 steers ±25° and pedals — a right curve, a left curve and the
+slalom of Fig. 3.21 from a joystick script, sequential mode (seed 000 §3.5.2, §3.5.4)."""
+
+from __future__ import annotations
+
+from shintai.humanoid import plots
+from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, DELTA_T, TRICYCLE
+from shintai.humanoid.operation import OperationSchedule
+from shintai.humanoid.ride import Ride, ride_metrics, slalom_goals
+from shintai.humanoid.tricycle_rig import F_TRG
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+
+
+def rig(params, variant):
+    goals = slalom_goals(params["curve_deg"] * DEG, params["limit_deg"] * DEG, params["slalom_deg"] * DEG)
+    schedule = OperationSchedule(0.0, 0.0, goals, DELTA_T * params["time_scale"], D_THETA_H, D_THETA_C)
+    return Ride(schedule, F_TRG, params["crank_error_mm"], params["handle_error_mm"]).rig()
+
+
+def metrics(runs, params):
+    return ride_metrics(runs["run"].log, runs["run"].state)
+
+
+def draw(ctx, runs, params):
+    log = runs["run"].log
+    plots.ride(ctx, [(log, "curves at −25°, +25°, then the slalom (Fig. 3.21), sequential mode", F_TRG)])
+    plots.paths(ctx, [(log, "vehicle path")])
+
+
+experiment(
+    "humanoid.tricycle-slalom",
+    source="seed 000 §3.5.2 (E3, Figs. 3.19–3.21), §3.5.4 (E5, Fig. 3.24), Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19",
+    summary="E3/E5: HRP2 steers ±25° and pedals — a right curve, a left curve and a slalom from a joystick script",
+    params=[
+        Param("time_scale", 1.0, "Δt = 0.8 s × time_scale (1 = the thesis's lab setting)", lo=0.1, hi=1.0),
+        Param("curve_deg", 180.0, "crank angle pedalled on each of the two curves [deg]", lo=10.0, hi=360.0),
+        Param("slalom_deg", 360.0, "crank angle of the slalom, half at −Θ_H, half at +Θ_H [deg] (Fig. 3.21: 360°)",
+              lo=20.0, hi=720.0),
+        Param("limit_deg", 25.0, "steering amplitude Θ_H [deg] (Table 3.4: 25°)", lo=5.0, hi=25.0),
+        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+        Param("handle_error_mm", 10.0, "true steering axis ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+    ],
+    checks=[
+        Check("falls", "==", 0, "thesis §3.5.2 / §3.5.4: the curves and the slalom were driven without falling"),
+        Check("max_handle_error_deg", "<=", D_THETA_H / DEG,
+              "spec §5.4 check 7: each commanded θ_h reached within one Δθ_h step (5°)"),
+        Check("leg_role_swaps", "==", "leg_role_swaps_expected",
+              "Eq. 3.19: one leg swap per switching angle π/2 + δ_c + kπ the crank passes"),
+        Check("arm_role_swaps", "==", "arm_role_swaps_expected",
+              "Eq. 3.19 (θ_h^init = 0): one arm swap per pass of the handle through 0"),
+        Check("drive_wheel_travel_per_rev_m", ">=", 0.97 * TRICYCLE.travel_per_rev,
+              "App. A.1.1: D_c = 2.45 m per revolution of the driven wheel, no slip (§3.5.1) (−3 %)"),
+        Check("drive_wheel_travel_per_rev_m", "<=", 1.03 * TRICYCLE.travel_per_rev, "App. A.1.1 (+3 %)",
+              name="drive_wheel_travel_upper"),
+        Check("passive_force_mean_n", ">=", 0.9 * F_TRG, "spec §5.4 check 8 carried over to driving (−10 %)"),
+        Check("passive_force_mean_n", "<=", 1.1 * F_TRG, "spec §5.4 check 8 (+10 %)", name="passive_force_upper"),
+    ],
+    thesis={
+        "steering_range_deg": ThesisValue([-25.0, 25.0], "seed 000 §3.5.2 (Figs. 3.19–3.21), Table 3.4",
+                                          "handle_range_deg"),
+        "result": ThesisValue("curves and slalom driven (snapshots only, no numbers)", "seed 000 §3.5.2, §3.5.4"),
+    },
+    rig=rig, metrics=metrics, plots=draw,
+    video=True,
+)
