@@ -24,3 +24,20 @@ def test_model_command_lists_and_exports(tmp_path, capsys):
     assert main(["model", "sim.wall-corner", "--out", str(tmp_path)]) == 0
     assert (tmp_path / "sim.wall-corner.xml").exists()
     assert main(["model", "nope", "--out", str(tmp_path)]) == 2
+
+
+def test_exported_scene_starts_where_the_body_starts(tmp_path):
+    """What a builder sets on the compiled model (the seated keyframe, the holds' relative poses) is
+    exported too: the reloaded HRP2-on-tricycle scene starts in the same state and stays seated."""
+    from shintai.humanoid.riding import build_riding
+
+    body = build_riding()
+    reloaded = mujoco.MjModel.from_xml_path(str(export("humanoid.hrp2-tricycle", tmp_path)))
+    key = reloaded.key("ride")
+    # MJCF prints 6 significant digits; anchors and relative poses are eq_data[:, :10]
+    assert key.qpos == pytest.approx(body.model.key("ride").qpos, abs=1e-5)
+    assert reloaded.eq_data[:, :10] == pytest.approx(body.model.eq_data[:, :10], abs=1e-5)
+    data = mujoco.MjData(reloaded)
+    mujoco.mj_resetDataKeyframe(reloaded, data, key.id)
+    mujoco.mj_step(reloaded, data, 250)  # 0.25 s held by the keyframe's servo targets
+    assert abs(data.qpos - key.qpos).max() < 0.05

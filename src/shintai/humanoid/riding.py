@@ -188,10 +188,10 @@ def build_riding(theta_h: float = 0.0, theta_c: float = 0.0, held=("l", "r"), gr
     much farther out from the steering axis (each side; a handlebar half-width error, E1);
     ``rake_error`` rad: the true steering axis inclined this much more than the nominal rake (E1).
     """
-    model = riding_spec(grasp, held, crank_damping, crank_friction, handle_error, crank_error,
-                        grip_error, rake_error).compile()
+    spec = riding_spec(grasp, held, crank_damping, crank_friction, handle_error, crank_error, grip_error, rake_error)
+    model = spec.compile()
     hold_riding_pose(model, riding_posture(model, theta_h, theta_c), grasp)
-    return MujocoBody(model, substeps=substeps, keyframe="ride")
+    return MujocoBody(model, substeps=substeps, keyframe="ride", spec=spec)
 
 
 def hold_riding_pose(model: mujoco.MjModel, qpos: np.ndarray, grasp: str) -> None:

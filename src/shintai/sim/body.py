@@ -97,11 +97,13 @@ class MujocoBody(Body):
     :class:`shintai.sim.VideoRecorder` adds its ``capture`` there).
     """
 
-    def __init__(self, source: ModelSource, substeps: int = 1, keyframe: str | int | None = None):
+    def __init__(self, source: ModelSource, substeps: int = 1, keyframe: str | int | None = None,
+                 spec: mujoco.MjSpec | None = None):
         if int(substeps) != substeps or substeps < 1:
             raise ValueError(f"substeps must be a positive integer, got {substeps!r}")
         self.model = load_model(source)
-        self.spec = source if isinstance(source, mujoco.MjSpec) else None  # kept for export (sim/export.py)
+        # kept for export (sim/export.py): the source, or the spec a compiled model came from
+        self.spec = source if isinstance(source, mujoco.MjSpec) else spec
         self.data = mujoco.MjData(self.model)
         self.substeps = int(substeps)
         self.ids = {kind: self._name_ids(kind) for kind in _OBJ}

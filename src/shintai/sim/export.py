@@ -56,7 +56,7 @@ def to_spec(built) -> mujoco.MjSpec:
     if isinstance(built, MujocoBody):
         if built.spec is None:
             raise TypeError("a MujocoBody built from a compiled MjModel cannot be exported; build it from an MjSpec")
-        built = built.spec
+        return with_model_values(built.spec, built.model)
     if isinstance(built, mujoco.MjSpec):
         return built
     if isinstance(built, str) and built.lstrip().startswith("<"):
@@ -64,6 +64,18 @@ def to_spec(built) -> mujoco.MjSpec:
     if isinstance(built, (str, Path)):
         return mujoco.MjSpec.from_file(str(built))
     raise TypeError(f"a model builder returned {type(built).__name__}; expected an MjSpec, MJCF or a MujocoBody")
+
+
+def with_model_values(spec: mujoco.MjSpec, model: mujoco.MjModel) -> mujoco.MjSpec:
+    """``spec`` with what its builder set on the compiled ``model`` afterwards: keyframes (the posture a
+    scene starts in) and equality data (the relative poses of holds welded where the robot sits)."""
+    for key in spec.keys:
+        k = model.key(key.name)
+        key.qpos, key.qvel, key.act, key.ctrl = k.qpos, k.qvel, k.act, k.ctrl
+        key.mpos, key.mquat, key.time = k.mpos, k.mquat, float(k.time[0])
+    for i, eq in enumerate(spec.equalities):
+        eq.data, eq.active = model.eq_data[i], bool(model.eq_active0[i])
+    return spec
 
 
 def compiled(model_id: str) -> tuple[mujoco.MjSpec, mujoco.MjModel]:

@@ -179,7 +179,7 @@ def build_hrp2(links: Hrp2Links = HRP2_LINKS, substeps: int = SUBSTEPS) -> Mujoc
     leg = links.thigh * np.cos(hip) + links.shank * np.cos(hip + knee)
     qpos[:3] = [0, 0, -links.hip_z + leg + links.ankle_height]
     fill_keyframe(model, "stand", qpos)
-    return MujocoBody(model, substeps=substeps, keyframe="stand")
+    return MujocoBody(model, substeps=substeps, keyframe="stand", spec=spec)
 
 
 def ft_reaction(body: MujocoBody, snapshot, name: str) -> tuple[np.ndarray, np.ndarray]:

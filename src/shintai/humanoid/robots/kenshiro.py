@@ -160,9 +160,10 @@ def build_kenshiro(theta_c: float = 0.0, foot_pitch: float = 0.0, k: KenshiroSpe
 
     One body step is Kenshiro's 16 ms control period (§3.5.5) unless ``substeps`` says otherwise.
     """
-    model = kenshiro_spec(k, crank_damping, crank_friction).compile()
+    spec = kenshiro_spec(k, crank_damping, crank_friction)
+    model = spec.compile()
     qpos = model.qpos0.copy()
     set_joints(model, qpos, riding_posture(theta_c, foot_pitch, k))
     fill_keyframe(model, "ride", qpos)
     steps = round(k.control_period / PHYSICS_TIMESTEP) if substeps is None else substeps
-    return MujocoBody(model, substeps=steps, keyframe="ride")
+    return MujocoBody(model, substeps=steps, keyframe="ride", spec=spec)

@@ -212,4 +212,4 @@ def build_tricycle(theta_h: float = 0.0, theta_c: float = 0.0, t: TricycleSpec =
     qpos = model.qpos0.copy()
     tricycle_state(model, qpos, theta_h, theta_c, t)
     fill_keyframe(model, "park", qpos)
-    return MujocoBody(model, substeps=substeps, keyframe="park")
+    return MujocoBody(model, substeps=substeps, keyframe="park", spec=spec)

@@ -1,0 +1,30 @@
+"""The humanoid's MuJoCo models for export (``shintai model``, :mod:`shintai.sim.export`): HRP2-JSK standing
+(App. A.2.1), the tricycle (App. A.1.1), HRP2-JSK seated on it with both hands on the handle (ch. 3) and
+Kenshiro's planar legs on the crank (§3.5.5)."""
+
+from shintai.humanoid.riding import build_riding
+from shintai.humanoid.robots.hrp2 import build_hrp2
+from shintai.humanoid.robots.kenshiro import build_kenshiro
+from shintai.humanoid.vehicles.tricycle import build_tricycle
+from shintai.sim.export import model
+
+
+@model("humanoid.hrp2", "HRP2-JSK-like humanoid standing on the floor (seed 000 App. A.2.1, Tables A.1/A.2)")
+def hrp2():
+    return build_hrp2()
+
+
+@model("humanoid.tricycle", "the tricycle of seed 000 App. A.1.1: steered front wheel with cranks, two rear wheels")
+def tricycle():
+    return build_tricycle()
+
+
+@model("humanoid.hrp2-tricycle", "HRP2-JSK seated on the tricycle, hands on the handle, soles on the pedals "
+                                 "(humanoid.tricycle-pedaling, -steering, -slalom)")
+def hrp2_tricycle():
+    return build_riding()
+
+
+@model("humanoid.kenshiro", "Kenshiro's planar legs on the tricycle crank (humanoid.kenshiro-pedaling, §3.5.5)")
+def kenshiro():
+    return build_kenshiro()
