@@ -7,6 +7,9 @@
                                 or off (:mod:`shintai.gym.snake`)
 ``shintai/ClaPosture-v0``       seed 003 §4.7: Cla's muscle spine holds a bend, muscle length commands
                                 (:mod:`shintai.gym.spine`)
+``shintai/TricyclePedal-v0``    seed 000 ch. 3: HRP2 drives the tricycle to a goal, one Fig. 3.16 command sample
+                                (handle and crank steps) per action, carried out by the active/passive limbs
+                                (:mod:`shintai.gym.tricycle`)
 ``shintai/QuadrupedCrawl-v0``   seed 004 §4: TITAN-VIII to its destination past a wall and a low obstacle,
                                 one walking cycle's displacement per action (:mod:`shintai.gym.quadruped`)
 ==============================  =====================================================================
@@ -25,6 +28,7 @@ except ImportError as exc:  # the optional extra
 ENVIRONMENTS = {
     "shintai/SnakeTwoPoint-v0": ("shintai.gym.snake:SnakeTwoPointEnv", 600),
     "shintai/ClaPosture-v0": ("shintai.gym.spine:ClaPostureEnv", 60),
+    "shintai/TricyclePedal-v0": ("shintai.gym.tricycle:TricyclePedalEnv", 60),
     "shintai/QuadrupedCrawl-v0": ("shintai.gym.quadruped:QuadrupedCrawlEnv", 50),  # seed 004 §4.1.2: 50 cycles
 }
 
