@@ -91,3 +91,9 @@ def test_the_layout_test_sees_imports():
     found = dict(imports(SRC / "scenarios" / "registry.py"))
     assert any(m.startswith("shintai.") for m in found)
     assert MODULES and any(is_experiment(m) for m in MODULES)
+
+
+def test_no_body_keeps_a_scenarios_module():
+    """Scenarios live one per file in ``<body>/experiments/`` (issue 12); the old ``*scenarios*.py`` are gone."""
+    left = [str(p.relative_to(SRC)) for p in FILES if "scenarios" in p.stem and p.parent.name != "scenarios"]
+    assert not left, left

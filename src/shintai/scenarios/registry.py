@@ -271,7 +271,7 @@ def experiment_modules() -> list[str]:
     for package in shintai.body_modules("experiments"):
         folder = Path(shintai.__path__[0]) / package.split(".")[1] / "experiments"
         names += [f"{package}.{m.name}" for m in pkgutil.iter_modules([str(folder)]) if not m.ispkg]
-    return names + shintai.body_modules("scenarios") + shintai.body_modules("benchmarks")
+    return names + shintai.body_modules("benchmarks")
 
 
 def load_all() -> None:
