@@ -41,8 +41,8 @@ ROWS = (
                "No angle error, no hand force reported; no both-active steering run",
         difference="MuJoCo with a grip half-width 10 mm wider than the nominal model (ours; the thesis names no "
                    "model error); every 5° command reached within 1.6° (±25.9°), one swap at +0.5°. The "
-                   "active/passive vs both-active force comparison (squeeze 9.2 vs 20.1 N RMS; two active arms hold the "
-                   "handle closer, 0.76°) is ours — the "
+                   "active/passive vs both-active force comparison (squeeze 9.2 vs 20.1 N RMS; two active arms hold "
+                   "the handle closer, 0.76°) is ours — the "
                    "thesis measured no hand forces — and reverses for a shifted steering axis",
     ),
     Row(
@@ -207,7 +207,8 @@ ROWS = (
         result="§4.3.3: '搭乗したヒューマノイドが車体ごと傾斜した環境に応じて上体が水平となるよう実時間で修復を行い"
                "ながらバランスを保持している' (snapshot, qualitative); k_C, T_C not given",
         difference="humanoid.posture-steps: 10 mm boards under one back-wheel track at 0.3 m/s (ours), k_C and T_C "
-                   "ours; max trunk roll 1.47° with the control against 2.44° without (RMS 0.38° vs 1.22°), vehicle roll 1.56°",
+                   "ours; max trunk roll 1.47° with the control against 2.44° without (RMS 0.38° vs 1.22°), "
+                   "vehicle roll 1.56°",
     ),
     Row(
         key="000:fig4.10b",
