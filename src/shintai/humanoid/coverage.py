@@ -138,7 +138,7 @@ ROWS = (
                "Rollまわりの回転モーメントの外乱発生による転倒も懸念事項である'",
         difference="flat floor and our route (−25°, +25°, 0 over one revolution); no fall (on a flat floor this can "
                    "barely fail)",
-        why_not="pace not reproduced: 2.73 m in 89.6 s (0.030 m/s, 89.6 s per crank revolution with the lab "
+        why_not="pace not reproduced: 2.73 m in 89.6 s (0.030 m/s, 89.3 s per crank revolution with the lab "
                 "Δt = 0.8 s) against 12.8 m in 164 s (0.078 m/s; 164 s / (12.8 m / 2.45 m) = 31.4 s per revolution, "
                 "≈1.8× faster than Eq. 3.20's 57.6 s; check ≤ 1.3 × 31.4 s, tolerance ours) — the outdoor Δt is not "
                 "given, and calibrating ours to 164 s would make the pace an input",
