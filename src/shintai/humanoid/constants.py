@@ -408,7 +408,8 @@ PEDAL_SOLE_PITCH = 0.0  # rad, sole pitch about the crank axis relative to the v
 # Chosen (evaluation only, E4 §3.5.3): the active foot's force is summarised "near the crank
 # horizontal" (|cos θ_c| ≥ cos 30°) and "near the dead centres" (|cos θ_c| ≤ sin 30°), a third of
 # the circle each, so that both bands hold several 10° command samples (the ±20 N per-sample ripple
-# averages out) while staying where the thesis's 1/|cos θ_c| is ≤ 1.15 and ≥ 2 respectively.
+# averages out) — the bands in which §3.5.3 measured the rise near TDC/BDC and ≈150 N at the
+# horizontal (1/|cos θ_c|, the thesis's conjectured order, is ≤ 1.15 and ≥ 2 there).
 PEDAL_FORCE_BAND = 30 * DEG
 
 # ------------------------------------------------------------------------------------------------

@@ -25,7 +25,7 @@ def variants(params):
 def rig(params, variant):
     """Active/passive: the left leg starts active at θ_c = 0, the roles swap at 110° and 290° (§3.5.2).
     Both active: the same samples, both feet on the nominal circle under the active impedance."""
-    body = riding.build_riding(crank_error=(params["crank_error_mm"] / 1000, 0.0))
+    body = riding.build_riding(crank_error=(params["crank_error_mm"] / 1000, params["crank_error_up_mm"] / 1000))
     feet = riding_limbs(body, "foot")
     dt = DELTA_T * params["time_scale"]
     if variant == AP:
@@ -107,35 +107,78 @@ def draw(ctx, runs, params):
 
 experiment(
     "humanoid.tricycle-pedaling",
+    covers=("000:fig3.18", "000:fig3.22", "000:fig3.22-active"),
     source="seed 000 §3.5.2–3.5.3, Eqs. 3.7, 3.13–3.14, 3.19–3.20, Fig. 3.18, Fig. 3.22",
     summary="E2/E4: HRP2 pedals one crank revolution with active/passive legs (150 N), vs. two active legs",
     params=[
         Param("time_scale", 1.0, "Δt = 0.8 s × time_scale (1 = the thesis's lab setting)", lo=0.1, hi=1.0),
         Param("revolutions", 1.0, "crank revolutions of the active/passive run", lo=0.1, hi=2.0),
         Param("both_active_revolutions", 1.0, "crank revolutions of the both-active comparison run", lo=0.0, hi=2.0),
-        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm] (spec §5.4 check 8)",
+        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm] (ours: the thesis names no "
+              "model error)", lo=0.0, hi=30.0),
+        Param("crank_error_up_mm", 0.0, "true crank centre above the nominal model [mm] (a probe, see the notes)",
               lo=0.0, hi=30.0),
     ],
     checks=[
-        Check("passive_force_mean_n", ">=", 0.9 * F_TRG, "spec §5.4 check 8 [PROPOSAL]: mean within −10 % of f^trg"),
-        Check("passive_force_mean_n", "<=", 1.1 * F_TRG, "spec §5.4 check 8: within +10 %", name="passive_force_upper"),
-        Check("passive_force_min_n", ">", 0.0, "thesis §3.5.3 (E4): the passive foot keeps contact with its pedal"),
+        Check("crank_advance_deg", ">=", 355.0,
+              "thesis §3.5.2: one revolution pedalled, Fig. 3.18 (1)–(8) ('Pedaling Manipulation on 1-Cycle by Active "
+              "Leg and Passive Leg'; '搭乗型機器の操作行動が適切に実現されている'); the 5° slack is ours",
+              name="one_revolution", kind="reproduction", row="000:fig3.18"),
+        Check("passive_force_mean_n", ">=", 0.9 * F_TRG,
+              "thesis §3.5.3, Fig. 3.22-(II): '片方の脚マニピュレータに受動機能を備えることで,図 3.22 -(II) のように"
+              "目標接触力追従が可能となり' (f^trg_z = 150 N, Table 3.4); the ±10 % band is ours (the seed gives none)",
+              kind="reproduction", row="000:fig3.22"),
+        Check("passive_force_mean_n", "<=", 1.1 * F_TRG, "as passive_force_mean_n (+10 %, ours)",
+              name="passive_force_upper", kind="reproduction", row="000:fig3.22"),
+        Check("passive_force_min_n", ">", 0.0,
+              "thesis §3.5.3: '受動機能側の足とペダルの接触力が十分に保たれていることが分かる'", kind="reproduction",
+              row="000:fig3.22"),
         Check("both_active_force_rms_error_n", ">", "passive_force_rms_error_n",
-              "thesis claim §3.5.3 / Fig. 3.22: two active legs track 150 N worse than the passive leg"),
-        Check("active_force_cos_corr", ">=", 0.5,
-              "thesis claim §3.5.3: the active leg's f_z grows roughly as 1/|cos θ_c| (threshold: ours, 'strong')"),
-        Check("role_swaps", "==", "revolutions_x2", "thesis §3.5.2 / Eq. 3.19: two swaps per revolution"),
+              "thesis §3.5.3: '双脚とも能動機能の場合は両足の目標接触力に対する追従が難しく,160[N] 付近を中心に高低変動"
+              "が観察された' against the passive foot's tracking in Fig. 3.22-(II)", kind="reproduction",
+              row="000:fig3.22"),
+        Check("both_active_force_mean_n", ">", F_TRG,
+              "thesis §3.5.3: '能動機能を備えた脚については図 3.22 -(I),(II) ともに 150[N] を上回っている' (in (I) both "
+              "legs are active)", name="both_active_force_above_target", kind="reproduction", row="000:fig3.22"),
+        Check("both_active_force_mean_n", ">=", 155.0,
+              "thesis §3.5.3: '… 160[N] 付近を中心に高低変動が観察された' (Fig. 3.22-(I)); ±5 N ours — half the gap "
+              "between the 160 N and the 150 N the thesis tells apart", name="both_active_force_near_160",
+              kind="reproduction", row="000:fig3.22"),
+        Check("both_active_force_mean_n", "<=", 165.0, "as both_active_force_near_160 (+5 N, ours)",
+              name="both_active_force_near_160_upper", kind="reproduction", row="000:fig3.22"),
+        Check("active_force_dead_centre_n", ">", "active_force_horizontal_n",
+              "thesis §3.5.3, measured on the real robot (Fig. 3.22-(II)): '上死点及び下死点付近(縦の黒線付近)において"
+              "は鉛直接触力の増大が見られ,クランクが水平となる地点 … では下回って 150[N] に近づくような波形が見られる' "
+              "(within 30° of TDC/BDC against within 30° of the horizontal: ours)",
+              name="active_force_rises_near_dead_centres", kind="reproduction", row="000:fig3.22-active"),
+        Check("active_force_mean_n", ">", F_TRG,
+              "thesis §3.5.3: '能動機能を備えた脚については図 3.22 -(I),(II) ともに 150[N] を上回っている'",
+              name="active_force_above_target", kind="reproduction", row="000:fig3.22-active"),
+        Check("role_swaps", "==", "revolutions_x2",
+              "Eq. 3.19 as implemented (θ_c^SW = θ_c^init + kπ, §3.4.4): two swaps per revolution by definition",
+              kind="consistency"),
         Check("swap_angle_error_deg", "<=", 1.0,
-              "Eq. 3.19 at 110°/290°; derived: hysteresis 0.5° plus method (a) error"),
-        Check("revolution_time_ratio", ">=", 0.97, "thesis Eq. 3.20: T_2π = 2π · 2Δt / Δθ_c (−3 %)"),
-        Check("revolution_time_ratio", "<=", 1.03, "Eq. 3.20 (+3 %); derived: the crank reaches its last target "
-              "(within 1°) as the last sample's passive phase ends, up to a servo lag", name="revolution_time_upper"),
-        Check("travel_per_rev_m", ">=", 0.98 * TRICYCLE.travel_per_rev, "thesis App. A.1.1: D_c = 2.45 m (−2 %)"),
-        Check("travel_per_rev_m", "<=", 1.02 * TRICYCLE.travel_per_rev, "App. A.1.1 (+2 %)", name="travel_upper"),
+              "Eq. 3.19 at 110°/290°; derived: hysteresis 0.5° plus method (a) error", kind="consistency"),
+        Check("revolution_time_ratio", ">=", 0.97,
+              "follows from our schedule: Eq. 3.20 is the thesis's estimate ('T_2π = … = 57.6[s] (3.20) と見積ることが"
+              "できる', §3.5.2), and our schedule is built from the same Δt = 0.8 s and Δθ_c = 10° (−3 %)",
+              kind="consistency"),
+        Check("revolution_time_ratio", "<=", 1.03, "as above (+3 %); derived: the crank reaches its last target "
+              "(within 1°) as the last sample's passive phase ends, up to a servo lag", name="revolution_time_upper",
+              kind="consistency"),
+        Check("travel_per_rev_m", ">=", 0.98 * TRICYCLE.travel_per_rev,
+              "follows from our input: D_c = 2.45 m is the tricycle's gear setting (App. A.1.1: '… D_c が 2.45[m] と"
+              "なるようなクランクギアに設定している') built into our model; confirms only that our wheels do not slip (−2 %)",
+              kind="consistency"),
+        Check("travel_per_rev_m", "<=", 1.02 * TRICYCLE.travel_per_rev, "as above (+2 %)", name="travel_upper",
+              kind="consistency"),
     ],
     thesis={
-        "revolution_time_s": ThesisValue(57.6, "seed 000 Eq. 3.20 (Δt = 0.8 s, Δθ_c = 10°)", "revolution_time_s"),
-        "travel_per_rev_m": ThesisValue(2.45, "seed 000 App. A.1.1", "travel_per_rev_m"),
+        "revolution_time_s": ThesisValue(57.6, "seed 000 Eq. 3.20 (an estimate from Δt = 0.8 s, Δθ_c = 10°, not a "
+                                         "measurement)", "revolution_time_s"),
+        "travel_per_rev_m": ThesisValue(2.45, "seed 000 App. A.1.1 (the gear setting)", "travel_per_rev_m"),
+        "active_force_shape": ThesisValue("> 150 N, rising near TDC/BDC, near 150 N at the crank horizontal",
+                                          "seed 000 §3.5.3, Fig. 3.22-(II) (measured)", "active_force_dead_centre_n"),
         "both_active_force_centre_n": ThesisValue(160.0, "seed 000 §3.5.3 (Fig. 3.22-(I), ≈160 N)",
                                                   "both_active_force_mean_n"),
         "passive_force_target_n": ThesisValue(150.0, "seed 000 Table 3.4, Fig. 3.22-(II)", "passive_force_mean_n"),
