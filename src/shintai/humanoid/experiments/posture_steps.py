@@ -90,7 +90,8 @@ experiment(
               kind="reproduction"),
         Check("max_trunk_roll_with_deg", "<", "max_vehicle_roll_with_deg",
               "thesis §4.3.3, Fig. 4.10-(A): '搭乗したヒューマノイドが車体ごと傾斜した環境に応じて上体が水平となるよう"
-              "実時間で修復を行いながらバランスを保持している' — the upper body more level than the tilted vehicle",
+              "実時間で修復を行いながらバランスを保持している' — the upper body more level than the tilted vehicle"
+              " (added with our 1.47° and 1.56° known; both maxima, taken at different instants)",
               name="trunk_roll_below_vehicle_roll", kind="reproduction", row="000:fig4.10a"),
         Check("steps_crossed_with", "==", 1,
               "thesis §7.3.1: '… 実時間並行処理型姿勢制御の貢献により運転操作を途中で中断することなく転倒せずに移動"
