@@ -34,3 +34,14 @@ def test_a_handle_step_turns_the_handle_and_holds_the_crank(driven):
     assert after[8] == pytest.approx(5 * DEG) and after[9] == before[9]
     assert after[6] == pytest.approx(5 * DEG, abs=2 * DEG)
     assert abs(after[7] - before[7]) < 3 * DEG
+
+
+def test_reset_settles_and_the_zero_action_holds():
+    env = gym.make("shintai/TricyclePedal-v0")
+    obs0, _ = env.reset(seed=1)
+    assert min(obs0[10], obs0[11]) > 100.0  # pedal forces settled toward Table 3.4's 150 N, not the keyframe's 15 N
+    obs, reward, terminated, _, info = env.step(np.zeros(2))
+    env.close()
+    assert obs[8] == 0.0 and obs[9] == 0.0  # nothing commanded
+    assert abs(obs[7] - obs0[7]) < 2 * DEG and abs(reward) < 0.02
+    assert info == {"outcome": "driving"} and not terminated

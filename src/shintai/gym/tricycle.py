@@ -10,15 +10,20 @@ the command samples come from: here an :class:`OperatorModule` appends one per a
 follow (Fig. 3.16 steps 1 and 4), instead of a joystick script. Each episode asks the robot to drive to a goal
 drawn ahead of it (seeded).
 
-* **Action** (2,) in [−1, 1]: the sample's handle step Δθ_h = a₀ · 5° and crank step Δθ_c = (a₁ + 1)/2 · 10°
-  (Δθ_h = 5°, Δθ_c = 10°: §3.5.2; the crank only forward, as the thesis pedals). The handle target stays within
+* **Action** (2,) in [−1, 1]: the sample's handle step Δθ_h = a₀ · 5° and crank step Δθ_c = max(a₁, 0) · 10°
+  (Δθ_h = 5°, Δθ_c = 10°: §3.5.2; the crank only forward, as the thesis pedals: a₁ ≤ 0 holds it, so the zero
+  action holds both). The handle target stays within
   ±25° (Θ_H, Table 3.4, §3.5.2).
-* **Observation** (14,): the tricycle's pose in the world (x, y [m], yaw [rad]) and speed [m/s], the goal in the
+* **Observation** (14,): the tricycle's pose in the world (x, y [m], yaw [rad]) and the speed of its frame's
+  origin (on the crank axis) [m/s], the goal in the
   vehicle frame (x, y [m]), the handle and crank angles the robot measures by its FK (method (a), §3.4.4)
   [rad], the commanded ones [rad], each foot's vertical pedal force [N], and which leg and arm are active
   (1 = left).
 * **Reward**: the distance to the goal gained in the step [m]; −1 and the episode ends if the vehicle tips over
-  (tilt above ``FALL_TILT``).
+  (tilt above ``FALL_TILT``, 30°, as in the tricycle scenarios). ``info["outcome"]``: ``"goal"``, ``"fell"`` or
+  ``"driving"``.
+* **Reset** lets the seated robot settle for one command sample with no step (the pedal forces rise from the
+  keyframe's ≈15 N to Table 3.4's 150 N), so the first observation is a settled one.
 * **Terminated** at the goal (within ``GOAL_RADIUS_M``). One step is one command sample, 2Δt = 1.6 s (Δt = 800 ms,
   §3.5.2); episodes of at most 60 samples (96 s, about 1.7 crank revolutions at full pedalling).
 """
@@ -26,6 +31,7 @@ drawn ahead of it (seeded).
 from __future__ import annotations
 
 import gymnasium as gym
+import mujoco
 import numpy as np
 
 from shintai.core.runtime import SET, Channel, Module
@@ -67,7 +73,7 @@ class TricyclePedalEnv(LoopEnv):
 
     agent_period = 2 * DELTA_T
     action_channel = OPERATION.name
-    metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 1 / (2 * DELTA_T)}  # one frame per step: real time
 
     def __init__(self, render_mode: str | None = None):
         super().__init__(render_mode)
@@ -90,7 +96,15 @@ class TricyclePedalEnv(LoopEnv):
 
     def to_command(self, action):
         a = np.asarray(action, dtype=float)
-        return np.array([a[0] * D_THETA_H, (a[1] + 1.0) / 2.0 * D_THETA_C])
+        return np.array([a[0] * D_THETA_H, max(a[1], 0.0) * D_THETA_C])
+
+    def reset(self, *, seed=None, options=None):
+        super().reset(seed=seed, options=options)
+        self.agent.action = np.zeros(2)  # one sample with no step: the robot settles on its seat and pedals
+        self.loop.run(self.agent_period)
+        self.snapshot = self.loop.view(self.loop.body.snapshot())
+        self.distance = float(np.linalg.norm(self.goal - self._vehicle()[0][:2]))
+        return self.observe(self.snapshot), {}
 
     def _vehicle(self):
         body = self.ride.body
@@ -102,7 +116,10 @@ class TricyclePedalEnv(LoopEnv):
         pos, rot = self._vehicle()
         yaw = float(np.arctan2(rot[1, 0], rot[0, 0]))
         body = self.ride.body
-        velocity = body.data.cvel[body.id("body", "tricycle")][3:]  # linear part (world-aligned, at the CoM)
+        velocity = np.zeros(6)  # (angular, linear) of the vehicle frame's origin, world axes
+        mujoco.mj_objectVelocity(body.model, body.data, mujoco.mjtObj.mjOBJ_BODY, body.id("body", "tricycle"),
+                                 velocity, 0)
+        velocity = velocity[3:]
         goal = rot[:2, :2].T @ (self.goal - pos[:2])
         samples = self.ride.schedule.samples
         cmd = (samples[-1].theta_h, samples[-1].theta_c) if samples else (0.0, 0.0)
@@ -126,6 +143,9 @@ class TricyclePedalEnv(LoopEnv):
 
     def terminated(self, snapshot):
         return self._tipped() or self.distance < GOAL_RADIUS_M
+
+    def info(self, snapshot):
+        return {"outcome": "fell" if self._tipped() else "goal" if self.distance < GOAL_RADIUS_M else "driving"}
 
     def camera(self):
         return dict(RIDE_VIEW)
