@@ -13,14 +13,23 @@ from shintai.scenarios.runner import run_scenario
 
 def test_replay_scenario_passes_and_writes_its_outputs(tmp_path):
     result = run_scenario("quadruped.replay", out=tmp_path, quiet=True)
-    assert result["ok"], result.get("error") or [c for c in result["checks"] if not c["ok"]]
+    assert "error" not in result, result.get("error")
+    # what does not reproduce (coverage rows 004:table3-7, notes/replay.md); every consistency check holds
+    assert {c["name"] for c in result["checks"] if not c["ok"]} == {
+        "table3_final_error_vector_as_thesis", "table6_final_error_vector_as_thesis",
+        "table7_final_error_vector_as_thesis", "rbfnn_suboptimal_cycles_as_thesis", "exhaustive_picks_table4_orders"}
     m = result["metrics"]
+    assert m["rbfnn_suboptimal_cycles"] == "5, 6, 7" and m["rbfnn_suboptimal_cycles_mismatch"] == 3
+    assert m["exhaustive_orders_as_table4"] == m["table4_orders_optimal"] == 6
     assert m["table6_climbing_legs"] == "1" and m["table7_climbing_legs"] == "24"
     table4 = [S.format_order(o) for o in C.TABLE4_ORDERS]
     assert m["exhaustive_orders_as_table4"] == sum(a == b for a, b in zip(m["exhaustive_orders"].split(", "), table4))
     for t in ("table3", "table6", "table7"):  # compared with the thesis's own text values, not a dead reckoning
         assert m[f"{t}_final_error_vs_thesis_m"] == pytest.approx(
             abs(m[f"{t}_final_error_m"] - np.hypot(*C.PAPER_FINAL_ERROR[t])))
+        d = np.array([m[f"{t}_final_error_x_m"], m[f"{t}_final_error_y_m"]]) - C.PAPER_FINAL_ERROR[t]
+        assert (m[f"{t}_final_error_dx_vs_thesis_m"], m[f"{t}_final_error_dy_vs_thesis_m"]) == pytest.approx(tuple(d))
+        assert m[f"{t}_final_error_vector_vs_thesis_m"] == pytest.approx(np.hypot(*d))
     assert "exhaustive_not_worse_than_rbfnn" not in {c["name"] for c in result["checks"]}
     assert json.loads((tmp_path / "metrics.json").read_text())["scenario"] == "quadruped.replay"
     assert (tmp_path / "paths.png").exists() and (tmp_path / "body_movement.png").exists()

@@ -64,6 +64,10 @@ class LoopEnv(gym.Env):
     def to_command(self, action: np.ndarray) -> np.ndarray:
         return np.asarray(action, dtype=float)
 
+    def info(self, snapshot: Snapshot) -> dict:
+        """The ``info`` dict :meth:`step` returns (default: empty)."""
+        return {}
+
     # -- Gymnasium ---------------------------------------------------------------------------------
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
@@ -89,7 +93,8 @@ class LoopEnv(gym.Env):
         self.loop.run(self.ticks * self.loop.body.dt)
         self.snapshot = self.loop.view(self.loop.body.snapshot())
         obs = self.observe(self.snapshot)
-        return obs, float(self.reward(self.snapshot, action)), bool(self.terminated(self.snapshot)), False, {}
+        return (obs, float(self.reward(self.snapshot, action)), bool(self.terminated(self.snapshot)), False,
+                self.info(self.snapshot))
 
     def render(self):
         if self.render_mode != "rgb_array" or self.loop is None:

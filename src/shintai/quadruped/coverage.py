@@ -86,10 +86,11 @@ ROWS = (
         result="Table 3: 10 cycles, ΣBr 4579.794 mm; end of §6.2.2: the fixed-order walk without re-training took "
                "'10回' with final (x_de, y_de) = (0.068, −0.027) m (|e| 0.073 m) — said to be §4.2.2's, but §6.2.2's "
                "environment is §5.2's and 10 cycles are Table 3's rows",
-        difference="replayed, not re-learnt: the printed actions dead-reckoned give |e| 0.0757 m (x 0.067 m as the "
-                   "thesis's 0.068; y +0.036 m against −0.027 m) and enter the goal circle at cycle 10; our executor "
-                   "walks them without failure, legs 2 and 4 on the 0.12 m obstacle; its Br is ≈ 0.56 of the "
-                   "thesis's (2575 mm; Br is not defined in the thesis)",
+        why_not="the printed actions dead-reckoned end at (0.067, +0.036) m, 6.3 cm from the thesis's (0.068, −0.027) "
+                "m (our 1 cm vector tolerance; |e| 0.0757 against 0.073 m agrees, y does not, and no frame or sign "
+                "convention explains it); they do enter the goal circle at cycle 10 and our executor walks them "
+                "without failure, legs 2 and 4 on the 0.12 m obstacle; Br ≈ 0.56 of the thesis's (2575 mm; Br is "
+                "not defined in the thesis)",
     ),
     Row(
         key="004:table4",
@@ -97,9 +98,10 @@ ROWS = (
         what="the same walk trying all 24 swing orders each cycle",
         result="§5.2.2: '遊脚の順番を一定とした場合と比べ、胴体の移動量が小さくなっている'; Table 4: ΣBr 4284.435 mm, "
                "orders 2→4→3→1 (cycles 1, 5), 4→2→3→1 (2–4, 6–7), 3→1→4→2 (8–10)",
-        difference="our executor's exhaustive search picks Table 4's order in 6 of 10 cycles (3→1→4→2 from cycle 5, "
-                   "4→2→3→1 in cycle 1); ΣBr 2444 < 2575 mm on the printed actions, and 2529 < 2595 mm on our own "
-                   "network's walk",
+        why_not="our executor's exhaustive search picks Table 4's printed order in 6 of 10 cycles, not 10 (3→1→4→2 "
+                "from cycle 5, 4→2→3→1 in cycle 1; counting ties the same 6): Br is not defined in the thesis and "
+                "ours ranks the orders differently; ΣBr 2444 < 2575 mm on the printed actions holds by construction "
+                "(the search includes the fixed order)",
     ),
     Row(
         key="004:table5",
@@ -107,10 +109,10 @@ ROWS = (
         what="the same walk with the swing-order RBFNN choosing each cycle's order",
         result="§5.2.3: smaller body movement than the fixed order, but '24通りすべての順番を試した場合とでは、1回目と5回目"
                "の歩行周期で遊脚の順番が異なり、胴体の移動量が若干大きい結果'; ΣBr 4285.733 mm",
-        difference="the thesis's Table 5 orders in our executor: 2497 mm, between the search's 2444 and the fixed "
-                   "order's 2575 as in the thesis, but not optimal in cycles 5, 6, 7 (thesis 1, 5); our own 16-unit "
-                   "network picks an optimal order in all 13 cycles of our walk (2529 < 2595 mm) and in 10 of 10 "
-                   "cycles on the printed actions",
+        why_not="the thesis's Table 5 orders in our executor are not optimal in cycles 5, 6, 7, against the thesis's "
+                "1 and 5; they do move the body less than the fixed order (2497 < 2575 mm, reproduced); our own "
+                "16-unit network picks an optimal order in all 13 cycles of our walk (2529 < 2595 mm) and in 10 of "
+                "10 cycles on the printed actions",
     ),
     Row(
         key="004:table6",
@@ -122,7 +124,8 @@ ROWS = (
                "0.059 m; Table 6: 3→1→4→2 for 5 cycles, then 4→2→3→1",
         why_not="our re-trained network's final error rises here (0.139 → 0.150 m, 12 cycles, baseline 12) although "
                 "it falls over the 96 training environments (0.106 → 0.059 m); the orders follow Table 6's pattern "
-                "(3→1→4→2 for 6 cycles, then 4→2→3→1); the printed actions dead-reckon to |e| 0.0335 m at cycle 10",
+                "(3→1→4→2 for 6 cycles, then 4→2→3→1); the printed actions dead-reckon to (+0.017, −0.029) m at cycle "
+                "10, 3.4 cm from the thesis's (−0.017, −0.027) m (x of opposite sign; |e| 0.0335 against 0.032 m)",
     ),
     Row(
         key="004:table7",
@@ -132,9 +135,10 @@ ROWS = (
                "(−0.018, −0.014) m (|e| 0.023 m) against the fixed-order walk's 10 cycles and 0.073 m; Table 7: "
                "4→2→3→1, 2→4→3→1, 2→4→1→3; §6.2.2, §7: 'ゴール時の目的地までの距離誤差は小さくなったが、歩行周期回数は"
                "多くなる結果'",
-        difference="our free gait lowers the error 0.058 → 0.037 m in 12 cycles (baseline 13: fewer, not more); "
-                   "only leg 2 lands on the obstacle; orders 4→2→3→1, 3→1→4→2, 2→4→3→1; the printed actions "
-                   "dead-reckon to |e| 0.0255 m at cycle 11",
+        why_not="the printed actions dead-reckon to (−0.025, +0.006) m at cycle 11 (as the thesis's 11), 2.1 cm from "
+                "the thesis's (−0.018, −0.014) m (our 1 cm vector tolerance; |e| 0.0255 against 0.023 m); our free "
+                "gait lowers the error 0.058 → 0.037 m in 12 cycles (baseline 13: fewer, not more); only leg 2 "
+                "lands on the obstacle; orders 4→2→3→1, 3→1→4→2, 2→4→3→1",
     ),
     Row(
         key="004:generalisation",

@@ -105,13 +105,15 @@ def replay_executor(name: str) -> ExecutorReplay:
 
 @dataclass(frozen=True)
 class BodyMovementComparison:
-    """Br per cycle [mm] of Table 3's actions under the fixed crawl order, the exhaustive search and
-    the paper's RBFNN orders (Table 5), the exhaustive search's orders, and the paper's sums."""
+    """Br per cycle [mm] of Table 3's actions under the fixed crawl order, the exhaustive search,
+    the paper's RBFNN orders (Table 5) and Table 4's printed orders, the exhaustive search's orders,
+    and the paper's sums."""
 
     fixed: np.ndarray
     exhaustive: np.ndarray
     rbfnn: np.ndarray
     exhaustive_orders: np.ndarray
+    table4: np.ndarray
     paper_sums: tuple = (float(C.TABLE3_BR.sum()), float(C.TABLE4_BR.sum()), float(C.TABLE5_BR.sum()))
 
     @property
@@ -126,7 +128,8 @@ def body_movement_comparison() -> BodyMovementComparison:
     br = 1000 * S.body_movement(zr, command)
     best, best_br = S.best_orders(zr, command)
     rows = np.arange(len(br))
-    return BodyMovementComparison(br[:, S.CRAWL], 1000 * best_br, br[rows, list(C.TABLE5_ORDERS)], best)
+    return BodyMovementComparison(br[:, S.CRAWL], 1000 * best_br, br[rows, list(C.TABLE5_ORDERS)], best,
+                                  br[rows, list(C.TABLE4_ORDERS)])
 
 
 def zr_agreement() -> tuple[int, int]:

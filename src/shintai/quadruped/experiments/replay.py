@@ -66,10 +66,13 @@ TABLE_ROWS = {"table3": "004:table3", "table6": "004:table6", "table7": "004:tab
 WHERE = {"table3": "end of §6.2.2 (Table 3's walk)", "table6": "§6.2.1", "table7": "§6.2.2"}
 
 REPLAY_CHECKS = tuple(
-    Check(f"{t}_final_error_vs_thesis_m", "<=", C.REPLAY_TOLERANCE,
-          f"thesis {WHERE[t]}: (x_de, y_de) = {C.PAPER_FINAL_ERROR[t]} m, |e| = "
-          f"{np.hypot(*C.PAPER_FINAL_ERROR[t]):.3f} m; the dead-reckoned |e| within about 1 cm (spec §6.5 check 4)",
-          kind="reproduction", row=TABLE_ROWS[t])
+    Check(f"{t}_final_error_vector_vs_thesis_m", "<=", C.REPLAY_VECTOR_TOLERANCE,
+          f"thesis {WHERE[t]}: final (x_de, y_de) = {C.PAPER_FINAL_ERROR[t]} m. Our dead reckoning of the printed "
+          "table (§5.7 composition, world frame) minus the thesis's vector, its length within our 1 cm "
+          "(C.REPLAY_VECTOR_TOLERANCE, ours, set with the 2-6 cm distances already known from the review). This "
+          "tests our reading of the printed actions against the printed error, not a simulation; no frame or "
+          "sign convention explains the differences (notes/replay.md)",
+          name=f"{t}_final_error_vector_as_thesis", kind="reproduction", row=TABLE_ROWS[t])
     for t in P.TABLES) + tuple(
     Check(f"{t}_first_entry_cycle", "==", C.PAPER_CYCLES[t],
           f"thesis {WHERE[t]}: 'ゴールまでに要した歩行周期回数は{C.PAPER_CYCLES[t]}回' — the walk ends at the first "
@@ -83,17 +86,31 @@ REPLAY_CHECKS = tuple(
           "thesis §5.2, §6.2: the printed cycles were walked to the goal ('目的地まで移動していることが確認できる'); "
           "our executor runs them without collision, joint-limit violation or lost stability",
           kind="reproduction", row="004:table3"),
-    Check("br_exhaustive_mm", "<", "br_rbfnn_mm",
-          "thesis §5.2.3 (Tables 4-5): the RBFNN's orders move the body slightly more than the all-24 search "
-          "('胴体の移動量が若干大きい結果', 4284.4 < 4285.7 mm): the paper's Table 5 orders against the search, "
-          "strictly", name="exhaustive_better_than_rbfnn", kind="reproduction", row="004:table5"),
+    Check("rbfnn_suboptimal_cycles_mismatch", "==", 0,
+          "thesis §5.2.3 (Tables 4-5): '24通りすべての順番を試した場合とでは、1回目と5回目の歩行周期で遊脚の順番が異なり、"
+          "胴体の移動量が若干大きい結果' — the cycles where Table 5's RBFNN order moves the body more than the "
+          "best of the 24 in our executor (more than 1e-6 mm, so ties count as optimal) are exactly cycles 1 and 5: "
+          "the metric counts the cycles in one set and not the other, no tolerance",
+          name="rbfnn_suboptimal_cycles_as_thesis", kind="reproduction", row="004:table5"),
     Check("br_rbfnn_mm", "<", "br_fixed_mm",
           "thesis §5.2.3 (Tables 3, 5): 'RBFNNにより遊脚の順番を決定した場合は遊脚の順番を一定とした場合に比べ胴体の"
           "移動量が小さくなっている' (4285.7 < 4579.8 mm)", name="rbfnn_better_than_fixed", kind="reproduction",
           row="004:table5"),
+    Check("exhaustive_orders_as_table4", "==", len(C.TABLE4_ORDERS),
+          "thesis §5.2.2: '24通りすべての遊脚の順番を試しながら障害物を回避したときの…胴体の移動量 Br をTable4に示す' "
+          "(Table 4, 'when trying 24 kinds of the order': Table 3's actions, each row's Br ≤ Table 3's). Our reading: "
+          "each printed order is the least-Br one of the 24, so our exhaustive search on the same actions should "
+          "pick it in all 10 cycles; declared without tolerance (counting ties as optimal gives the same number, "
+          "metric table4_orders_optimal)",
+          name="exhaustive_picks_table4_orders", kind="reproduction", row="004:table4"),
+    Check("br_exhaustive_mm", "<", "br_rbfnn_mm",
+          "consistency: the exhaustive value is the minimum over all 24 orders, which include Table 5's, so this "
+          "fails only on an exact tie (thesis §5.2.3: 4284.4 < 4285.7 mm)", name="exhaustive_better_than_rbfnn",
+          kind="consistency"),
     Check("br_exhaustive_mm", "<", "br_fixed_mm",
-          "thesis §5.2.2 (Tables 3-4): trying all 24 orders moves the body less than the fixed order "
-          "(4284.4 < 4579.8 mm)", name="exhaustive_better_than_fixed", kind="reproduction", row="004:table4"),
+          "consistency: the exhaustive value is the minimum over all 24 orders, which include the fixed 4→2→3→1, "
+          "so this fails only on an exact tie (thesis §5.2.2: 4284.4 < 4579.8 mm)",
+          name="exhaustive_better_than_fixed", kind="consistency"),
 )
 
 
@@ -130,6 +147,10 @@ def replay(ctx) -> dict:
         metrics[f"{name}_final_error_deviation_m"] = abs(reck.final_distance - C.DEAD_RECKONED[name][0])
         metrics[f"{name}_final_error_vs_thesis_m"] = abs(reck.final_distance - np.hypot(*C.PAPER_FINAL_ERROR[name]))
         metrics[f"{name}_final_error_x_m"], metrics[f"{name}_final_error_y_m"] = map(float, reck.errors[-1])
+        dx, dy = reck.errors[-1] - np.asarray(C.PAPER_FINAL_ERROR[name])
+        metrics[f"{name}_final_error_dx_vs_thesis_m"] = float(dx)
+        metrics[f"{name}_final_error_dy_vs_thesis_m"] = float(dy)
+        metrics[f"{name}_final_error_vector_vs_thesis_m"] = float(np.hypot(dx, dy))
         metrics[f"{name}_first_entry_cycle"] = reck.first_entry
         metrics[f"{name}_previous_distance_m"] = reck.previous_distance
         metrics[f"{name}_executor_final_error_m"] = rep.reckoning.final_distance
@@ -148,7 +169,9 @@ def replay(ctx) -> dict:
     metrics["exhaustive_orders"] = S.order_names(comparison.exhaustive_orders)
     worse = np.flatnonzero(comparison.rbfnn > comparison.exhaustive + 1e-6) + 1
     metrics["rbfnn_suboptimal_cycles"] = ", ".join(map(str, worse)) or "none"
+    metrics["rbfnn_suboptimal_cycles_mismatch"] = len(set(worse.tolist()) ^ set(C.TABLE5_SUBOPTIMAL_CYCLES))
     metrics["exhaustive_orders_as_table4"] = int(np.sum(comparison.exhaustive_orders == np.array(C.TABLE4_ORDERS)))
+    metrics["table4_orders_optimal"] = int(np.sum(comparison.table4 <= comparison.exhaustive + 1e-6))
     agree, total = P.zr_agreement()
     metrics["zr_rule_agreement"] = agree / total
     ctx.extra["br_per_cycle_mm"] = {"fixed": comparison.fixed, "exhaustive": comparison.exhaustive,
