@@ -7,7 +7,6 @@ import sys
 
 import imageio.v2 as imageio
 import mujoco
-import numpy as np
 import pytest
 
 from shintai.core import Loop

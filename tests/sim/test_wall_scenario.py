@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from shintai.cli import main
-from shintai.sim.corner import build_corner, contact_start, probe_sign, reaction_on_hand, settle
+from shintai.sim.corner import build_corner, contact_start, probe_sign, settle
 
 
 def test_probed_sign_is_minus_identity_and_slope_is_the_servo_stiffness():

@@ -6,9 +6,9 @@ import pytest
 from shintai.core.runtime import ADD, SET, ChannelError, FunctionModule, Loop
 from shintai.spine.bodies import QuasiStaticSpine
 from shintai.spine.bodies_mujoco import SpineBody
-from shintai.spine.control import Mode, MuscleControl
+from shintai.spine.control import Mode
 from shintai.spine.geometry import uniform_posture, whole_spine
-from shintai.spine.robots import CLA, CLA_ARMS_DOWN, CLA_TRUNK_LOADS, RABBIT
+from shintai.spine.robots import CLA, CLA_ARMS_DOWN, CLA_TRUNK_LOADS
 
 
 @pytest.fixture(scope="module")

@@ -24,7 +24,8 @@ import numpy as np
 from shintai.core.runtime import Module
 from shintai.humanoid import ch4_riding as cr
 from shintai.humanoid.ch4_riding import Rider, vehicle_pose2d, vehicle_roll
-from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_C, LEAD_DT, LEGS_FZ, NAVIGATION, SLIP_START_S)
+from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_C, LEAD_DT, LEGS_FZ, NAVIGATION, OVERTURN_ROLL,
+                                        SLIP_START_S)
 from shintai.humanoid.corrections import push_down_angle
 from shintai.humanoid.navigation import (Costmap, DepthSensor, DynamicWindow, crank_rate, crank_reference,
                                          global_path, handle_reference)
@@ -219,7 +220,7 @@ def hip_to_com(body) -> float:
 
 def overturned(body) -> bool:
     """The tricycle lies on its side (frame roll beyond 45°) — a fall."""
-    return abs(vehicle_roll(body)) > 45 * DEG
+    return abs(vehicle_roll(body)) > OVERTURN_ROLL
 
 
 def foot_off_pedal(body) -> float:

@@ -512,6 +512,8 @@ SMALL_SPEED = 0.3  # m/s
 STEP_HEIGHT = 0.010  # m, "≈10 mm" steps (§7.3.1)
 BOARD_THICKNESS = 0.014  # m, the 14 mm wooden board (Fig. 4.22)
 SLIP_START_S = 2.0  # s, chosen: the seat slip of humanoid.sitting-recovery grows from this time on
+RECOVERY_PEDAL_REVOLUTIONS = 6.0  # chosen: the ch. 3 crank schedule of sitting-recovery, longer than any ride
+OVERTURN_ROLL = 45 * DEG  # chosen: the ch. 4 rig counts a fall when the tricycle's frame rolls beyond this
 
 # Chosen: saddle friction 0.5 (vinyl on the robot's plastic cover); studded pedals under a rubber sole
 # (soles hold on them while pushing hard: PPDM, STAND).

@@ -13,7 +13,8 @@ from shintai.humanoid import plots
 from shintai.humanoid.ch4_drive import (CH4_VIEW, DRIVES, LEGS_NOTE, MOTOR_NOTE, SeatSlip, hip_to_com, lean_left,
                                         overturned)
 from shintai.humanoid.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_pose2d, vehicle_roll
-from shintai.humanoid.constants import CONTROL_PERIOD, DEG, DELTA_T, FOOT_FOLLOW_F_TRG, LEGS_FZ, STEPS_SPEED
+from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_T, FOOT_FOLLOW_F_TRG, LEGS_FZ,
+                                        RECOVERY_PEDAL_REVOLUTIONS, STEPS_SPEED)
 from shintai.humanoid.corrections import RecoveryTrigger, SittingRecovery
 from shintai.humanoid.navigation import crank_rate
 from shintai.humanoid.switching import estimate_crank_angle
@@ -35,7 +36,7 @@ def rig(params, variant):
         driving, crank_of, base_fz, feet_rider = cruise, (lambda s: float(s["q:crank"])), FOOT_FOLLOW_F_TRG, None
         always = [rider, cr.CrankMotor()]
     else:  # the ch. 3 pedalling; Table 3.4 / Table 7.6: the driving foot force the STAND raises to 320 N
-        legs, feet, _ = legs_pedalling(body, 6.0, DELTA_T * params["time_scale"])
+        legs, feet, _ = legs_pedalling(body, RECOVERY_PEDAL_REVOLUTIONS, DELTA_T * params["time_scale"])
         crank_of = lambda s: estimate_crank_angle(pedal_axles(feet, s), crank_centre())  # noqa: E731
         base_fz = LEGS_FZ
         driving = Group("drive", [cruise, legs], CONTROL_PERIOD)

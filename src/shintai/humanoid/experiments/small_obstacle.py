@@ -31,11 +31,11 @@ STATES = ("drive", "back", "push")
 def ppdm(crank: CrankEstimate, push_factor: float) -> Switcher:
     """PPDM (Table 4.7, Fig. 4.21) as a Switcher drive → back → push → drive: the larger ankle f_z rising
     above its running mean while the crank stalls flags the impact; back-pedal to θ_c^init + kπ; push with
-    ``push_factor`` × 150 N for half a revolution (the loop senses on while pushing, Fig. 4.21 step 5)."""
+    ``push_factor`` × LEGS_FZ (150 N) for half a revolution (the loop senses on while pushing, Fig. 4.21 step 5)."""
     drive = LeadPedal("drive", crank, SMALL_SPEED)
     detector = PedalLoadDetector(CONTROL_PERIOD)
     back = BackPedal(crank, crank_rate(SMALL_SPEED))
-    push = LeadPedal("push", crank, SMALL_SPEED, extra_active=150.0 * (push_factor - 1))
+    push = LeadPedal("push", crank, SMALL_SPEED, extra_active=LEGS_FZ * (push_factor - 1))
     last = {"t": -1.0, "theta": 0.0}
 
     def rate(s):
