@@ -45,3 +45,10 @@ def test_reset_settles_and_the_zero_action_holds():
     assert obs[8] == 0.0 and obs[9] == 0.0  # nothing commanded
     assert abs(obs[7] - obs0[7]) < 2 * DEG and abs(reward) < 0.02
     assert info == {"outcome": "driving"} and not terminated
+
+
+def test_seeded_resets_and_a_random_policy():
+    """The generic check of tests/gym/test_envs.py (check_env runs there too), for this env."""
+    from gym_checks import seeded_resets_and_a_random_policy
+
+    seeded_resets_and_a_random_policy("shintai/TricyclePedal-v0")
