@@ -511,6 +511,8 @@ STEPS_SPEED = 0.3  # m/s
 SMALL_SPEED = 0.3  # m/s
 STEP_HEIGHT = 0.010  # m, "≈10 mm" steps (§7.3.1)
 BOARD_THICKNESS = 0.014  # m, the 14 mm wooden board (Fig. 4.22)
+MODEL_ERROR_MM = 10.0  # mm, chosen: the true crank centre / steering axis ahead of the controllers' nominal
+# tricycle model in the ch. 3 rides (E1, E4); the thesis names no model error
 SLIP_START_S = 2.0  # s, chosen: the seat slip of humanoid.sitting-recovery grows from this time on
 RECOVERY_PEDAL_REVOLUTIONS = 6.0  # chosen: the ch. 3 crank schedule of sitting-recovery, longer than any ride
 OVERTURN_ROLL = 45 * DEG  # chosen: the ch. 4 rig counts a fall when the tricycle's frame rolls beyond this

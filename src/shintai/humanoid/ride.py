@@ -16,14 +16,20 @@ import dataclasses
 import numpy as np
 
 from shintai.humanoid import riding
-from shintai.humanoid.constants import CONTROL_PERIOD, DEG, FALL_TILT, IMPEDANCE, THETA_C_INIT
+from shintai.humanoid.constants import CONTROL_PERIOD, DEG, FALL_TILT, IMPEDANCE, MODEL_ERROR_MM, THETA_C_INIT
 from shintai.humanoid.hrp2_limbs import riding_limbs
 from shintai.humanoid.operation import SIDES, OperationSchedule, role_switcher
 from shintai.humanoid.switching import active_arm, switching_angles
 from shintai.humanoid.tricycle_rig import (ARM_GAINS, F_TRG, LEG_GAINS, hand_forces, hand_plan, handle_diagnostic,
                                            legs_switcher, settled)
 from shintai.scenarios.experiment import Rig
+from shintai.scenarios.registry import Param
 
+# the model errors every ride experiment exposes (Ride's own defaults)
+MODEL_ERROR_PARAMS = (
+    Param("crank_error_mm", MODEL_ERROR_MM, "true crank centre ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+    Param("handle_error_mm", MODEL_ERROR_MM, "true steering axis ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+)
 RIDE_VIEW = {"track": "tricycle", "distance": 3.2, "azimuth": 135.0, "elevation": -25.0}
 
 
@@ -42,8 +48,8 @@ class Ride:
     ``crank_error_mm`` / ``handle_error_mm`` ahead of the nominal model the controllers use.
     """
 
-    def __init__(self, schedule: OperationSchedule, passive_f_trg: float = F_TRG, crank_error_mm: float = 10.0,
-                 handle_error_mm: float = 10.0):
+    def __init__(self, schedule: OperationSchedule, passive_f_trg: float = F_TRG,
+                 crank_error_mm: float = MODEL_ERROR_MM, handle_error_mm: float = MODEL_ERROR_MM):
         self.schedule, self.passive_f_trg = schedule, passive_f_trg
         self.body = riding.build_riding(crank_error=(crank_error_mm / 1000, 0.0),
                                         handle_error=(handle_error_mm / 1000, 0.0, 0.0))

@@ -7,7 +7,7 @@ from shintai.humanoid import plots
 from shintai.humanoid.constants import (D_THETA_C, D_THETA_H, DEG, DELTA_T, F_TRG_PASSIVE_LEG_IMPROVED, TRICYCLE,
                                         WAIT_FRACTION_IMPROVED)
 from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import Ride, ride_metrics, route_goals
+from shintai.humanoid.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
 from shintai.humanoid.tricycle_rig import F_TRG
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
@@ -59,8 +59,7 @@ experiment(
         Param("time_scale", 1.0, "Δt = 0.8 s × time_scale for both runs (1 = the thesis's lab setting)",
               lo=0.1, hi=1.0),
         Param("limit_deg", 25.0, "steering amplitude of the route [deg]", lo=5.0, hi=25.0),
-        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm]", lo=0.0, hi=30.0),
-        Param("handle_error_mm", 10.0, "true steering axis ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+        *MODEL_ERROR_PARAMS,
     ],
     checks=[
         Check("speed_ratio", ">", 1.0,

@@ -8,7 +8,8 @@ from scipy.stats import spearmanr
 
 from shintai.core.geometry import unwrap_from
 from shintai.humanoid import plots, riding
-from shintai.humanoid.constants import CONTROL_PERIOD, D_THETA_C, DEG, DELTA_T, PEDAL_FORCE_BAND, TRICYCLE
+from shintai.humanoid.constants import (CONTROL_PERIOD, D_THETA_C, DEG, DELTA_T, MODEL_ERROR_MM, PEDAL_FORCE_BAND,
+                                        TRICYCLE)
 from shintai.humanoid.hrp2_limbs import riding_limbs
 from shintai.humanoid.operation import SIDES, LimbPair, travel_distance
 from shintai.humanoid.tricycle_rig import (F_TRG, LEG_GAINS, active_samples, crank_schedule, foot_plan, force_errors,
@@ -114,7 +115,7 @@ experiment(
         Param("time_scale", 1.0, "Δt = 0.8 s × time_scale (1 = the thesis's lab setting)", lo=0.1, hi=1.0),
         Param("revolutions", 1.0, "crank revolutions of the active/passive run", lo=0.1, hi=2.0),
         Param("both_active_revolutions", 1.0, "crank revolutions of the both-active comparison run", lo=0.0, hi=2.0),
-        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm] (ours: the thesis names no "
+        Param("crank_error_mm", MODEL_ERROR_MM, "true crank centre ahead of the nominal model [mm] (ours: the thesis names no "
               "model error)", lo=0.0, hi=30.0),
         Param("crank_error_up_mm", 0.0, "true crank centre above the nominal model [mm] (a probe, see the notes)",
               lo=0.0, hi=30.0),

@@ -6,7 +6,7 @@ from __future__ import annotations
 from shintai.humanoid import plots
 from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, DELTA_T, TRICYCLE
 from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import Ride, ride_metrics, slalom_goals
+from shintai.humanoid.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, slalom_goals
 from shintai.humanoid.tricycle_rig import F_TRG
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -38,8 +38,7 @@ experiment(
         Param("slalom_deg", 360.0, "crank angle of the slalom, half at −Θ_H, half at +Θ_H [deg] (Fig. 3.21: 360°)",
               lo=20.0, hi=720.0),
         Param("limit_deg", 25.0, "steering amplitude Θ_H [deg] (Table 3.4: 25°)", lo=5.0, hi=25.0),
-        Param("crank_error_mm", 10.0, "true crank centre ahead of the nominal model [mm]", lo=0.0, hi=30.0),
-        Param("handle_error_mm", 10.0, "true steering axis ahead of the nominal model [mm]", lo=0.0, hi=30.0),
+        *MODEL_ERROR_PARAMS,
     ],
     checks=[
         Check("falls", "==", 0,
