@@ -41,10 +41,6 @@ LEAD_NOTE = ("drive=legs: the humanoid's legs turn the crank at the commanded ra
 CH4_VIEW = {"track": "waist", "distance": 3.0, "azimuth": 150.0, "elevation": -20.0}
 
 
-def drive_param_ok(params) -> bool:
-    return params["drive"] in DRIVES
-
-
 # --- who turns the crank ---------------------------------------------------------------------------
 
 

@@ -6,14 +6,13 @@ from __future__ import annotations
 import numpy as np
 from scipy.stats import spearmanr
 
-from shintai.core.geometry import unwrap_from
 from shintai.humanoid import plots, riding
 from shintai.humanoid.constants import (CONTROL_PERIOD, D_THETA_C, DEG, DELTA_T, MODEL_ERROR_MM, PEDAL_FORCE_BAND,
                                         TRICYCLE)
 from shintai.humanoid.hrp2_limbs import riding_limbs
 from shintai.humanoid.operation import SIDES, LimbPair, travel_distance
-from shintai.humanoid.tricycle_rig import (F_TRG, LEG_GAINS, active_samples, crank_schedule, foot_plan, force_errors,
-                                           legs_switcher, pedal_rig)
+from shintai.humanoid.tricycle_rig import (F_TRG, LEG_GAINS, active_samples, crank_estimate_error, crank_schedule,
+                                           foot_plan, force_errors, legs_switcher, pedal_rig)
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 AP, BOTH = "active_passive", "both_active"
@@ -76,7 +75,7 @@ def pedal_metrics(rec, schedule, diag, dt: float) -> dict:
         "swap_angles_deg": swaps.tolist(),
         "swap_angle_error_deg": float(np.abs(swaps - expected).max()) if len(swaps) else float("nan"),
         "crank_advance_deg": float(advance[-1] / DEG),
-        "crank_estimate_error_deg": float(np.abs(unwrap_from(rec.values("crank_est"), true[0]) - true).max() / DEG),
+        "crank_estimate_error_deg": crank_estimate_error(rec) / DEG,
         "revolution_time_s": float(t[done[0]]) if done.size else float("nan"),
         "eq_3_20_time_s": goal / D_THETA_C * 2 * dt,
         "revolution_time_ratio": float(t[done[0]] / (goal / D_THETA_C * 2 * dt)) if done.size else float("nan"),
