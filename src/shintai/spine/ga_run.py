@@ -1,0 +1,89 @@
+"""Running a seed-003 GA inside a scenario: the shared parameters, the checkpointed run, the curve.
+
+Chapter 5's three generated motions (SQ43's trot §5.6, HanzouS's brachiation §5.7, Cla's crawl §5.2.9)
+all evolve genes with the §5.5 parallel GA (population 20 or 105, crossover 0.2, mutation 0.02, culling
+0.4, fitness maximised: :meth:`shintai.evolve.GAConfig.seed003`). Each scenario declares ``GA_PARAMS``
+(with its own generation count and population), calls :func:`evolve` with a picklable fitness, and gets
+the result, the per-generation record (``<name>.best``/``<name>.mean``) and the curve picture. The GA
+state is checkpointed to ``<out>/<name>.ga.npz`` after every generation; ``resume`` continues a killed
+run to the identical result. Serial, process and Ray executors give identical generations for one seed
+(:mod:`shintai.evolve.ga`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from shintai.evolve import GAConfig, GAResult, GeneticAlgorithm, make_executor
+from shintai.scenarios.registry import Param
+
+EXECUTORS = ("serial", "process", "ray")
+
+
+def ga_params(generations: int, population: int) -> list[Param]:
+    """The GA's scenario parameters; ``generations`` and ``population`` are the scenario's defaults."""
+    return [
+        Param("generations", generations, "GA generations evaluated, the initial population included", lo=1,
+              hi=100000),
+        Param("population", population, "GA population (seed 003 §5.6.2: 20, §5.7.3: 105)", lo=4, hi=100000),
+        Param("executor", "process", "where fitness runs", choices=EXECUTORS),
+        Param("workers", 0, "processes or Ray CPUs (0: all local cores)", lo=0, hi=4096),
+        Param("address", "", "Ray cluster address (executor=ray; empty: RAY_ADDRESS or a local Ray)"),
+        Param("resume", True, "continue from the GA checkpoint in the output folder"),
+    ]
+
+
+def config(params) -> GAConfig:
+    """Seed 003's GA (§5.6.2) with the scenario's generation count and population."""
+    return GAConfig.seed003(generations=int(params["generations"]), population=int(params["population"]))
+
+
+def evolve(ctx, name: str, fitness: Callable, lo, hi, batch: bool = False, initial: np.ndarray | None = None,
+           title: str = "") -> GAResult:
+    """Run the GA for ``ctx.params`` on ``fitness`` (maximised) in the box ``[lo, hi]``.
+
+    Reports progress, checkpoints to ``<out>/<name>.ga.npz``, records ``<name>.best``/``<name>.mean`` per
+    generation, and draws ``<name>_curve.png``. ``fitness`` must be picklable for the process and Ray
+    executors (a module-level function or a frozen dataclass instance).
+    """
+    p = ctx.params
+    ga = GeneticAlgorithm(fitness, lo, hi, config(p), seed=ctx.seed, checkpoint=ctx.out / f"{name}.ga.npz",
+                          batch=batch, initial=initial)
+
+    def progress(done: int, total: int, best: float) -> None:
+        ctx.progress(done / total, f"{name} generation {done}/{total}, best {best:.4g}")
+
+    with make_executor(p["executor"], p["workers"] or None, p["address"] or None) as executor:
+        ga.executor = executor
+        result = ga.run(progress, resume=bool(p["resume"]))
+    history = result.history
+    for g in range(len(history)):
+        ctx.recorder.record(g, **{f"{name}.best": history.best[g], f"{name}.mean": history.mean[g]})
+    ctx.extra.setdefault("ga_curves", {})[name] = {"best": history.best, "mean": history.mean,
+                                                   "best_genome": result.best_genome}
+    with ctx.figure(f"{name}_curve") as (fig, ax):
+        draw_curve(ax, history.best, history.mean, title or name)
+    return result
+
+
+def draw_curve(ax, best, mean, title: str) -> None:
+    """A maximised GA's curve: best and mean fitness per generation."""
+    g = np.arange(len(best))
+    ax.plot(g, best, "-o", ms=3, label="best")
+    ax.plot(g, mean, "-", lw=0.8, label="population mean")
+    ax.set_xlabel("generation")
+    ax.set_ylabel("fitness (maximised)")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7)
+
+
+def generations_to_converge(best: np.ndarray, fraction: float = 0.95) -> int:
+    """The first generation whose best fitness reaches ``fraction`` of the way from the initial best to
+    the final best (0 if the run did not improve). Our measure of "converged in few generations"."""
+    best = np.asarray(best, dtype=float)
+    gain = best[-1] - best[0]
+    if not np.isfinite(gain) or gain <= 0:
+        return 0
+    return int(np.argmax(best >= best[0] + fraction * gain))

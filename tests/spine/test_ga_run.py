@@ -1,0 +1,41 @@
+"""The shared seed-003 GA run: checkpoints, resume, record and picture (spine/ga_run.py)."""
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from shintai.scenarios.runner import RunContext
+from shintai.spine import ga_run
+
+
+def _peak(genome: np.ndarray) -> float:
+    return -float(np.sum((genome - 0.3) ** 2))
+
+
+def _ctx(tmp_path, **params):
+    p = {"generations": 6, "population": 10, "executor": "serial", "workers": 0, "address": "", "resume": True}
+    p.update(params)
+    tmp_path.mkdir(parents=True, exist_ok=True)
+    return RunContext(SimpleNamespace(id="test.ga", source="test"), p, 3, tmp_path, quiet=True)
+
+
+def test_evolve_records_checkpoints_and_draws(tmp_path):
+    ctx = _ctx(tmp_path)
+    result = ga_run.evolve(ctx, "peak", _peak, [-1, -1], [1, 1])
+    assert len(result.history) == 6
+    assert result.history.best_so_far[-1] >= result.history.best_so_far[0]
+    assert (tmp_path / "peak.ga.npz").exists() and (tmp_path / "peak_curve.png").exists()
+    assert list(ctx.extra["ga_curves"]["peak"]["best"]) == list(result.history.best)
+
+
+def test_evolve_resume_extends_to_the_uninterrupted_result(tmp_path):
+    whole = ga_run.evolve(_ctx(tmp_path / "a"), "peak", _peak, [-1, -1], [1, 1])
+    ga_run.evolve(_ctx(tmp_path / "b", generations=3), "peak", _peak, [-1, -1], [1, 1])
+    resumed = ga_run.evolve(_ctx(tmp_path / "b"), "peak", _peak, [-1, -1], [1, 1])
+    np.testing.assert_array_equal(whole.history.best, resumed.history.best)
+    np.testing.assert_array_equal(whole.best_genome, resumed.best_genome)
+
+
+def test_generations_to_converge():
+    assert ga_run.generations_to_converge(np.array([1.0, 5.0, 9.6, 10.0])) == 2
+    assert ga_run.generations_to_converge(np.array([1.0, 1.0])) == 0
