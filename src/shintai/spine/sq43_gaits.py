@@ -33,8 +33,8 @@ import numpy as np
 from mujoco import rollout
 
 from shintai.spine.sq43_body import (
-    BODY, LEGS, SQ43Body, SQ43BodySpec, accelerometer_roll, build_spec, leg_ik, relative_twist, roll_of, servo_ctrl,
-    standing_angles,
+    BODY, LEGS, SQ43Body, SQ43BodySpec, accelerometer_roll, build_spec, leg_ik, leg_root, relative_twist, roll_of,
+    servo_ctrl, standing_angles,
 )
 
 # ------------------------------------------------------------------------------------------------ trot
@@ -85,7 +85,7 @@ def trot_ctrl(model: mujoco.MjModel, genome, duration: float = TROT_DURATION_S, 
     """The open-loop ctrl sequence (nstep, nu), one row per physics step: RAMP_S from the standing pose
     into the gait's first pose, then ``duration`` of gait. Spine servos straight."""
     dt = model.opt.timestep
-    n_ramp, n_gait = int(round(RAMP_S / dt)), int(round(duration / dt))
+    n_ramp, n_gait = round(RAMP_S / dt), round(duration / dt)
     gait = trot_angles(genome, np.arange(n_gait) * dt, spec)
     stand = standing_angles(spec)
     w = (np.arange(n_ramp) / n_ramp)[:, None]
@@ -115,7 +115,7 @@ def simulate_trot(genome, duration: float = TROT_DURATION_S, spec: SQ43BodySpec 
     model, data, state, sl = _sim(spec)
     ctrl = trot_ctrl(model, genome, duration, spec)
     _, sensors = rollout.rollout(model, data, state[None], ctrl[None], initial_warmstart=np.zeros((1, model.nv)))
-    s = sensors[0, int(round(RAMP_S / model.opt.timestep)) - 1:]
+    s = sensors[0, round(RAMP_S / model.opt.timestep) - 1:]
     return trot_metrics(genome, s, sl, model.opt.timestep)
 
 
@@ -168,7 +168,7 @@ def trot_body(genome, duration: float = TROT_DURATION_S, spec: SQ43BodySpec = BO
             data.ctrl[:] = ctrl[k]
             body.step()
             sensors[k] = data.sensordata
-    return trot_metrics(genome, sensors[int(round(RAMP_S / model.opt.timestep)) - 1:], sl, model.opt.timestep)
+    return trot_metrics(genome, sensors[round(RAMP_S / model.opt.timestep) - 1:], sl, model.opt.timestep)
 
 
 class _null:
@@ -212,7 +212,7 @@ def simulate_levelling(levelling: Levelling | None, rise_mm: float = 20.0, durat
     model, data = body.model, body.data
     board = model.body("board").mocapid[0]
     board_xy = data.mocap_pos[board].copy()
-    sub = int(round((levelling.period_s if levelling else 0.02) / model.opt.timestep))
+    sub = round((levelling.period_s if levelling else 0.02) / model.opt.timestep)
     acc = slice(model.sensor("acc_shoulder").adr[0], model.sensor("acc_shoulder").adr[0] + 3)
     quat = slice(model.sensor("shoulder_quat").adr[0], model.sensor("shoulder_quat").adr[0] + 4)
     stand = standing_angles(spec)
@@ -225,7 +225,7 @@ def simulate_levelling(levelling: Levelling | None, rise_mm: float = 20.0, durat
             data.mocap_pos[board] = board_xy + [0, 0, float(board_height(data.time, rise_mm))]
             if levelling is not None:
                 window.append(data.sensordata[acc].copy())
-                n = int(round(levelling.window_s / levelling.period_s))
+                n = round(levelling.window_s / levelling.period_s)
                 window = window[-n:]
                 if len(window) == n and np.ptp(np.array(window), axis=0).max() < levelling.steady_ms2:
                     roll = float(accelerometer_roll(np.mean(window, axis=0)))
@@ -273,8 +273,6 @@ class CrawlPlan:
 
 
 def _shift_toward(leg: str, fraction: float, spec: SQ43BodySpec) -> np.ndarray:
-    from shintai.spine.sq43_body import leg_root
-
     return fraction * leg_root(OPPOSITE_REAR[leg], spec)[:2]
 
 
@@ -290,7 +288,7 @@ def crawl_schedule(plan: CrawlPlan, legs: tuple[str, ...], spec: SQ43BodySpec = 
 
     def move(duration: float, target: dict) -> None:
         start = rows[-1]
-        n = max(1, int(round(duration / dt)))
+        n = max(1, round(duration / dt))
         for i in range(1, n + 1):
             w = 0.5 - 0.5 * math.cos(math.pi * i / n)
             rows.append({k: start[k] + w * (target[k] - start[k]) for k in LEGS})
@@ -341,7 +339,7 @@ def simulate_crawl(plan: CrawlPlan, legs, shift: bool = True, hold_s: float = 0.
     t, targets, windows = crawl_schedule(plan, tuple(legs), spec, shift, hold_s)
     angles = {leg: leg_ik(leg, targets[leg], spec) for leg in LEGS}
     ctrl = servo_ctrl(model, angles)
-    sub = int(round(0.01 / model.opt.timestep))
+    sub = round(0.01 / model.opt.timestep)
     sl = {n: slice(model.sensor(n).adr[0], model.sensor(n).adr[0] + model.sensor(n).dim[0])
           for n in ("shoulder_pos", "hip_pos", "shoulder_quat", "hip_quat", *[f"{leg}_foot" for leg in LEGS])}
     rec = np.zeros((len(t), model.nsensordata))

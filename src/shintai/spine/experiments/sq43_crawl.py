@@ -84,11 +84,11 @@ def sq43_crawl(ctx):
     p = ctx.params
     plan = replace(CrawlPlan(), lift_mm=p["lift_mm"], shift_fraction=p["shift_fraction"])
     rigid = replace(BODY, twist_free=False)  # ablation: no torsion hinges
-    runs = {"standing": dict(legs=("RF",), shift=False), "shifted": dict(legs=("RF",), shift=True),
-            "held": dict(legs=("RF",), shift=True, hold_s=p["hold_s"]),
-            "diagonal": dict(legs=(("RF", "LH"),), shift=False),
-            "standing_rigid": dict(legs=("RF",), shift=False, spec=rigid),
-            "diagonal_rigid": dict(legs=(("RF", "LH"),), shift=False, spec=rigid)}
+    runs = {"standing": {"legs": ("RF",), "shift": False}, "shifted": {"legs": ("RF",), "shift": True},
+            "held": {"legs": ("RF",), "shift": True, "hold_s": p["hold_s"]},
+            "diagonal": {"legs": (("RF", "LH"),), "shift": False},
+            "standing_rigid": {"legs": ("RF",), "shift": False, "spec": rigid},
+            "diagonal_rigid": {"legs": (("RF", "LH"),), "shift": False, "spec": rigid}}
     results = {}
     for i, (name, kw) in enumerate(runs.items()):
         ctx.progress(i / (len(runs) + 1), name)

@@ -23,7 +23,7 @@ def summary(series) -> dict:
     down = (t >= DOWN[0]) & (t < DOWN[1])
     return {"max_shoulder_roll_deg": float(np.abs(roll).max()),
             "settled_roll_up_deg": float(roll[up].mean()), "settled_roll_down_deg": float(roll[down].mean()),
-            "adjustments": int(len(series["acted_s"])),
+            "adjustments": len(series["acted_s"]),
             "lf_length_up_mm": float(series["lf_length_mm"][up].mean())}
 
 
