@@ -9,6 +9,8 @@ body (spatial tendons through sites, reels, wrapping, a hand channel); scripted 
 hand and command schedule as modules; teaching — zeroing, direct teaching and playback (§4.2);
 cla — Cla's set-up shared by E9–E11; teach_runs (E9), spring_trial (E10), postures and modes (E11),
 rabbit (E6) — the experiments' runs; inverse_model (§4.4.3), bebe and bebe_runs (§4.8), sq43 (§3.2.3);
+sq43_body (the whole-body MuJoCo SQ43, §3.2.2) and sq43_gaits (its levelling, crawl and GA trot, §3.2.4, §5.6);
+ga_run (chapter 5's GA in a scenario);
 pictures, pictures_learning — plots; experiments/ — one declared scenario per file, notes/ — their
 accounts; benchmarks.
 """

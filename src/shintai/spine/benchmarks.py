@@ -104,3 +104,40 @@ def inverse_query() -> dict:
         "nn_error_norm_deg": float(inverse_model.error_norm_deg(nn.posture(q), theta).mean()),
         "jacobian_error_norm_deg": float(inverse_model.error_norm_deg(np.array([r.theta for r in runs]), theta).mean()),
     }
+
+
+@benchmark("spine.ga-throughput", "SQ43 trot GA: one individual's evaluation vs the thesis's 30 min, one generation "
+           "serial / process pool / Ray")
+def ga_throughput(population: int = 20, repeats: int = 3) -> dict:
+    """One SQ43 trot individual (6 s of walking, ``mujoco.rollout``) against §5.6.2's '1 個体の数秒間の運動の解析に
+    約 30 分程度', and one generation of ``population`` individuals on each executor (pools started before
+    timing: the per-generation cost, not the start-up)."""
+    from shintai.evolve import make_executor
+    from shintai.spine.sq43_gaits import GENE_HI, GENE_LO, TrotFitness
+
+    fitness = TrotFitness()
+    rng = np.random.default_rng(0)
+    genomes = list(GENE_LO + rng.random((population, GENE_LO.size)) * (GENE_HI - GENE_LO))
+    fitness(genomes[0])  # warm-up: model build
+    t0 = time.perf_counter()
+    for k in range(repeats):
+        fitness(genomes[k % population])
+    one = (time.perf_counter() - t0) / repeats
+    out = {"seconds_per_individual": one, "speedup_vs_thesis_30min": 1800.0 / one, "population": population}
+    reference = None
+    for kind in ("serial", "process", "ray"):
+        try:
+            with make_executor(kind) as executor:
+                executor.map(fitness, genomes[:2])  # workers up and warm
+                t0 = time.perf_counter()
+                values = executor.map(fitness, genomes)
+                out[f"generation_{kind}_s"] = time.perf_counter() - t0
+        except Exception as exc:  # Ray may be absent on a machine: report, do not fail the others
+            out[f"generation_{kind}_error"] = f"{type(exc).__name__}: {exc}"[:200]
+            continue
+        reference = values if reference is None else reference
+        out[f"generation_{kind}_identical"] = int(np.array_equal(values, reference))
+    for kind in ("process", "ray"):
+        if f"generation_{kind}_s" in out:
+            out[f"speedup_{kind}_over_serial"] = out["generation_serial_s"] / out[f"generation_{kind}_s"]
+    return out

@@ -14,3 +14,10 @@ def cla():
 @model("spine.kenta", "Kenta's spine: ten joints and forty muscles, ligaments included (seed 003 §3.7)")
 def kenta():
     return build_spec(KENTA)
+
+
+@model("spine.sq43", "SQ43: 14-DOF quadruped, shoulder + compliant 3-block spine + hip, 1.9 kg (seed 003 §3.2, §5.6)")
+def sq43():
+    from shintai.spine.sq43_body import build_spec as build_sq43
+
+    return build_sq43()

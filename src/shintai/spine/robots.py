@@ -552,7 +552,9 @@ KENTA, KENTA_LIGAMENTS, KENTA_MOTOR_GROUPS = _kenta()
 @dataclass(frozen=True)
 class SQ43Spec:
     """SQ43 (§3.2): rigid parts A and memory-foam parts B; 2 bending DOF (servo A: styrene rods,
-    lateral; servo B: wires, vertical), flexibility 3 variables / 0 DOF; the §3.2.3 design search."""
+    lateral; servo B: wires, vertical), flexibility 3 variables / 0 DOF; the §3.2.3 design search.
+    The whole-body MuJoCo model's dimensions, masses and servo constants (each with its source) are
+    :class:`shintai.spine.sq43_body.SQ43BodySpec` (``sq43_body.BODY``)."""
 
     parts_a: int = 4  # Fig. 3.3
     foam_length_m: float = 0.010  # part B, y direction (§3.2.3)
