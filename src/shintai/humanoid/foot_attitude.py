@@ -32,7 +32,7 @@ from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.sim.body import MujocoBody
 
 # A foot counts in the ZMP when the floor pushes it up by more than this: the thesis's contact
-# threshold F_thre = 25 N (§5.3, the SLC's start/stop test on f_Lz, f_Rz).
+# threshold F_thre = 25 N (§5.4.1, the SLC's start/stop test on f_Lz, f_Rz, Fig. 5.5).
 CONTACT_FZ = 25.0  # N
 SIDES = ("l", "r")
 

@@ -22,6 +22,12 @@ With ``R_f``, ``p_a`` the foot orientation and ankle point, ``H`` the hip point 
 A target beyond ``L1 + L2`` gets the stretched knee (q4 = 0) pointing at it: ``reachable`` False,
 ``reach_error`` the distance the ankle misses by. Joint limits (Table A.2, mirrored for the left
 leg) are reported, not enforced: ``within_limits`` and ``violated``.
+
+Not yet used by the tricycle's feet (issue 13 asks for a before/after reproduce comparison first): it
+would replace ``ik.solve`` in :meth:`shintai.humanoid.hrp2_limbs.Hrp2Limb.solve` for ``kind == "foot"``
+(target: the sole site at ``frame.to_world(ξ)`` with ``rot @ SOLE_IN_VEHICLE``, the waist pose from the
+body's data), which :mod:`~shintai.humanoid.tricycle_rig` and :mod:`~shintai.humanoid.ride` reach
+through ``riding_limbs(body, "foot")``; ``ok`` there = :attr:`LegIKResult.ok`.
 """
 
 from __future__ import annotations

@@ -1,9 +1,10 @@
 """ZMP pattern generation by preview control of the cart-table model (Kajita et al., ICRA 2003 [84]).
 
 The thesis plans HRP2-JSK's boarding steps onto the scooter with the AutoBalancer [85] of hrpsys-base,
-which is built on this pattern generator (§5.4, "平行二輪電動スクーターへの乗り込み動作生成"; an
+which is built on this pattern generator (§5.4.1, "平行二輪電動スクーターへの乗り込み動作生成"; an
 *offline* search index in the thesis's terms, §2.3.2 Table 2.1: "歩行パターン軌道生成 [84] に基づく
-AutoBalancer [85]"). The thesis gives none of its equations or parameters; they are Kajita 2003's:
+AutoBalancer [85]"; §6.2.1 computes the statically stable riding posture by [84] too, §7.3.3 runs
+AutoBalancer on the Ninebot). The thesis gives none of its equations or parameters; they are Kajita 2003's:
 
 * cart-table model, CoM at constant height z_c: p = x − (z_c/g) ẍ; the state x = (x, ẋ, ẍ) with the
   jerk u as input, discretised exactly at the period T::
@@ -21,7 +22,9 @@ AutoBalancer [85]"). The thesis gives none of its equations or parameters; they 
       Ã_c = Ã − b̃ W b̃ᵀ P̃ Ã
       u(k) = −G_i Σ_{i≤k} e(i) − G_x x(k) − Σ_{j=1..N_L} G_p(j) p_ref(k+j)
 
-  x and y are two independent copies of the same system and gains.
+  x and y are two independent copies of the same system and gains. (hrpsys-base's AutoBalancer runs
+  the equivalent 4-state "extended_preview_control" of the same cost; g there is 9.80665, here the
+  project's 9.81.)
 
 A footstep list becomes the ZMP reference (:func:`zmp_plan`): the ZMP rests on the support foot in
 single support and moves linearly to the next support foot in double support.
@@ -43,17 +46,19 @@ from shintai.humanoid.constants import CONTROL_PERIOD
 
 # Preview control parameters. The thesis gives none (§5.4 only cites [84][85]).
 PREVIEW_TIME = 1.6  # s, N_L·T: hrpsys-base AutoBalancer's default (PreviewController.h, d = 1.6), also
-# the preview of Kajita 2003's walking example; the gains G_p have decayed below 1 % of their peak by
-# then (tested in tests/humanoid/test_preview.py)
+# the preview used with Kajita 2003's example parameters (T = 5 ms, z_c = 0.814 m, Q_e = 1, R = 1e-6) in
+# its common reproductions; the gains G_p have decayed below 1 % of their peak by then (tested)
 PREVIEW_QE = 1.0  # Q_e, ZMP error weight: Kajita 2003's example and hrpsys-base's default q = 1
 PREVIEW_R = 1e-6  # R, jerk increment weight: Kajita 2003's example and hrpsys-base's default r = 1e-6
 # Q_x = 0 (Kajita 2003's example): the state increments are not penalised.
 # Footstep timing: chosen, because not in the thesis (Fig. 5.6 shows the boarding but no timing):
-# hrpsys-base's GaitGenerator defaults, default_step_time 1.0 s with default_double_support_ratio 0.2
-# (0.2 s double support, 0.8 s single support).
+# hrpsys-base's GaitGenerator defaults, default_step_time 1.0 s with double-support ratios 0.1 before
+# + 0.1 after (GaitGenerator.h): 0.2 s double support and 0.8 s single support per step.
 STEP_DOUBLE_S = 0.2
 STEP_SINGLE_S = 0.8
-PLAN_HOLD_S = 1.0  # s, chosen: the ZMP rests at the start and the end this long (≥ ~3/ω of the LIP)
+# s, chosen: the ZMP rests this long at the start and the end; > 3/ω = 0.87 s of the LIP (ω = √(g/z_c)).
+# Starting at rest 1 s before the first shift costs a 2.8 mm transient of the cart-table ZMP.
+PLAN_HOLD_S = 1.0
 
 CHANNELS = declare("com_ref", "zmp_ref", kind=SET)  # what PreviewModule writes (loop channels)
 
