@@ -11,3 +11,13 @@ def test_tricycle_overhead_runs_both_configurations_for_the_same_simulated_time(
         assert out[f"{name}_physics_steps"] > 0
         assert out[f"{name}_sim_time_s"] > 0.0
         assert math.isfinite(out[f"{name}_overhead_ratio"]) and out[f"{name}_overhead_ratio"] > 0.0
+
+
+def test_leg_ik_benchmark_times_both_solvers_on_the_same_targets():
+    from shintai.humanoid.benchmarks import leg_ik_cost
+
+    out = leg_ik_cost(ticks=20)
+    assert out["calls"] == 20
+    assert out["analytic_us_per_call"] > 0.0 and out["dls_us_per_call"] > 0.0
+    assert math.isfinite(out["dls_over_analytic"])
+    assert out["max_joint_difference_rad"] < 1e-3  # same branch; the DLS IK stops at its 0.1 mm / 1 mrad tolerance

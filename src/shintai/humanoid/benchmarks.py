@@ -39,22 +39,39 @@ site ids cached, no limit bookkeeping when no joint is at a limit, F/T and FK re
 vehicle frame once per waist pose, the handle model's zero directions once per model; caching the
 IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
 Both the controller runs and bare mj_step are the faster of two runs.
+
+``humanoid.leg-ik`` (issue 13 item 2): the analytic leg IK (:mod:`shintai.humanoid.leg_ik`) against
+the DLS IK per call on the same 500 sole targets of a pedalling-like foot path, as a ratio in one
+run. Measured on the loaded 2-core machine (load average ≈7): analytic ≈22–27 µs, DLS ≈390–510 µs
+a call (warm-started, one step and the check each), ratio ≈15×; the two agree to ≈7e-5 rad (the
+DLS IK stops at its 0.1 mm / 1 mrad tolerance).
 """
 
 from __future__ import annotations
 
+import math
 import time
 
 import mujoco
+import numpy as np
 
 from shintai.humanoid import riding
-from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, DELTA_T
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    D_THETA_C,
+    D_THETA_H,
+    DEG,
+    DELTA_T,
+)
 from shintai.humanoid.hrp2_limbs import riding_limbs
+from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
 from shintai.humanoid.operation import OperationSchedule
 from shintai.humanoid.ride import Ride, slalom_goals
+from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.tricycle_rig import crank_schedule, legs_switcher, pedal_rig
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
+from shintai.sim import ik
 
 
 def bare_steps(model: mujoco.MjModel, keyframe: str, steps: int) -> float:
@@ -104,3 +121,52 @@ def tricycle_overhead(seconds: float = 6.0) -> dict:
                     f"{name}_bare_mj_step_s": bare, f"{name}_overhead_ratio": wall / bare,
                     f"{name}_sim_per_wall": body.t / wall, f"{name}_bare_sim_per_wall": body.t / bare})
     return out
+
+
+def sole_circle(model: mujoco.MjModel, side: str, ticks: int, radius: float = 0.03):
+    """Waist pose and ``ticks`` sole targets (pos, rot) of leg ``side``: from the standing keyframe,
+    the sole goes round a vertical circle of ``radius`` in 2 s at the 4 ms control period, pitching
+    by up to 0.1 rad — a pedalling-like foot path, each target close to the previous one."""
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, model.key("stand").id)
+    mujoco.mj_kinematics(model, data)
+    w, s = model.body("waist").id, model.site(f"{side}_sole").id
+    start, rot0 = data.site_xpos[s].copy(), data.site_xmat[s].reshape(3, 3).copy()
+    targets = []
+    for k in range(ticks):
+        a = 2 * math.pi * k * CONTROL_PERIOD / 2.0
+        pitch = 0.1 * math.sin(a)
+        c, sn = math.cos(pitch), math.sin(pitch)
+        rot = np.array([[c, 0.0, sn], [0.0, 1.0, 0.0], [-sn, 0.0, c]]) @ rot0
+        targets.append((start + radius * np.array([math.sin(a), 0.0, 1.0 - math.cos(a)]), rot))
+    return data.qpos.copy(), data.xpos[w].copy(), data.xmat[w].reshape(3, 3).copy(), targets
+
+
+@benchmark("humanoid.leg-ik", "analytic HRP2 leg IK (humanoid.leg_ik) vs the DLS IK (sim.ik) per call, same sole targets")
+def leg_ik_cost(ticks: int = 500) -> dict:
+    """Both solvers on the same ``ticks`` sole targets of the left leg (:func:`sole_circle`): the DLS
+    IK warm-started from its previous solution as the tricycle's feet use it (usually one step and
+    the check), the analytic one from nothing. The faster of two passes each (a shared machine)."""
+    model = build_hrp2().model
+    q0, waist_pos, waist_rot, targets = sole_circle(model, "l", ticks)
+    joints = [f"l_{n}" for n in JOINT_NAMES]
+    qadr = [model.joint(j).qposadr[0] for j in joints]
+
+    def dls_pass():
+        q, out = q0.copy(), []
+        t0 = time.perf_counter()
+        for target in targets:
+            q = ik.solve(model, {"l_sole": target}, q, joints).q
+            out.append(q[qadr])
+        return time.perf_counter() - t0, out
+
+    def analytic_pass():
+        t0 = time.perf_counter()
+        out = [leg_ik("l", waist_pos, waist_rot, pos, rot).q for pos, rot in targets]
+        return time.perf_counter() - t0, out
+
+    dls, q_dls = min((dls_pass() for _ in range(2)), key=lambda r: r[0])
+    analytic, q_analytic = min((analytic_pass() for _ in range(2)), key=lambda r: r[0])
+    return {"calls": ticks, "analytic_us_per_call": 1e6 * analytic / ticks, "dls_us_per_call": 1e6 * dls / ticks,
+            "dls_over_analytic": dls / analytic,
+            "max_joint_difference_rad": float(np.abs(np.array(q_dls) - np.array(q_analytic)).max())}
