@@ -12,8 +12,8 @@ def check_real(name: str, value, low: float = -math.inf, high: float = math.inf,
 
     ``low_open``/``high_open`` exclude the end points: ``check_real("D0", d, 0, low_open=True)`` is D₀ > 0.
     """
-    left = "(" if low_open else "["
-    right = ")" if high_open else "]"
+    left = "(" if low_open or low == -math.inf else "["
+    right = ")" if high_open or high == math.inf else "]"
     allowed = f"{left}{low:g}, {high:g}{right}"
     try:
         x = float(value)

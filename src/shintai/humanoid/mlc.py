@@ -14,7 +14,8 @@ For * = v, ω and ρ_n = (K_P(n), K_I(n), K_D(n)):
   a negative gain is set to 0 and learned again from there (§6.3.2); gains start at 0 (§6.4.1).
 * termination:  ‖∇J(ρ_n)‖₂ < ε ∧ J(ρ_n) < σ on k = 3 consecutive mini-batches (Eq. 6.32).
 * as an online search index (Table 6.4, Eq. 6.31): x = y, x_d = y^d, W = 1/T_L, A = diag(η_P, η_I, η_D).
-  The engine's :class:`~shintai.core.search_index.SearchIndex` carries ρ; the index f = ∇J is this module's.
+  ρ lives in the engine's :class:`~shintai.core.search_index.SearchIndex`, which is handed each batch's ∫ Y e dt
+  and turns it into the learning index f = ∇J of Eq. 6.18.
 
 Choices where the thesis is silent (each tested or stated next to its constant):
 * ε and σ of Eq. 6.32 are "very small positive values" without numbers: chosen below per axis;
@@ -146,8 +147,9 @@ class MLC:
 
     def __init__(self, params: MLCParams, gains0=(0.0, 0.0, 0.0)):
         self.p = params
+        # the engine's x is the batch's ∫ Y e dt, its learning index f = ∇J = −(2/T_L) ∫ Y e dt (Eq. 6.18)
         self.index = SearchIndex(np.asarray(gains0, dtype=float), MatrixGain(np.diag(params.eta)),
-                                 gradient=lambda x, rho: self._grad)
+                                 gradient=lambda integral, rho: -2.0 / params.T_L * integral)
         self.sensitivity = Sensitivity(params.K, params.T, params.dt, self.gains)
         self.batches: list[Batch] = []
         self.converged = False
@@ -174,19 +176,20 @@ class MLC:
         if self._n < self.p.batch:
             return False
         J = self._sum_e2 / self.p.T_L  # Eq. 6.17
-        self._grad = -2.0 / self.p.T_L * self._sum_Ye  # Eq. 6.18
+        integral = self._sum_Ye
+        grad = self.index.index(integral)  # Eq. 6.18
         self._reset_batch()
-        holds = bool(np.linalg.norm(self._grad) < self.p.eps and J < self.p.sigma)  # Eq. 6.32
+        holds = bool(np.linalg.norm(grad) < self.p.eps and J < self.p.sigma)  # Eq. 6.32
         self._streak = self._streak + 1 if holds else 0
         clipped = np.zeros(3, dtype=bool)
         if self._streak >= self.p.k:
             self.converged, self.t_converged = True, t
         else:
-            rho = self.index.update(np.zeros(1))  # ρ − diag(η) ∇J (Eq. 6.30); x is unused: f = ∇J
+            rho = self.index.update(integral)  # ρ − diag(η) ∇J (Eq. 6.30)
             clipped = rho < 0
-            rho[clipped] = 0.0  # a negative gain is set to 0 and re-learned (§6.3.2)
-            self.sensitivity.set_gains(rho)
-        self.batches.append(Batch(t, J, self._grad.copy(), self.gains, clipped, holds))
+            self.index.rho = np.maximum(rho, 0.0)  # a negative gain is set to 0 and re-learned (§6.3.2)
+            self.sensitivity.set_gains(self.index.rho)
+        self.batches.append(Batch(t, J, grad, self.gains, clipped, holds))
         return not self.converged
 
 

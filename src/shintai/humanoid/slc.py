@@ -40,7 +40,6 @@ from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
 from shintai.humanoid.law_params import check_real
 
 # --- constants (Table 5.2 and §5.4.1) ---------------------------------------------------------------
-SLC_T = 1.5  # s, damping time constant T (Table 5.2)
 SLC_Q = 0.1  # weight of e_τ² (Table 5.2)
 SLC_R = 1.0e5  # weight of δ² (Table 5.2)
 SLC_ETA = 0.01  # learning rate η (Table 5.2) → Q′ = 1e-3, R′ = 1e3
@@ -67,13 +66,13 @@ def slc_update(D, e_tau, delta, Q_prime: float, R_prime: float):
 
 @dataclass(frozen=True)
 class SLCParams:
-    """Table 5.2 and §5.4.1; every field checked (one ValueError line naming it)."""
+    """Table 5.2 and §5.4.1; every field checked (one ValueError line naming it). Table 5.2's T = 1.5 s belongs
+    to the damping controller (:data:`shintai.humanoid.foot_damping.DAMPING_T`): Eq. 5.17 does not use it."""
 
     D0: float = SLC_D0
     Q: float = SLC_Q
     R: float = SLC_R
     eta: float = SLC_ETA
-    T: float = SLC_T
     F_thre: float = F_THRE
     D_min: float = SLC_D_MIN
 
@@ -82,7 +81,6 @@ class SLCParams:
         check_real("Q", self.Q, 0.0, low_open=True)
         check_real("R", self.R, 0.0, low_open=True)
         check_real("eta", self.eta, 0.0, ETA_MAX, low_open=True)
-        check_real("T", self.T, 0.0, low_open=True)
         check_real("F_thre", self.F_thre, 0.0)
         check_real("D_min", self.D_min, 0.0, self.D0, low_open=True)
 
