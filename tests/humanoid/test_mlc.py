@@ -151,3 +151,21 @@ def test_mlc_from_zero_gains_meets_eq_6_32_on_the_identified_plant():
     kp, ki, kd = gov.mlc["v"].gains
     assert 1e-4 < kp < 1e-2 and 1e-4 < ki < 1e-2 and kd < min(kp, ki)  # O(1e-3); P and I dominate D
     assert abs(body.snapshot()["v"]) < 0.01
+
+
+def max_ui_step(mode, seconds=20.0):
+    """Largest one-tick change of u_I^v while MLC raises K_I from 0 on the identified plant."""
+    body = IdentifiedScooterPlant(disturbance=(1e-4, 1e-4))
+    gov = SpeedGovernor(mode=mode)
+    u_I = []
+    Loop(body, [gov]).run(duration=seconds, every={1: lambda s: u_I.append(gov.pid["v"].integrator.u_I)})
+    return np.max(np.abs(np.diff(u_I))), gov
+
+
+def test_in_closed_loop_the_corrected_integrator_removes_the_jumps_of_the_plain_one():
+    plain, _ = max_ui_step("plain")
+    saturated, _ = max_ui_step("saturated")
+    corrected, gov = max_ui_step("corrected")
+    assert any(b.gains[1] > 0 for b in gov.mlc["v"].batches)  # K_I did rise from 0
+    assert corrected < 0.05 * plain  # Eq. 6.38 against Eq. 6.36
+    assert corrected < 0.1 * saturated < 0.1 * plain  # r_sat = 1.5 (Eq. 6.42) still jumps (Fig. 6.17)
