@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
+from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.law_params import check_real
 
 # --- constants ------------------------------------------------------------------------------------
@@ -60,7 +61,7 @@ class FootDamping:
     ``step(tau_d, tau)`` returns the new δ; ``e_tau`` keeps the error of that step.
     """
 
-    def __init__(self, D=DAMPING_D_FLAT, T: float = DAMPING_T, dt: float = 0.004, limit: float = DELTA_LIMIT):
+    def __init__(self, D=DAMPING_D_FLAT, T: float = DAMPING_T, dt: float = CONTROL_PERIOD, limit: float = DELTA_LIMIT):
         D = np.broadcast_to(np.asarray(D, dtype=float), (2,)).copy()
         for axis, d in zip(AXES, D, strict=True):
             check_real(f"D ({axis})", d, 0.0, low_open=True)
@@ -92,7 +93,7 @@ class ForceDifferenceControl:
     in double support; in single support z_ctrl only decays (ż = −z/T_z). Returns (z_R, z_L) in m.
     """
 
-    def __init__(self, D=FORCE_DIFF_D, T: float = FORCE_DIFF_T, dt: float = 0.004, limit: float = FORCE_DIFF_LIMIT):
+    def __init__(self, D=FORCE_DIFF_D, T: float = FORCE_DIFF_T, dt: float = CONTROL_PERIOD, limit: float = FORCE_DIFF_LIMIT):
         self.D = check_real("D_z", D, 0.0, low_open=True)
         self.T = check_real("T_z", T, 0.0, low_open=True)
         self.dt = check_real("dt", dt, 0.0, low_open=True)

@@ -34,10 +34,10 @@ import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
 from shintai.core.search_index import MatrixGain, SearchIndex
+from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.prior_value_integrator import PID
 from shintai.humanoid.speed_governing import (
-    CONTROL_DT,
     K_OMEGA,
     K_V,
     T_OMEGA,
@@ -69,7 +69,7 @@ class MLCParams:
     sigma: float
     k: int = TERMINATION_K
     T_L: float = T_L
-    dt: float = CONTROL_DT
+    dt: float = CONTROL_PERIOD
 
     def __post_init__(self):
         check_real("K", self.K, 0.0, low_open=True)

@@ -28,10 +28,12 @@ from scipy.optimize import minimize_scalar
 from scipy.signal import lfilter
 
 from shintai.core.runtime import Body, declare
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,  # Δt ≈ 4 ms of the speed-governing system too (§6.2.2)
+)
 from shintai.humanoid.law_params import check_real
 
 # --- constants --------------------------------------------------------------------------------------
-CONTROL_DT = 0.004  # s, Δt of the speed-governing system (§6.2.2, Table 6.1)
 VO_PERIOD = 0.010  # s, x_VO sampling (Table 6.1)
 T_V, T_OMEGA = 1.1, 0.6  # s, identified lags (Table 6.2)
 K_V, K_OMEGA = 5.88e2, 1.39e4  # identified gains (Table 6.2); units of u as the thesis's (see module doc)
@@ -42,7 +44,7 @@ MIX = np.array([[1.0, 1.0], [1.0, -1.0]])  # Eq. 6.5
 class LinearVelocityFilter:
     """v from a_x (IMU, 4 ms) and x_VO (10 ms) by the complementary filter of Eq. 6.3 (read as in the doc)."""
 
-    def __init__(self, T_f: float = T_F, dt: float = CONTROL_DT):
+    def __init__(self, T_f: float = T_F, dt: float = CONTROL_PERIOD):
         self.T_f = check_real("T_f", T_f, 0.0, low_open=True)
         self.dt = check_real("dt", dt, 0.0, low_open=True)
         self._alpha = math.exp(-self.dt / self.T_f)
@@ -83,7 +85,7 @@ def lowpass(u, T: float, dt: float, w0: float = 0.0) -> np.ndarray:
 class SpeedPlant:
     """y = K/(s(1 + T s)) u (Eqs. 6.13–6.14) for one of v, ω, exact for u held over each ``dt``."""
 
-    def __init__(self, K: float, T: float, dt: float = CONTROL_DT, y0: float = 0.0):
+    def __init__(self, K: float, T: float, dt: float = CONTROL_PERIOD, y0: float = 0.0):
         self.K = check_real("K", K, 0.0, low_open=True)
         self.T = check_real("T", T, 0.0, low_open=True)
         self.dt = check_real("dt", dt, 0.0, low_open=True)
@@ -106,7 +108,7 @@ class IdentifiedScooterPlant(Body):
 
     channels = declare("foot_pitch")
 
-    def __init__(self, K=(K_V, K_OMEGA), T=(T_V, T_OMEGA), dt: float = CONTROL_DT, disturbance=(0.0, 0.0),
+    def __init__(self, K=(K_V, K_OMEGA), T=(T_V, T_OMEGA), dt: float = CONTROL_PERIOD, disturbance=(0.0, 0.0),
                  y0=(0.0, 0.0)):
         self.dt, self.t = dt, 0.0
         self.axes = [SpeedPlant(k, tc, dt, y) for k, tc, y in zip(K, T, y0, strict=True)]
