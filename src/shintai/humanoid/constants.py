@@ -26,6 +26,9 @@ DEG = math.pi / 180.0
 # ------------------------------------------------------------------------------------------------
 
 CONTROL_PERIOD = 0.004  # s, hrpsys real-time period "約 4 ms" (§A.2.1, Fig. A.14; spec-A §4.4)
+# F_thre: a foot is on the board/floor when it pushes more than this — the SLC's start/stop test on
+# f_Lz, f_Rz (§5.4.1, Fig. 5.5) and the feet counted in the measured ZMP.
+F_THRE = 25.0  # N
 # Chosen: 1 ms physics keeps the closed loops (grips, pedals, saddle weld) stiff and stable; four
 # physics steps make one 4 ms control step.
 PHYSICS_TIMESTEP = 0.001

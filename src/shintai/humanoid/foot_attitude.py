@@ -27,13 +27,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from shintai.humanoid.constants import F_THRE
 from shintai.humanoid.leg_ik import JOINT_NAMES, leg_fk
 from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.sim.body import MujocoBody
 
-# A foot counts in the ZMP when the floor pushes it up by more than this: the thesis's contact
-# threshold F_thre = 25 N (§5.4.1, the SLC's start/stop test on f_Lz, f_Rz, Fig. 5.5).
-CONTACT_FZ = 25.0  # N
+# A foot counts in the ZMP when the floor pushes it up by more than the thesis's F_thre (§5.4.1).
+CONTACT_FZ = F_THRE
 SIDES = ("l", "r")
 
 

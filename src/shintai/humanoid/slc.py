@@ -37,6 +37,7 @@ import numpy as np
 
 from shintai.core.runtime import Snapshot
 from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
+from shintai.humanoid.constants import F_THRE  # landing threshold of the start/stop guards (§5.4.1)
 from shintai.humanoid.law_params import check_real
 
 # --- constants (Table 5.2 and §5.4.1) ---------------------------------------------------------------
@@ -44,7 +45,6 @@ SLC_Q = 0.1  # weight of e_τ² (Table 5.2)
 SLC_R = 1.0e5  # weight of δ² (Table 5.2)
 SLC_ETA = 0.01  # learning rate η (Table 5.2) → Q′ = 1e-3, R′ = 1e3
 SLC_D0 = 22.0  # D at the start, the flat-floor value (§5.4.1)
-F_THRE = 25.0  # N, landing threshold of the start/stop guards (§5.4.1)
 SLC_D_MIN = 1.0  # chosen: floor under D (not in the text; D divides Eqs. 5.1 and 5.17)
 ETA_MAX = 1.0  # chosen: η ∈ (0, 1]; Table 5.1 needs A = η > 0, the thesis runs 0.01
 
