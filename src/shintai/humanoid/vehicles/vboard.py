@@ -154,12 +154,11 @@ def _add_half(spec: mujoco.MjSpec, frame, side: str, v: VboardSpec, hold: bool) 
     damper.biastype = mujoco.mjtBias.mjBIAS_NONE
     damper.ctrllimited = mujoco.mjtLimited.mjLIMITED_TRUE
     damper.ctrlrange = [0.0, 1.0]
-    spec.add_sensor(name=f"board_{side}_pitch", type=mujoco.mjtSensor.mjSENS_JOINTPOS, objtype=mujoco.mjtObj.mjOBJ_JOINT,
-                    objname=BOARD[side])
-    spec.add_sensor(name=f"board_{side}_rate", type=mujoco.mjtSensor.mjSENS_JOINTVEL, objtype=mujoco.mjtObj.mjOBJ_JOINT,
-                    objname=BOARD[side])
-    spec.add_sensor(name=f"wheel_{side}_speed", type=mujoco.mjtSensor.mjSENS_JOINTVEL,
-                    objtype=mujoco.mjtObj.mjOBJ_JOINT, objname=WHEEL_JOINT[side])
+    joint_sensors = ((f"board_{side}_pitch", mujoco.mjtSensor.mjSENS_JOINTPOS, BOARD[side]),
+                     (f"board_{side}_rate", mujoco.mjtSensor.mjSENS_JOINTVEL, BOARD[side]),
+                     (f"wheel_{side}_speed", mujoco.mjtSensor.mjSENS_JOINTVEL, WHEEL_JOINT[side]))
+    for name, kind, joint_name in joint_sensors:
+        spec.add_sensor(name=name, type=kind, objtype=mujoco.mjtObj.mjOBJ_JOINT, objname=joint_name)
     spec.add_sensor(name=TOUCH[side], type=mujoco.mjtSensor.mjSENS_TOUCH, objtype=mujoco.mjtObj.mjOBJ_SITE,
                     objname=PAD[side])
     if hold:
