@@ -84,6 +84,8 @@ def test_equations_a1_to_a4_against_a_hand_calculation():
     assert (v, omega) == pytest.approx(((v_r + v_l) / 2, (v_r - v_l) / 0.515))  # Eq. A.3
     assert (v, omega) == pytest.approx((0.271524, 0.380971), abs=1e-6)
     assert vb.wheel_odometry(4.6203, 4.6203) == pytest.approx((0.08 * 4.6203, 0.0))  # straight on
+    both = vb.tilt_velocity(VBOARD.theta_o("r") + DEG, VBOARD.theta_o("l") + DEG)  # spec-A §8 item 2
+    assert both == pytest.approx((0.3582, 0.02277 / 0.515), abs=1e-4)  # K_R ≠ K_L: it curves left
     assert vb.wheel_odometry(1.0, -1.0)[0] == pytest.approx(0.0)  # turning in place
     assert vb.wheel_odometry(1.0, -1.0)[1] > 0  # right wheel forward: turns left (+z)
 
@@ -146,6 +148,26 @@ def test_tilted_boards_drive_the_scooter_at_eq_a4():
     assert vb.wheel_odometry(omegas["r"], omegas["l"]) == pytest.approx(vb.scooter_velocity(snap), rel=0.01)
     yaw = snap["q:vboard_yaw"]
     assert yaw == pytest.approx(expected[1] * 1.0, rel=0.1)  # turned left by ∫ω dt (ω settles in ≈ 0.1 s)
+
+
+def test_added_at_a_pose_it_drives_along_its_heading():
+    """add_vboard's pose: placed at (1, 2) facing +y, boards tilted forward, it goes along +y."""
+    spec = scene_spec("vboard-pose")
+    vb.add_vboard(spec, spec.worldbody, pos=(1.0, 2.0, 0.0), yaw=math.pi / 2, hold=True)
+    spec.add_key(name="park")
+    model = spec.compile()
+    qpos = model.qpos0.copy()
+    theta = {s: VBOARD.theta_o(s) + 1.0 * DEG for s in vb.SIDES}
+    vb.vboard_state(model, qpos, theta)
+    fill_keyframe(model, "park", qpos)
+    body = MujocoBody(model, keyframe="park", substeps=4, spec=spec)
+    assert body.site_pos("vboard_centre") == pytest.approx([1.0, 2.0, VBOARD.wheel_radius])
+    vb.install_firmware(body, strapped=("r", "l"))
+    snap = run(body, 0.5)
+    moved = body.site_pos("vboard_centre")[:2] - [1.0, 2.0]
+    assert moved[1] > 0.1 and abs(moved[0]) < 0.2 * moved[1]
+    yaw = math.pi / 2 + snap["q:vboard_yaw"]  # the heading sensor lags qpos by one physics step
+    assert snap["vboard_heading"][:2] == pytest.approx([math.cos(yaw), math.sin(yaw)], abs=1e-3)
 
 
 # --- loads and contact switches ----------------------------------------------------------------

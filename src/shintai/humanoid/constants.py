@@ -412,6 +412,8 @@ VBOARD = VboardSpec()
 
 # Position servos holding each board's pitch against the level frame: only a fixture for tests and
 # demos (Fig. A.5's hand and protractor), never part of the scooter. (kp N m/rad, kv N m s/rad).
+# Use it on unloaded boards: with a heavy box on a held board and the drive on, the stiff fixture,
+# the box's contact and the firmware ring at the 1 ms physics step (gone at 0.25 ms).
 VBOARD_HOLD_SERVO = (3000.0, 60.0)
 
 # ------------------------------------------------------------------------------------------------

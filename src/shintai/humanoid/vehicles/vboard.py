@@ -31,7 +31,7 @@ reaction torque turns the half back — for a free half I θ̈ + k_v (1 + I/(M r
 = 0, a stiff, damped levelling loop. A load whose mass centre is over the axle at θ_O stays put;
 one ahead of (behind) the axle tips the board and drives the scooter forward (back), as a rider
 leaning does. A rigid load is thus an inverted pendulum on a speed-commanded cart, slowly unstable
-(pole ≈ g/(r K) ≈ 0.45 s⁻¹): the rider balances, as §6.2.1's behaviour level 1 shows (the robot
+(pole ≈ g/(r K) ≈ 0.5 s⁻¹): the rider balances, as §6.2.1's behaviour level 1 shows (the robot
 with a fixed posture drifted away). An unloaded half (drive off) hangs level under its own weight
 (mass centre below the axle). Mass, sizes and motor are a 6.5-inch board's (:class:`VboardSpec`).
 
@@ -215,7 +215,9 @@ class VboardFirmware:
     Each side: the contact switch is on while its pad's normal force exceeds ``switch_force`` (or
     always, for sides in ``strapped``: Fig. A.5's belt pressing the sensor). While on, the hub motor
     is speed-servoed to Eq. A.1: ``wheel_s_motor`` gets k_v K_s (θ_s − θ_sO) and ``wheel_s_damper``
-    gain 1 (its force −k_v Ω_s, integrated implicitly by MuJoCo); while off, both get 0.
+    gain 1 (its force −k_v Ω_s, integrated implicitly by MuJoCo); while off, both get 0. θ_s is read
+    from ``qpos`` (current), the pad force from ``sensordata`` (one physics step old: MuJoCo computes
+    sensors at the start of a step), a 1 ms switch latency.
     """
 
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, v: VboardSpec = VBOARD, strapped=()):
@@ -235,7 +237,7 @@ class VboardFirmware:
         d = self.data
         qpos, touch, ctrl = d.qpos, d.sensordata, d.ctrl
         for side, qadr, tadr, motor, damper, gain, theta_o in self._sides:
-            on = side in self.strapped or touch[tadr] > self.v.switch_force
+            on = side in self.strapped or bool(touch[tadr] > self.v.switch_force)
             self.on[side] = on
             ctrl[motor] = gain * (qpos[qadr] - theta_o) if on else 0.0
             ctrl[damper] = 1.0 if on else 0.0
