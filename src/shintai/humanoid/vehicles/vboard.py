@@ -25,14 +25,17 @@ the motor's shaft). The halves' only coupling is the pivot's friction (tendon ``
 The firmware (:class:`VboardFirmware`, run before every physics step) is Eq. A.1 as a speed servo
 of each hub motor: τ_s = k_v (K_s (θ_s − θ_sO) − Ω_s) while the side's contact switch is on,
 τ_s = 0 (the wheel coasts) while it is off; Ω_s is the motor speed (wheel relative to half, the
-hall sensors'), |τ_s| ≤ 15 N m. With the wheel at steady speed τ = 0, so Eq. A.1 holds exactly.
+hall sensors'), |τ_s| ≤ 15 N m. At steady speed τ only meets the bearing's drag, so Eq. A.1 holds
+to 0.5 % (k_v / (k_v + bearing damping)).
 What keeps a loaded board near θ_O is this same law: a tilt drives the wheel, and the motor's
 reaction torque turns the half back — for a free half I θ̈ + k_v (1 + I/(M r²)) θ̇ + k_v K (θ − θ_O)
 = 0, a stiff, damped levelling loop. A load whose mass centre is over the axle at θ_O stays put;
 one ahead of (behind) the axle tips the board and drives the scooter forward (back), as a rider
 leaning does. A rigid load is thus an inverted pendulum on a speed-commanded cart, slowly unstable
 (pole ≈ g/(r K) ≈ 0.5 s⁻¹): the rider balances, as §6.2.1's behaviour level 1 shows (the robot
-with a fixed posture drifted away). An unloaded half (drive off) hangs level under its own weight
+holding a fixed posture moved off, accelerating; Fig. 6.3). A scenario wanting the real board's
+inexact θ_O (§6.2.1: level 2 drifted back with θ_R > θ_RO) builds the scooter from a
+``dataclasses.replace(VBOARD, theta_o_deg=...)`` while its controllers keep :data:`VBOARD`. An unloaded half (drive off) hangs level under its own weight
 (mass centre below the axle). Mass, sizes and motor are a 6.5-inch board's (:class:`VboardSpec`).
 
 Frames: vehicle origin on the ground under the axle's midpoint, x forward, y left, z up. θ_s turns
@@ -172,7 +175,8 @@ def add_vboard(spec: mujoco.MjSpec, parent, pos=(0.0, 0.0, 0.0), yaw: float = 0.
     """Add the V-BOARD with its vehicle origin (ground under the axle midpoint) at ``pos``, heading
     ``yaw`` [rad] (the slides ``vboard_x``/``vboard_y`` move along the initial heading's axes).
 
-    ``hold`` adds the pitch-holding fixture ``board_s_hold``; ``fixed`` mounts the scooter on a
+    ``hold`` adds the pitch-holding fixture ``board_s_hold`` (it reacts on the level frame, hence on
+    the world: a hand holding the board, not a part of the scooter); ``fixed`` mounts the scooter on a
     stand, its wheels 50 mm clear of the ground (the measurement of Fig. A.5), without root joints.
     Returns the level-frame body ``vboard``. Run :class:`VboardFirmware` on the compiled model.
     """
