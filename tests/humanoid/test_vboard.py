@@ -170,6 +170,17 @@ def test_added_at_a_pose_it_drives_along_its_heading():
     assert snap["vboard_heading"][:2] == pytest.approx([math.cos(yaw), math.sin(yaw)], abs=1e-3)
 
 
+def test_a_true_theta_o_other_than_the_regression_makes_nominal_tilts_drift():
+    """The real board's θ_O is only the regression's intercept (§6.2.1): a scooter built with another
+    true θ_O, its boards held at the nominal θ_O, goes at Eq. A.4 of the true values (here backward)."""
+    true = dataclasses.replace(VBOARD, theta_o_deg=(("r", -1.5871), ("l", -1.7972)))  # 0.2° higher
+    nominal = {s: VBOARD.theta_o(s) for s in vb.SIDES}
+    body = vb.build_vboard(nominal, true, hold=True, strapped=("r", "l"))
+    v, _ = vb.scooter_velocity(run(body, 1.0))
+    assert v == pytest.approx(vb.tilt_velocity(nominal["r"], nominal["l"], true)[0], rel=0.03)
+    assert v < -0.05
+
+
 # --- loads and contact switches ----------------------------------------------------------------
 
 
