@@ -4,6 +4,8 @@
 * :mod:`~shintai.humanoid.robots.hrp2` — the HRP2-JSK-like 32-DoF humanoid (App. A.2.1).
 * :mod:`~shintai.humanoid.robots.kenshiro` — Kenshiro's sagittal legs on a crank (§3.5.5).
 * :mod:`~shintai.humanoid.vehicles.tricycle` — the tricycle of App. A.1.1.
+* :mod:`~shintai.humanoid.vehicles.vboard` — the V-BOARD scooter of App. A.1.2 (Eqs. A.1–A.4) and its
+  firmware; :mod:`~shintai.humanoid.vboard_stand` — the humanoid standing on it (§6.2.1).
 * :mod:`~shintai.humanoid.riding` — the humanoid seated on the tricycle, as a ``MujocoBody``.
 * :mod:`~shintai.sim.ik` (shared) — damped-least-squares IK on MuJoCo site Jacobians.
 * the wiring several experiments share: :mod:`~shintai.humanoid.tricycle_rig` (the limbs on the

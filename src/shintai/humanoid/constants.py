@@ -322,6 +322,104 @@ TRICYCLE = TricycleSpec()
 TRICYCLE_DRIVE_SERVOS = {"handle": (2000.0, 100.0), "crank": (5000.0, 300.0)}
 
 # ------------------------------------------------------------------------------------------------
+# V-BOARD, the parallel two-wheeled electric scooter (App. A.1.2, Eqs. A.1–A.4, Figs. A.4–A.7)
+# ------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class VboardSpec:
+    """The V-BOARD [58] (Vivo Market; a 6.5-inch "hoverboard") as :mod:`~shintai.humanoid.vehicles.vboard`
+    builds it. Thesis values: Eq. A.1 (K, θ_O), Fig. A.4 (r, W). Everything else is *chosen* for a
+    commercial 6.5-inch hoverboard, as marked; the thesis gives no mass, size or dynamics.
+
+    Sides are ``"r"`` and ``"l"``. θ (board pitch) is a rotation about the scooter's +y (left) axis:
+    positive tips the toes down, and θ > θ_O drives the wheel forward (§6.2.1: θ_R > θ_RO "右車輪は前進").
+    """
+
+    # Eq. A.1 (the linear regression of Fig. A.6): Ω [rad/s] = K [rad/s per deg] · (θ − θ_O) [deg].
+    k: tuple[tuple[str, float], ...] = (("r", 4.6203), ("l", 4.3356))  # K_R, K_L
+    theta_o_deg: tuple[tuple[str, float], ...] = (("r", -1.7871), ("l", -1.9972))  # θ_RO, θ_LO
+    wheel_radius: float = 0.080  # r, "Wheel radius: 80[mm]" (Fig. A.4), Eq. A.2
+    # W, "515[mm]" (Fig. A.4), the 車体幅 of Eq. A.3. Chosen to be the wheel track (tyre centre to
+    # tyre centre), so that Eq. A.3 is the exact rolling kinematics of the model; a 6.5-inch board is
+    # about 0.58 m long over the tyres, ≈ 0.52 m between tyre centres.
+    track: float = 0.515
+    # Chosen sizes of a 6.5-inch board: 55 mm tyre; each half's housing 0.18 m deep (x), from the
+    # centre pivot to 10 mm short of its tyre (y), its underside 35 mm above the ground; the rubber
+    # foot pad's top (where a sole stands) 0.12 m above the ground; pads 0.16 × 0.15 m.
+    tyre_width: float = 0.055
+    housing_depth: float = 0.18
+    housing_gap: float = 0.015  # m, housing edge from the centre pivot (y)
+    housing_bottom: float = 0.035
+    deck_height: float = 0.12
+    pad_size: tuple[float, float] = (0.16, 0.15)  # x, y
+    pad_thickness: float = 0.005
+    # Chosen masses, 10.5 kg in all (6.5-inch boards weigh 10–12 kg): each half 3.0 kg (housing, hub
+    # motor stator, battery or mainboard), each wheel 2.0 kg (tyre and the motor's outer rotor), the
+    # centre pivot tube 0.5 kg. A half's mass centre sits 10 mm below the axle (battery and boards
+    # low in the housing), so an unloaded half whose drive is off hangs level.
+    half_mass: float = 3.0
+    wheel_mass: float = 2.0
+    pivot_mass: float = 0.5
+    half_com_drop: float = 0.010
+    # The drive (chosen; the thesis measured only the steady law Eq. A.1): the hub motor is speed
+    # servoed, τ = k_v (Ω_ref − Ω) with Ω_ref from Eq. A.1; k_v stiff enough that a 28 kg half-load
+    # reaches its speed in ≈ 0.1 s, τ limited to 15 N m (a 350 W, 36 V hub motor, ≈ 15 A peak).
+    speed_gain: float = 2.0  # k_v, N m s/rad
+    max_torque: float = 15.0  # N m
+    # Contact switch (§A.1.2: a binary contact sensor per board turns its wheel's drive on/off).
+    # Chosen: on above 20 N of normal force on the foot pad (a foot, not a dropped glove).
+    switch_force: float = 20.0  # N
+    tyre_friction: float = 1.2  # chosen like the tricycle's: rolling without slip (Eq. A.2)
+    wheel_damping: float = 0.01  # N m s/rad, chosen: wheel bearings (drive off: the wheel coasts)
+    pivot_damping: float = 0.2  # N m s/rad, chosen: friction of the centre pivot between the halves
+
+    def __post_init__(self):
+        for name, value in (("k", dict(self.k)), ("theta_o_deg", dict(self.theta_o_deg))):
+            if sorted(value) != ["l", "r"]:
+                raise ValueError(f"VboardSpec.{name} must give sides 'r' and 'l', got {sorted(value)}")
+            for side, x in value.items():
+                if not math.isfinite(x) or (name == "k" and x <= 0):
+                    raise ValueError(f"VboardSpec.{name}[{side!r}] must be a finite"
+                                     f"{' positive' if name == 'k' else ''} number, got {x!r}")
+        for name in ("wheel_radius", "track", "tyre_width", "housing_depth", "deck_height", "pad_thickness",
+                     "half_mass", "wheel_mass", "pivot_mass", "speed_gain", "max_torque", "switch_force",
+                     "tyre_friction"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"VboardSpec.{name} must be a finite positive number, got {value!r}")
+        if self.deck_height <= self.wheel_radius or self.housing_bottom >= self.wheel_radius:
+            raise ValueError(f"VboardSpec: the housing must span the axle height {self.wheel_radius} m "
+                             f"(housing_bottom {self.housing_bottom} < r < deck_height {self.deck_height})")
+
+    def gain(self, side: str) -> float:
+        """K of ``side`` in rad/s per rad (Eq. A.1's rad/s per degree × 180/π)."""
+        return dict(self.k)[side] / DEG
+
+    def theta_o(self, side: str) -> float:
+        """θ_O of ``side`` in rad (Eq. A.1)."""
+        return dict(self.theta_o_deg)[side] * DEG
+
+    @property
+    def housing_outer(self) -> float:
+        """|y| of a housing's outer edge: 10 mm inside its tyre."""
+        return self.track / 2 - self.tyre_width / 2 - 0.010
+
+    @property
+    def pad_y(self) -> float:
+        """|y| of a foot pad's centre: the middle of its housing."""
+        return (self.housing_gap + self.housing_outer) / 2
+
+
+VBOARD = VboardSpec()
+
+# Position servos holding each board's pitch against the level frame: only a fixture for tests and
+# demos (Fig. A.5's hand and protractor), never part of the scooter. (kp N m/rad, kv N m s/rad).
+# Use it on unloaded boards: with a heavy box on a held board and the drive on, the stiff fixture,
+# the box's contact and the firmware ring at the 1 ms physics step (gone at 0.25 ms).
+VBOARD_HOLD_SERVO = (3000.0, 60.0)
+
+# ------------------------------------------------------------------------------------------------
 # Kenshiro (App. A.2.2, §3.5.5, Fig. 3.31)
 # ------------------------------------------------------------------------------------------------
 

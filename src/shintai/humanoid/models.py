@@ -1,11 +1,15 @@
 """The humanoid's MuJoCo models for export (``shintai model``, :mod:`shintai.sim.export`): HRP2-JSK standing
-(App. A.2.1), the tricycle (App. A.1.1), HRP2-JSK seated on it with both hands on the handle (ch. 3) and
-Kenshiro's planar legs on the crank (§3.5.5)."""
+(App. A.2.1), the tricycle (App. A.1.1), HRP2-JSK seated on it with both hands on the handle (ch. 3),
+Kenshiro's planar legs on the crank (§3.5.5), the V-BOARD scooter (App. A.1.2) and HRP2-JSK standing on it
+(§6.2.1). The exported V-BOARD has its actuators but not its firmware (Python, run before every physics step):
+in MuJoCo's own viewer its wheels take torques from ``wheel_s_motor``."""
 
 from shintai.humanoid.riding import build_riding
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.kenshiro import build_kenshiro
+from shintai.humanoid.vboard_stand import build_vboard_stand
 from shintai.humanoid.vehicles.tricycle import build_tricycle
+from shintai.humanoid.vehicles.vboard import build_vboard
 from shintai.sim.export import model
 
 
@@ -28,3 +32,15 @@ def hrp2_tricycle():
 @model("humanoid.kenshiro", "Kenshiro's planar legs on the tricycle crank (humanoid.kenshiro-pedaling, §3.5.5)")
 def kenshiro():
     return build_kenshiro()
+
+
+@model("humanoid.vboard", "the V-BOARD of seed 000 App. A.1.2: two boards pitching on one axle, each wheel "
+                          "speed-servoed to its board's tilt (Eq. A.1) while its contact switch is on")
+def vboard():
+    return build_vboard()
+
+
+@model("humanoid.hrp2-vboard", "HRP2-JSK standing on the V-BOARD, one sole on each board, mass centre over "
+                               "the axle (§6.2.1, Fig. 6.1)")
+def hrp2_vboard():
+    return build_vboard_stand()

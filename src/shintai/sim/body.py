@@ -94,7 +94,10 @@ class MujocoBody(Body):
     ``source`` is an MJCF file path, an MJCF XML string, a ``mujoco.MjSpec`` or a
     ``mujoco.MjModel`` (used as is, not copied: :meth:`set_contact` edits it). ``keyframe`` (name or
     index) sets the initial state. ``after_step`` holds callables run after every body step (a
-    :class:`shintai.sim.VideoRecorder` adds its ``capture`` there).
+    :class:`shintai.sim.VideoRecorder` adds its ``capture`` there); ``before_physics`` holds callables
+    run before every *physics* step: the plant's own embedded controllers, which read ``data`` and
+    write ``data.ctrl`` of their actuators at the physics rate (a vehicle's firmware, e.g.
+    :class:`shintai.humanoid.vehicles.vboard.VboardFirmware`), not the robot's modules.
     """
 
     def __init__(self, source: ModelSource, substeps: int = 1, keyframe: str | int | None = None,
@@ -109,6 +112,7 @@ class MujocoBody(Body):
         self.ids = {kind: self._name_ids(kind) for kind in _OBJ}
         self.channels = declare("ctrl", *self.ids["actuator"])  # additive: the Loop sums into data.ctrl
         self.after_step: list[Callable[[], None]] = []
+        self.before_physics: list[Callable[[], None]] = []
         self._contact_saved: dict[int, tuple[int, int]] = {}
         self._views, self._scalars = self._snapshot_layout()
         # live views into MjData, read after every step
@@ -190,7 +194,13 @@ class MujocoBody(Body):
 
     def step(self) -> None:
         t0 = self.data.time
-        mujoco.mj_step(self.model, self.data, self.substeps)
+        if self.before_physics:
+            for _ in range(self.substeps):
+                for hook in self.before_physics:
+                    hook()
+                mujoco.mj_step(self.model, self.data)
+        else:
+            mujoco.mj_step(self.model, self.data, self.substeps)
         self._check_divergence(t0)
         for callback in self.after_step:
             callback()
