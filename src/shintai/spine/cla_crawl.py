@@ -45,12 +45,41 @@ import numpy as np
 from mujoco import rollout
 
 from shintai.spine.robots import (
-    CLA, CLA_FIRST_BALL_M, CLA_JOINTS, CLA_LIMIT_RAD, CLA_SEGMENT_M, CLA_TRUNK_LOADS, CRAWL_ARM_KG,
-    CRAWL_ELBOW_FLEX_DEG, CRAWL_EVAL_S, CRAWL_FOREARM_M, CRAWL_FRICTION, CRAWL_HAND_LIFT_M, CRAWL_HAND_MADE_PHASE_S,
-    CRAWL_HAND_MADE_ROLL_DEG, CRAWL_HAND_RADIUS_M, CRAWL_HAND_STROKE_M, CRAWL_HIP_DROP_M, CRAWL_HIP_HALF_WIDTH_M,
-    CRAWL_KNEE_RADIUS_M, CRAWL_LEG_KG, CRAWL_LIMB_KP, CRAWL_LIMB_KV, CRAWL_LIMB_TORQUE_NM, CRAWL_PELVIS_HALF_M,
-    CRAWL_PHASE_S, CRAWL_SETTLE_S, CRAWL_SHIN_LIFT_DEG, CRAWL_SHIN_M, CRAWL_SHOULDER_ABOVE_BALL_M, CRAWL_SPINE_KP,
-    CRAWL_SPINE_TORQUE_NM, CRAWL_THIGH_M, CRAWL_THIGH_STROKE_DEG, CRAWL_TIMESTEP_S, CRAWL_UPPER_ARM_M,
+    CLA,
+    CLA_FIRST_BALL_M,
+    CLA_JOINTS,
+    CLA_LIMIT_RAD,
+    CLA_SEGMENT_M,
+    CLA_TRUNK_LOADS,
+    CRAWL_ARM_KG,
+    CRAWL_ELBOW_FLEX_DEG,
+    CRAWL_EVAL_S,
+    CRAWL_FOREARM_M,
+    CRAWL_FRICTION,
+    CRAWL_HAND_LIFT_M,
+    CRAWL_HAND_MADE_PHASE_S,
+    CRAWL_HAND_MADE_ROLL_DEG,
+    CRAWL_HAND_RADIUS_M,
+    CRAWL_HAND_STROKE_M,
+    CRAWL_HIP_DROP_M,
+    CRAWL_HIP_HALF_WIDTH_M,
+    CRAWL_KNEE_RADIUS_M,
+    CRAWL_LEG_KG,
+    CRAWL_LIMB_KP,
+    CRAWL_LIMB_KV,
+    CRAWL_LIMB_TORQUE_NM,
+    CRAWL_PELVIS_HALF_M,
+    CRAWL_PHASE_S,
+    CRAWL_SETTLE_S,
+    CRAWL_SHIN_LIFT_DEG,
+    CRAWL_SHIN_M,
+    CRAWL_SHOULDER_ABOVE_BALL_M,
+    CRAWL_SPINE_KP,
+    CRAWL_SPINE_TORQUE_NM,
+    CRAWL_THIGH_M,
+    CRAWL_THIGH_STROKE_DEG,
+    CRAWL_TIMESTEP_S,
+    CRAWL_UPPER_ARM_M,
 )
 
 PHASES = 4
@@ -258,7 +287,7 @@ def schedule(genes, t: np.ndarray) -> dict[str, np.ndarray]:
 
 def controls(genes, duration: float = CRAWL_EVAL_S, dt: float = CRAWL_TIMESTEP_S) -> np.ndarray:
     """The servo targets (steps × actuators, in :data:`ACTUATED` order) of the crawl ``genes`` for ``duration``."""
-    t = np.arange(int(round(duration / dt))) * dt
+    t = np.arange(round(duration / dt)) * dt
     s = schedule(genes, t)
     u = np.zeros((len(t), len(ACTUATED)))
     for limb in LIMBS:
@@ -308,13 +337,23 @@ def place(m: mujoco.MjModel, d: mujoco.MjData) -> None:
     mujoco.mj_forward(m, d)
 
 
+def kneeling_spec() -> mujoco.MjSpec:
+    """:func:`build_spec` with the start posture as its keyframe ``kneel`` (the model ``shintai model`` exports)."""
+    spec = build_spec()
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    place(m, d)
+    spec.add_key(name="kneel", qpos=d.qpos.tolist(), ctrl=d.ctrl.tolist())
+    return spec
+
+
 @functools.lru_cache(maxsize=2)
 def settled_state(lock_spine: bool = False) -> np.ndarray:
     """The full physics state after :data:`CRAWL_SETTLE_S` at the start posture: every crawl starts here."""
     m = model(lock_spine)
     d = mujoco.MjData(m)
     place(m, d)
-    mujoco.mj_step(m, d, int(round(CRAWL_SETTLE_S / m.opt.timestep)))
+    mujoco.mj_step(m, d, round(CRAWL_SETTLE_S / m.opt.timestep))
     d.time = 0.0
     state = np.empty(mujoco.mj_stateSize(m, mujoco.mjtState.mjSTATE_FULLPHYSICS))
     mujoco.mj_getState(m, d, state, mujoco.mjtState.mjSTATE_FULLPHYSICS)

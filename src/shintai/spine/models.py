@@ -3,6 +3,7 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
+from shintai.spine.cla_crawl import kneeling_spec
 from shintai.spine.robots import CLA, KENTA
 
 
@@ -14,3 +15,9 @@ def cla():
 @model("spine.kenta", "Kenta's spine: ten joints and forty muscles, ligaments included (seed 003 §3.7)")
 def kenta():
     return build_spec(KENTA)
+
+
+@model("spine.cla-crawl", "Cla on hands and knees for crawling: free pelvis, the five spine joints servoed, arms and legs "
+       "on the floor (seed 003 §3.6, §5.2.9)")
+def cla_crawl():
+    return kneeling_spec()

@@ -32,7 +32,7 @@ def _variant_metrics(name: str, genes, sensors: np.ndarray, eval_s: float) -> di
 
 
 def _pictures(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float) -> None:
-    with ctx.figure("crawl_comparison", nrows=1, ncols=4, figsize=(13, 3.6)) as (fig, axes):
+    with ctx.figure("crawl_comparison", nrows=1, ncols=4, figsize=(13, 3.6)) as (_fig, axes):
         for ax, (key, label) in zip(axes, (("distance_m", "forward distance [m]"),
                                            ("torque_integral_nms", "torque integral [N m s]"),
                                            ("peak_torque_nm", "peak torque [N m]"),
@@ -45,7 +45,7 @@ def _pictures(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float) -
                 ax.legend(fontsize=7)
             ax.set_xticks(range(len(VARIANTS)), ["rigid", "hand-made", "GA"])
             ax.set_title(label, fontsize=9)
-    with ctx.figure("crawl_paths", nrows=1, ncols=2, figsize=(11, 4)) as (fig, (ax_path, ax_roll)):
+    with ctx.figure("crawl_paths", nrows=1, ncols=2, figsize=(11, 4)) as (_fig, (ax_path, ax_roll)):
         t = np.arange(sensors["rigid"].shape[0]) * CC.CRAWL_TIMESTEP_S
         for v in VARIANTS:
             mid = 0.5 * (sensors[v][:, CC.S_PELVIS] + sensors[v][:, CC.S_CLAVICLE])
@@ -70,7 +70,7 @@ def _pictures(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float) -
     summary="Cla crawls on hands and knees: the spine's roll amounts and timings evolved by seed 003's GA "
             "(fitness = distance − torque integral − peak torque), against the spine locked straight and the "
             "hand-made roll",
-    params=[*ga_run.ga_params(generations=15, population=20),
+    params=[*ga_run.ga_params(generations=60, population=20),
             Param("eval_s", CRAWL_EVAL_S, "simulated time of one crawl [s]", lo=1.0, hi=120.0)],
     checks=(
         Check("evolved.distance_m", ">", "hand_made.distance_m", Q_HAND + ": the GA's crawl goes faster than the "
