@@ -95,7 +95,8 @@ ACTUATED = LIMB_JOINTS + SPINE_JOINTS
 # 0.43 m, ≈ 64 N m s and ≈ 1.3 N m in 8 s, so its torque terms cost ≈ 15 % and 3 % of its distance)
 W_TORQUE_INTEGRAL = 1e-3  # m per N m s
 W_PEAK_TORQUE = 1e-2  # m per N m
-FAILED_FITNESS = -1.0
+FAILED_FITNESS = -1.0  # a rollout that diverged (non-finite, or reset by MuJoCo: a jump of MAX_STEP_M in a step)
+MAX_STEP_M = 0.05
 SPINE_KV = 0.3  # N m s/rad: the spine servos' damping (chosen), with the disc's own  # a rollout that diverged (non-finite state)
 
 # Where the limbs attach (trunk frame: x toward the head, y left, z toward the back)
@@ -143,7 +144,10 @@ def build_spec() -> mujoco.MjSpec:
     spec.visual.headlight.ambient = [0.4, 0.4, 0.4]
     world = spec.worldbody
     world.add_light(pos=[0.5, -1.0, 2.0], dir=[-0.2, 0.5, -1.0], diffuse=[0.8, 0.8, 0.8])
-    world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[5, 5, 0.05], rgba=[0.8, 0.82, 0.85, 1],
+    spec.add_texture(name="grid", type=mujoco.mjtTexture.mjTEXTURE_2D, builtin=mujoco.mjtBuiltin.mjBUILTIN_CHECKER,
+                     rgb1=[0.85, 0.85, 0.87], rgb2=[0.72, 0.73, 0.76], width=256, height=256)
+    spec.add_material(name="grid", textures=["", "grid"], texrepeat=[10, 10], texuniform=True)  # 10-cm squares
+    world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[5, 5, 0.05], material="grid",
                    contype=0, conaffinity=1, friction=[CRAWL_FRICTION, 0.005, 1e-4])
     grey, bone, limb = [0.45, 0.45, 0.5, 1], [0.93, 0.9, 0.8, 1], [0.55, 0.6, 0.75, 1]
     pelvis = world.add_body(name="pelvis", pos=[0, 0, 0.3])
@@ -396,7 +400,9 @@ def measures(sensors: np.ndarray, dt: float = CRAWL_TIMESTEP_S) -> dict[str, np.
         "min_trunk_height_m": np.minimum(s[:, :, S_PELVIS][:, :, 2], s[:, :, S_CLAVICLE][:, :, 2]).min(axis=1),
     }
     fitness = out["distance_m"] - W_TORQUE_INTEGRAL * out["torque_integral_nms"] - W_PEAK_TORQUE * out["peak_torque_nm"]
-    out["fitness"] = np.where(np.isfinite(fitness), fitness, FAILED_FITNESS)
+    # MuJoCo resets a diverging simulation to its initial pose: a jump of the pelvis by > 5 cm in one step
+    jumped = np.linalg.norm(np.diff(s[:, :, S_PELVIS], axis=1), axis=2).max(axis=1) > MAX_STEP_M
+    out["fitness"] = np.where(np.isfinite(fitness) & ~jumped, fitness, FAILED_FITNESS)
     return out
 
 

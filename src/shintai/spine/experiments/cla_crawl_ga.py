@@ -127,7 +127,7 @@ def cla_crawl_ga(ctx) -> dict:
     ctx.extra["genomes"] = {v: np.asarray(g).tolist() for v, g in genomes.items()}
     _pictures(ctx, genomes, sensors, metrics, eval_s)
     body = CC.crawl_body(lock_spine=False)
-    with film(ctx, body, "evolved", track="pelvis", distance=0.9, azimuth=120.0, elevation=-20):
+    with film(ctx, body, "evolved", track="pelvis", distance=0.9, azimuth=150.0, elevation=-50):
         if ctx.video or getattr(ctx, "view", False):
             CC.play(body, result.best_genome, eval_s)
     return metrics
