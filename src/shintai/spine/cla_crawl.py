@@ -46,6 +46,7 @@ from mujoco import rollout
 
 from shintai.spine.robots import (
     CLA,
+    CLA_ARMS_DOWN,
     CLA_FIRST_BALL_M,
     CLA_JOINTS,
     CLA_LIMIT_RAD,
@@ -84,7 +85,6 @@ from shintai.spine.robots import (
 
 PHASES = 4
 LIMBS = ("arm_r", "leg_l", "arm_l", "leg_r")  # the limb swinging in phase k (the infants' lateral sequence)
-SIDES = {"arm_r": -1, "arm_l": 1, "leg_r": -1, "leg_l": 1}  # y sign
 N_GENES = 2 * PHASES  # roll amounts, then durations
 AXES = ("yaw", "pitch", "roll")
 SPINE_JOINTS = tuple(f"j{i + 1}_{a}" for i in range(CLA_JOINTS) for a in AXES)
@@ -97,11 +97,12 @@ W_TORQUE_INTEGRAL = 1e-3  # m per N m s
 W_PEAK_TORQUE = 1e-2  # m per N m
 FAILED_FITNESS = -1.0  # a rollout that diverged (non-finite, or reset by MuJoCo: a jump of MAX_STEP_M in a step)
 MAX_STEP_M = 0.05
-SPINE_KV = 0.3  # N m s/rad: the spine servos' damping (chosen), with the disc's own  # a rollout that diverged (non-finite state)
+SPINE_KV = 0.3  # N m s/rad: the spine servos' damping (chosen), besides the disc's own
 
 # Where the limbs attach (trunk frame: x toward the head, y left, z toward the back)
 PELVIS_TO_BALL1 = CRAWL_PELVIS_HALF_M[0] + CLA_FIRST_BALL_M
-SHOULDER = (CRAWL_SHOULDER_ABOVE_BALL_M, 0.065, -0.025)  # in the clavicle link (CLA_ARMS_*: ±0.065, 0.025 front)
+# the shoulders (in the clavicle link) sit beside and in front of the spine as in CLA_ARMS_* (robot x front = −z)
+SHOULDER = (CRAWL_SHOULDER_ABOVE_BALL_M, CLA_ARMS_DOWN[1].com_m[1], -CLA_ARMS_DOWN[1].com_m[0])
 HIP = (0.0, CRAWL_HIP_HALF_WIDTH_M, -CRAWL_HIP_DROP_M)  # in the pelvis
 TRUNK_M = PELVIS_TO_BALL1 + (CLA_JOINTS - 1) * CLA_SEGMENT_M + SHOULDER[0]  # hip to shoulder along the spine
 PALM_DROP_M = math.sqrt(CRAWL_UPPER_ARM_M ** 2 + CRAWL_FOREARM_M ** 2
