@@ -3,7 +3,9 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
+from shintai.spine.cla_crawl import kneeling_spec
 from shintai.spine.robots import CLA, KENTA
+from shintai.spine.sq43_body import build_spec as build_sq43
 
 
 @model("spine.cla", "Cla's muscle spine: five vertebrae, eight wire muscles on reels, raised arms (seed 003 §3.6)")
@@ -18,6 +20,10 @@ def kenta():
 
 @model("spine.sq43", "SQ43: 14-DOF quadruped, shoulder + compliant 3-block spine + hip, 1.9 kg (seed 003 §3.2, §5.6)")
 def sq43():
-    from shintai.spine.sq43_body import build_spec as build_sq43
-
     return build_sq43()
+
+
+@model("spine.cla-crawl", "Cla on hands and knees for crawling: free pelvis, the five spine joints servoed, arms and legs "
+       "on the floor (seed 003 §3.6, §5.2.9)")
+def cla_crawl():
+    return kneeling_spec()

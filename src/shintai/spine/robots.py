@@ -662,6 +662,56 @@ SHUNT_OHM = 0.1  # §3.6.2, JSK-D02
 PWM_STEPS = 255  # chosen: an 8-bit PWM timer on the H8 (the resolution is not in text)
 
 # ---------------------------------------------------------------------------------------------
+# Cla on the floor, crawling on hands and knees (§3.6.2, §5.2.9; the model is shintai.spine.cla_crawl)
+# ---------------------------------------------------------------------------------------------
+# The spine reuses CLA_* above (5 joints, CLA_FIRST_BALL_M, CLA_SEGMENT_M, ±CLA_LIMIT_RAD per axis, the pelvis
+# and vertebra masses of CLA.link_mass_kg, the clavicle and head loads of CLA_TRUNK_LOADS, 0.25 kg arms whose
+# COM sits 0.12 m from the shoulder, i.e. 0.24 m arms, shoulders 0.025 m in front of the spine axis and 0.065 m
+# to the side). §3.6.2 gives the limbs' DOF (legs: hip and knee pitch, ankle pitch and roll; arms: shoulder
+# roll and pitch, elbow and wrist pitch), not their sizes or masses: Cla is a child-size humanoid (Fig. 3.29),
+# so the rest is chosen with child proportions (thigh ≈ 1.45 × upper arm, as in 6–8-year-olds) and the arm
+# length above. The crawl moves the hip, knee, shoulder pitch and elbow; the shoulder roll, wrist and ankle
+# joints hold still in it and are modelled rigid (fewer bodies, faster evaluations).
+CRAWL_UPPER_ARM_M = 0.11  # shoulder–elbow (chosen: the 0.24 m arm of CLA_ARMS_* minus the hand)
+CRAWL_FOREARM_M = 0.11  # elbow–palm centre (chosen)
+CRAWL_HAND_RADIUS_M = 0.02  # chosen: the palm as a sphere
+CRAWL_THIGH_M = 0.16  # hip–knee (chosen: child proportion, ≈ 1.45 × the upper arm)
+CRAWL_SHIN_M = 0.15  # knee–toe, shin and foot lying on the floor (chosen)
+CRAWL_KNEE_RADIUS_M = 0.02  # chosen: the knee pad as a sphere, the shin a capsule of the same radius
+CRAWL_HIP_HALF_WIDTH_M = 0.05  # chosen: hips ±50 mm from the spine axis (the shoulders: ±0.065, CLA_ARMS_*)
+CRAWL_HIP_DROP_M = 0.03  # chosen: the hip joints 30 mm toward the belly from the pelvis centre
+CRAWL_PELVIS_HALF_M = (0.04, 0.055, 0.035)  # chosen: pelvis block half sizes (along spine, side, belly)
+CRAWL_SHOULDER_ABOVE_BALL_M = 0.03  # chosen: shoulders 30 mm beyond the last ball centre along the spine
+CRAWL_ARM_KG = (0.15, 0.10)  # upper arm, forearm + hand: the 0.25 kg arm of CLA_ARMS_* split (chosen)
+CRAWL_LEG_KG = (0.25, 0.15)  # thigh (hip and knee servos), shin + foot (ankle servos): chosen
+# Limb servos: Futaba S9204 gear-modified, as Rabbit's (§3.6.2 "Rabbit に用いたものと同じ型番の S9204"); its
+# 12.6 kgf·cm (§3.5.1) as the torque limit. Gains chosen: a stiff software servo (JSK-D02, §3.6.2).
+CRAWL_LIMB_TORQUE_NM = RABBIT_SERVO.torque_kgf_cm * KGF_N * 0.01
+CRAWL_LIMB_KP = 20.0  # N m/rad, chosen
+CRAWL_LIMB_KV = 0.3  # N m s/rad, chosen
+# The spine's 15 joint axes position-servoed directly (not through the 8 muscles): see cla_crawl's docstring.
+# Torque limit chosen: two 320 N muscles (Table 3.2) on the ≈ 35 mm half-width lever CLA_HALF_WIDTH_M ≈ 22 N m
+# per axis for the whole spine, about 10 N m per joint axis after losses; the gain stiff enough that the
+# trunk's own weight bends a joint by < 2°.
+CRAWL_SPINE_TORQUE_NM = 10.0
+CRAWL_SPINE_KP = 40.0  # N m/rad, chosen
+CRAWL_FRICTION = 0.6  # floor–body sliding friction, chosen (§5.2.9: "床の摩擦の状況にも依るが")
+CRAWL_TIMESTEP_S = 0.002  # chosen: 2 ms implicit-fast steps (stable with the servo gains above)
+# The crawl pattern (hand-made, §5.2.9 gives no numbers): four phases, one limb swinging in each, in the
+# order right arm, left knee, left arm, right knee (the infants' lateral-sequence crawl); the other three limbs
+# push back a third of their stroke per phase. Strokes and lifts chosen.
+CRAWL_ELBOW_FLEX_DEG = 30.0  # chosen: the palm under the shoulder with the elbow bent 30°
+CRAWL_HAND_STROKE_M = 0.04  # ± the palm's fore–aft stroke relative to the shoulder (chosen)
+CRAWL_HAND_LIFT_M = 0.03  # the palm's lift at mid-swing (chosen)
+CRAWL_THIGH_STROKE_DEG = 12.0  # ± the thigh's swing about vertical (chosen)
+CRAWL_SHIN_LIFT_DEG = 25.0  # the shin's lift about the knee at mid-swing (chosen)
+CRAWL_PHASE_S = (0.25, 1.25)  # a phase's duration gene range (chosen: 1–5 s cycles)
+CRAWL_HAND_MADE_PHASE_S = 0.6  # chosen: the hand-made pattern's phase duration (2.4 s cycle)
+CRAWL_HAND_MADE_ROLL_DEG = 6.0  # chosen: the hand-made pattern's roll per joint (30° over the spine)
+CRAWL_SETTLE_S = 0.5  # chosen: the body settles on hands and knees before the pattern starts
+CRAWL_EVAL_S = 8.0  # chosen: each crawl is evaluated over 8 s (the distance is a speed)
+
+# ---------------------------------------------------------------------------------------------
 # The experiments' protocols (ch. 3–4)
 # ---------------------------------------------------------------------------------------------
 
