@@ -3,6 +3,7 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
+from shintai.spine.hanzous_body import build_spec as build_hanzous
 from shintai.spine.robots import CLA, KENTA
 
 
@@ -14,3 +15,9 @@ def cla():
 @model("spine.kenta", "Kenta's spine: ten joints and forty muscles, ligaments included (seed 003 §3.7)")
 def kenta():
     return build_spec(KENTA)
+
+
+@model("spine.hanzous", "HanzouS: 18 servoed joints, a cam-set leaf-spring trunk, hanging from bar 0 of three "
+       "(seed 003 §3.3, §5.7)")
+def hanzous():
+    return build_hanzous()
