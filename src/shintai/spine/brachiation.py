@@ -32,7 +32,12 @@ import mujoco
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from shintai.spine.hanzous_body import GRIPPER_OPEN_RAD, JOINTS, Grasps, Trunk, build_spec
+from shintai.spine.hanzous_body import (
+    GRIPPER_OPEN_RAD,
+    Grasps,
+    Trunk,
+    build_spec,
+)
 from shintai.spine.robots import HANZOUS
 
 GA_JOINTS = ("shoulder_pitch_L", "shoulder_pitch_R", "elbow_L", "elbow_R", "gripper_R", "hip_pitch_L",
@@ -110,6 +115,7 @@ class Outcome:
     impact_peak_n: float
     rearmost_com_m: float
     sim_s: float
+    closest_to_next_bar_m: float
     log: dict = field(default_factory=dict)
 
     def fitness(self) -> float:
@@ -134,7 +140,7 @@ class Brachiator:
         self.grasps = Grasps(m, self.data)
         self.eq_data0 = m.eq_data.copy()
         self.act = np.array([m.actuator(j).id for j in GA_JOINTS])
-        self.substeps = int(round(CONTROL_S / m.opt.timestep))
+        self.substeps = round(CONTROL_S / m.opt.timestep)
         self.chest = m.body("chest").id
         self.force_sensor = m.sensor("trunk_root_force").adr[0]
         self.moment_sensor = m.sensor("trunk_root_torque").adr[0] + 1  # the bending (pitch, y) component
@@ -154,6 +160,7 @@ class Brachiator:
             raise ValueError(f"policy must be one of {POLICIES}, got {policy!r}")
         self.reset()
         m, d = self.model, self.data
+        self.trunk.set_cam(cam_target(policy, released=False))  # the policy's stiffness from the start
         postures, knots = sequence(genome)
         spline = reference(postures, knots)
         end = knots[-1]
@@ -162,7 +169,7 @@ class Brachiator:
         targets = spline(times)
         cam_step = HANZOUS.cam_speed_deg_s * CONTROL_S
         x0, z0 = d.xpos[self.chest, 0], d.xpos[self.chest, 2]
-        heights, hand_force, trunk_force, com_x, moment = (np.empty(ticks) for _ in range(5))
+        heights, hand_force, trunk_force, com_x, moment, reach = (np.empty(ticks) for _ in range(6))
         held_r = np.zeros(ticks, dtype=bool)
         released, release_s, grasp_s, fell, n = False, np.nan, np.nan, False, ticks
         log = {k: np.empty(ticks) for k in ("t", "cam_deg", "stiffness_nm_rad", "trunk_deflection_rad",
@@ -188,6 +195,7 @@ class Brachiator:
             heights[i] = d.xpos[self.chest, 2] - z0
             com_x[i] = d.subtree_com[self.chest, 0]
             moment[i] = abs(d.sensordata[self.moment_sensor])
+            reach[i] = self.grasps.distance("R", 1)
             hand_force[i] = fl + fr
             trunk_force[i] = np.linalg.norm(d.sensordata[self.force_sensor:self.force_sensor + 3])
             held_r[i] = self.grasps.held("R") == 1 and fr > 0.0
@@ -216,6 +224,7 @@ class Brachiator:
             peak_trunk_force_n=float(np.max(trunk_force[:n])), peak_trunk_moment_nm=float(np.max(moment[:n])), release_s=float(release_s), grasp_s=float(grasp_s),
             impact_peak_n=float(np.max(trunk_force[:n][after])) if after.any() else float("nan"),
             rearmost_com_m=float(np.min(com_x[:n][before])) if before.any() else float("nan"), sim_s=float(d.time),
+            closest_to_next_bar_m=float(np.min(reach[:n])),
             log=log)
 
 
@@ -248,6 +257,3 @@ class BrachiationFitness:
     def __call__(self, genome: np.ndarray) -> float:
         return _brachiator().run(genome, self.policy).fitness()
 
-
-__all__ = ["JOINTS", "GA_JOINTS", "POSTURES", "Brachiator", "BrachiationFitness", "Outcome", "gene_bounds",
-           "sequence", "reference", "N_GENES", "POLICIES", "WEIGHTS", "shipped_genome"]

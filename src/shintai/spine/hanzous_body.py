@@ -15,8 +15,10 @@ stiffness the cam changes during the motion (Eqs. 5.4–5.8), horizontal bars an
 * **Bars and grasp**: bars along y at height :data:`BAR_Z`, ``bar_spacing_m`` apart in x. A grasp is a
   connect equality between the gripper's grip point and the bar axis, switched through ``data.eq_active``
   (:class:`Grasps`): it closes when the gripper is commanded closed with the grip point within
-  ``grasp_radius_m`` of a bar, and opens when the gripper is commanded open. The grip pivots about the bar
-  (a hook grip; the thesis gives no contact model of the gripper).
+  ``grasp_radius_m`` of a bar, holding the grip point where it was caught (inside the gripper's mouth, so the
+  closure stops the hand but does not pull it onto the axis: the grasp's impact is the hand's and the body's
+  momentum, not a constraint snap), and opens when the gripper is commanded open. The grip pivots about the
+  bar (a hook grip; the thesis gives no contact model of the gripper).
 * **Planar root** (ours): x, z slides and a pitch hinge. The brachiation of Fig. 3.13 is in the sagittal
   plane and both hands hang from bars along y; the lateral DOF are not simulated.
 """
@@ -97,7 +99,7 @@ def mjcf(spec: HanzouSSpec = HANZOUS) -> str:
     grasps = "".join(f'<connect name="grasp_{s}_bar{b}" body1="hand_{s}" body2="world" anchor="0 0 {spec.hand_m}" '
                      f'active="{"true" if b == 0 else "false"}" solref="0.01 1"/>'
                      for s in "LR" for b in range(N_BARS))
-    kp, kv, tau = spec.servo_kp_nm_rad, spec.servo_kv_nms_rad, spec.servo_torque_nm
+    kp, tau = spec.servo_kp_nm_rad, spec.servo_torque_nm
     actuators = "".join(f'<position name="{j}" joint="{j}" kp="{kp}" forcerange="{-tau} {tau}"/>' for j in JOINTS)
     return f"""<mujoco model="hanzous">
   <compiler angle="radian" autolimits="true"/>
@@ -220,7 +222,7 @@ class Grasps:
         b = int(np.argmin(d))
         if d[b] <= self.spec.grasp_radius_m:
             e = self.eq[(side, b)]
-            self.model.eq_data[e, 3:6] = (self.bar_x[b], self.data.site_xpos[self.grip[side]][1], BAR_Z)
+            self.model.eq_data[e, 3:6] = self.data.site_xpos[self.grip[side]]  # caught where it is: no snap
             self.data.eq_active[e] = 1
 
     def force_n(self, side: str) -> float:

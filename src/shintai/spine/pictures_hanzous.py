@@ -12,7 +12,7 @@ COLOURS = {"stiff": "tab:red", "soft": "tab:blue", "real": "tab:green"}
 def trunk_force(ctx, outcomes: dict, name: str = "trunk_root_force") -> None:
     """Fig. 5.24's counterpart: the trunk root's internal force against time, one line per stiffness, with the
     release and grasp instants marked."""
-    with ctx.figure(name, figsize=(7, 4)) as (fig, ax):
+    with ctx.figure(name, figsize=(7, 4)) as (_fig, ax):
         for policy, o in outcomes.items():
             ax.plot(o.log["t"], o.log["trunk_root_force_n"], lw=0.9, color=COLOURS.get(policy), label=policy)
             if np.isfinite(o.grasp_s):
@@ -25,7 +25,7 @@ def trunk_force(ctx, outcomes: dict, name: str = "trunk_root_force") -> None:
 
 def stiffness(ctx, outcomes: dict, name: str = "trunk_stiffness") -> None:
     """The trunk's stiffness E I / l against time (the cam's effect), and the trunk's deflection."""
-    with ctx.figure(name, nrows=2, ncols=1, figsize=(7, 5.5), sharex=True) as (fig, axes):
+    with ctx.figure(name, nrows=2, ncols=1, figsize=(7, 5.5), sharex=True) as (_fig, axes):
         for policy, o in outcomes.items():
             axes[0].plot(o.log["t"], o.log["stiffness_nm_rad"], color=COLOURS.get(policy), label=policy)
             axes[1].plot(o.log["t"], np.degrees(o.log["trunk_deflection_rad"]), color=COLOURS.get(policy), lw=0.9)
@@ -40,6 +40,6 @@ def stiffness(ctx, outcomes: dict, name: str = "trunk_stiffness") -> None:
 
 def ga_curves(ctx, curves: dict, name: str = "ga_curves") -> None:
     """One GA's best and mean fitness per generation for each stiffness policy, side by side."""
-    with ctx.figure(name, nrows=1, ncols=len(curves), figsize=(4.5 * len(curves), 3.6), squeeze=False) as (fig, axes):
+    with ctx.figure(name, nrows=1, ncols=len(curves), figsize=(4.5 * len(curves), 3.6), squeeze=False) as (_fig, axes):
         for ax, (policy, c) in zip(axes[0], curves.items()):
             draw_curve(ax, c["best"], c["mean"], f"GA brachiation, trunk {policy}")
