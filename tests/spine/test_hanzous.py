@@ -83,3 +83,16 @@ def test_stiffness_policies_set_the_cam():
     assert np.all(cams["real"][t < o.release_s] == 0.0) and cams["real"][-1] == HANZOUS.cam_range_deg
     with pytest.raises(ValueError, match="policy"):
         b.run(None, "medium")
+
+
+def test_fitness_does_not_depend_on_what_the_worker_evaluated_before():
+    """One Brachiator per worker is reused: a genome's fitness is the same whatever ran before it, so serial,
+    process and Ray executors (which order evaluations differently) give the same generations."""
+    rng = np.random.default_rng(3)
+    genomes = rng.uniform(*B.gene_bounds(), size=(2, B.N_GENES))
+    fitness = B.BrachiationFitness("real")
+    first = [fitness(g) for g in genomes]
+    fitness_soft = B.BrachiationFitness("soft")
+    fitness_soft(genomes[1])
+    assert [fitness(g) for g in genomes[::-1]] == first[::-1]
+    assert B.Brachiator().run(genomes[0], "real").fitness() == first[0]

@@ -36,6 +36,7 @@ ARM_JOINTS = ("shoulder_pitch", "shoulder_roll", "elbow", "gripper")
 LEG_JOINTS = ("hip_roll", "hip_pitch", "knee", "ankle_pitch", "ankle_roll")
 JOINTS = tuple(f"{j}_{s}" for s in "LR" for j in ARM_JOINTS) + tuple(f"{j}_{s}" for s in "LR" for j in LEG_JOINTS)
 GRIPPER_OPEN_RAD = 1.0  # the gripper joint's open end; 0 is closed (chosen)
+VIDEO_VIEW = {"distance": 1.3, "azimuth": 90.0, "elevation": -3.0, "track": "chest"}  # side view
 GRASPS = tuple(f"grasp_{side}_bar{b}" for side in "LR" for b in range(N_BARS))
 
 
@@ -93,8 +94,8 @@ def mjcf(spec: HanzouSSpec = HANZOUS) -> str:
     gap = spec.leaf_gap_m
     pelvis_z = -cz / 2 - gap - pz / 2
     hinge_z = pz / 2 + gap / 2  # in the pelvis frame: the middle of the exposed leaf
-    bars = "".join(f'<geom name="bar{b}" type="cylinder" fromto="{b * spec.bar_spacing_m} -0.2 {BAR_Z} '
-                   f'{b * spec.bar_spacing_m} 0.2 {BAR_Z}" size="{spec.bar_radius_m}" rgba=".6 .6 .6 1"/>'
+    bars = "".join(f'<geom name="bar{b}" type="cylinder" fromto="{b * spec.bar_spacing_m} -0.1 {BAR_Z} '
+                   f'{b * spec.bar_spacing_m} 0.1 {BAR_Z}" size="{spec.bar_radius_m}" rgba=".6 .6 .6 1"/>'
                    for b in range(N_BARS))
     grasps = "".join(f'<connect name="grasp_{s}_bar{b}" body1="hand_{s}" body2="world" anchor="0 0 {spec.hand_m}" '
                      f'active="{"true" if b == 0 else "false"}" solref="0.01 1"/>'

@@ -11,9 +11,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.sim.body import MujocoBody
 from shintai.spine import pictures_hanzous as pictures
 from shintai.spine.brachiation import POLICIES, Brachiator, shipped_genome
-from shintai.spine.hanzous_body import build_spec
-
-VIEW = {"distance": 1.1, "azimuth": 90.0, "elevation": -5.0, "track": "chest"}
+from shintai.spine.hanzous_body import VIDEO_VIEW, build_spec
 
 
 def compute(ctx):
@@ -23,7 +21,7 @@ def compute(ctx):
     outcomes = {}
     for i, policy in enumerate(POLICIES):
         body = MujocoBody(build_spec()) if ctx.video else None
-        with film(ctx, body, None if i == 0 else policy, **VIEW) if body else contextlib.nullcontext():
+        with film(ctx, body, None if i == 0 else policy, **VIDEO_VIEW) if body else contextlib.nullcontext():
             o = Brachiator(body).run(genome, policy, record=True)
         outcomes[policy] = o
         for k, t in enumerate(o.log["t"]):

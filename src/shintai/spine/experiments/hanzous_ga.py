@@ -21,9 +21,8 @@ from shintai.spine.brachiation import (
     Brachiator,
     gene_bounds,
 )
-from shintai.spine.hanzous_body import build_spec
+from shintai.spine.hanzous_body import VIDEO_VIEW, build_spec
 
-VIEW = {"distance": 1.1, "azimuth": 90.0, "elevation": -5.0, "track": "chest"}
 GENERATIONS = 3  # short default; the thesis prints no generation count (§5.7.3): --set generations=N
 
 
@@ -40,7 +39,7 @@ def compute(ctx):
         best = result.best_genome
         body = MujocoBody(build_spec()) if ctx.video else None
         name = None if policy == POLICIES[0] else policy
-        with film(ctx, body, name, **VIEW) if body else contextlib.nullcontext():
+        with film(ctx, body, name, **VIDEO_VIEW) if body else contextlib.nullcontext():
             o = Brachiator(body).run(best, policy)
         start = time.perf_counter()
         base = designed.run(None, policy)
