@@ -1,5 +1,7 @@
 """HanzouS's dynamic body and brachiation (spine/hanzous_body.py, spine/brachiation.py, seed 003 §3.3, §5.7)."""
 
+import pickle
+
 import mujoco
 import numpy as np
 import pytest
@@ -90,7 +92,7 @@ def test_fitness_does_not_depend_on_what_the_worker_evaluated_before():
     process and Ray executors (which order evaluations differently) give the same generations."""
     rng = np.random.default_rng(3)
     genomes = rng.uniform(*B.gene_bounds(), size=(2, B.N_GENES))
-    fitness = B.BrachiationFitness("real")
+    fitness = pickle.loads(pickle.dumps(B.BrachiationFitness("real")))  # as the process and Ray executors ship it
     first = [fitness(g) for g in genomes]
     fitness_soft = B.BrachiationFitness("soft")
     fitness_soft(genomes[1])
