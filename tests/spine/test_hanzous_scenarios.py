@@ -6,12 +6,13 @@ from shintai.scenarios.runner import run_scenario
 
 
 def test_hanzous_brachiation_compares_stiff_soft_and_cam_changed(tmp_path):
-    result = run_scenario("spine.hanzous-brachiation", out=tmp_path, quiet=True)
+    result = run_scenario("spine.hanzous-brachiation", out=tmp_path, quiet=True, overrides={"all_sequences": "false"})
     assert "error" not in result
     m = result["metrics"]
-    for policy in ("stiff", "soft", "real"):
+    for policy in ("stiff", "real"):  # the sequence evolved under the cam change misses the bar with a soft trunk
         assert m[f"success_{policy}"] == 1 and m[f"forward_{policy}_m"] > 0.05
         assert m[f"peak_trunk_force_{policy}_n"] > 0 and m[f"grasp_time_{policy}_s"] > 1.0
+    assert m["success_soft"] == 0 and m["sequences_played"] == 1 and "seq_stiff.success_soft" not in m
     checks = {c["name"]: c for c in result["checks"]}
     assert {c["row"] for c in checks.values()} == {"003:fig3.13", "003:fig5.23", "003:fig5.24"}
     assert checks["success_real"]["ok"] and m["fitness_real"] > 2.0

@@ -231,11 +231,13 @@ class Brachiator:
 SHIPPED = Path(__file__).parent / "trained" / "hanzous_brachiation.npz"
 
 
-def shipped_genome() -> np.ndarray:
-    """The genome ``spine.hanzous-ga`` evolved under the cam-changed ('real') policy, shipped with the package
-    (its settings are stored beside it in the file)."""
+def shipped_genome(evolved_under: str = "real") -> np.ndarray:
+    """The best genome ``spine.hanzous-ga`` evolved under one stiffness policy (10 generations, population 105,
+    seed 0; the settings are stored beside the genomes in the file), shipped with the package."""
+    if evolved_under not in POLICIES:
+        raise ValueError(f"evolved_under must be one of {POLICIES}, got {evolved_under!r}")
     with np.load(SHIPPED) as f:
-        return np.array(f["genome"])
+        return np.array(f[evolved_under])
 
 
 _WORKER: dict[str, Brachiator] = {}

@@ -33,8 +33,8 @@ def compute(ctx):
     lo, hi = gene_bounds()
     designed = Brachiator()
     out, genomes, curves = {}, {}, {}
-    for policy in POLICIES:
-        result = ga_run.evolve(ctx, f"ga_{policy}", BrachiationFitness(policy), lo, hi,
+    for i, policy in enumerate(POLICIES):  # independent GAs: seeds seed, seed + 1, seed + 2
+        result = ga_run.evolve(ctx, f"ga_{policy}", BrachiationFitness(policy), lo, hi, seed=ctx.seed + i,
                                initial=np.zeros((1, N_GENES)), title=f"HanzouS brachiation GA, trunk {policy}")
         best = result.best_genome
         body = MujocoBody(build_spec()) if ctx.video else None
