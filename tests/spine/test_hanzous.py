@@ -98,3 +98,19 @@ def test_fitness_does_not_depend_on_what_the_worker_evaluated_before():
     fitness_soft(genomes[1])
     assert [fitness(g) for g in genomes[::-1]] == first[::-1]
     assert B.Brachiator().run(genomes[0], "real").fitness() == first[0]
+
+
+def test_serial_and_process_pool_evolve_the_same_brachiation():
+    """The brachiation fitness in worker processes (one Brachiator each) gives the serial run's generations."""
+    from shintai.evolve import GAConfig, GeneticAlgorithm, make_executor
+
+    lo, hi = B.gene_bounds()
+    runs = []
+    for kind in ("serial", "process"):
+        ga = GeneticAlgorithm(B.BrachiationFitness("real"), lo, hi, GAConfig.seed003(generations=2, population=4),
+                              seed=5)
+        with make_executor(kind, 2) as executor:
+            ga.executor = executor
+            runs.append(ga.run())
+    np.testing.assert_array_equal(runs[0].history.best, runs[1].history.best)
+    np.testing.assert_array_equal(runs[0].best_genome, runs[1].best_genome)
