@@ -41,15 +41,17 @@ def config(params) -> GAConfig:
 
 
 def evolve(ctx, name: str, fitness: Callable, lo, hi, batch: bool = False, initial: np.ndarray | None = None,
-           title: str = "") -> GAResult:
+           title: str = "", seed: int | None = None) -> GAResult:
     """Run the GA for ``ctx.params`` on ``fitness`` (maximised) in the box ``[lo, hi]``.
 
     Reports progress, checkpoints to ``<out>/<name>.ga.npz``, records ``<name>.best``/``<name>.mean`` per
     generation, and draws ``<name>_curve.png``. ``fitness`` must be picklable for the process and Ray
-    executors (a module-level function or a frozen dataclass instance).
+    executors (a module-level function or a frozen dataclass instance). ``seed``: the GA's seed (default the
+    run's, ``ctx.seed``; a scenario running several independent GAs gives each its own).
     """
     p = ctx.params
-    ga = GeneticAlgorithm(fitness, lo, hi, config(p), seed=ctx.seed, checkpoint=ctx.out / f"{name}.ga.npz",
+    ga = GeneticAlgorithm(fitness, lo, hi, config(p), seed=ctx.seed if seed is None else seed,
+                          checkpoint=ctx.out / f"{name}.ga.npz",
                           batch=batch, initial=initial)
 
     def progress(done: int, total: int, best: float) -> None:

@@ -4,6 +4,7 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
 from shintai.spine.cla_crawl import kneeling_spec
+from shintai.spine.hanzous_body import build_spec as build_hanzous
 from shintai.spine.robots import CLA, KENTA
 from shintai.spine.sq43_body import build_spec as build_sq43
 
@@ -27,3 +28,9 @@ def sq43():
        "on the floor (seed 003 §3.6, §5.2.9)")
 def cla_crawl():
     return kneeling_spec()
+
+
+@model("spine.hanzous", "HanzouS: 18 servoed joints, a cam-set leaf-spring trunk, hanging from bar 0 of three "
+       "(seed 003 §3.3, §5.7)")
+def hanzous():
+    return build_hanzous()

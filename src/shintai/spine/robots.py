@@ -588,10 +588,43 @@ class HanzouSSpec:
         lo, hi = self.length_range_m
         return lo + (hi - lo) * np.clip(np.asarray(cam_deg, dtype=float) / self.cam_range_deg, 0.0, 1.0)
 
+    # -- the dynamic whole body (hanzous_body.py): chosen, because §3.3 prints only the joint count, the 19
+    # RC servos and photographs (Figs. 3.11, 3.13); a ≈ 0.4 m, ≈ 1.7 kg RC-servo humanoid of its time.
+    # Box/capsule sizes [m] and masses [kg]; the limb's length runs along the segment.
+    chest_size_m: tuple[float, float, float] = (0.05, 0.10, 0.10)  # x depth, y width, z height; chosen
+    chest_mass_kg: float = 0.50  # chosen: shoulder servos, SH-2/H8 boards, camera, gyro, cam servo
+    pelvis_size_m: tuple[float, float, float] = (0.05, 0.09, 0.05)  # chosen
+    pelvis_mass_kg: float = 0.25  # chosen: hip servos
+    leaf_gap_m: float = 0.05  # chosen: chest bottom to pelvis top, the exposed leaf (≥ the longest l, 0.08 m, minus
+    # the part inside the cam plates)
+    shoulder_y_m: float = 0.065  # chosen
+    hip_y_m: float = 0.035  # chosen
+    upper_arm_m: float = 0.08  # chosen
+    forearm_m: float = 0.07  # chosen
+    hand_m: float = 0.04  # chosen: gripper, shoulder-to-grip reach 0.19 m
+    arm_masses_kg: tuple[float, float, float] = (0.08, 0.06, 0.05)  # upper arm, forearm, gripper; chosen
+    thigh_m: float = 0.09  # chosen
+    shank_m: float = 0.09  # chosen
+    leg_masses_kg: tuple[float, float, float] = (0.12, 0.10, 0.05)  # thigh, shank, foot; chosen
+    bar_spacing_m: float = 0.22  # chosen: reachable by a ≈35° forward swing of the 0.19 m arm (hanzous_body.py)
+    bar_radius_m: float = 0.010  # chosen
+    grasp_radius_m: float = 0.030  # chosen: the open gripper's mouth; it closes on a bar nearer than this
+    servo_kp_nm_rad: float = 20.0  # chosen: position servo gain (RC servo, §3.3.2: no gains in the text)
+    servo_kv_nms_rad: float = 0.4  # chosen
+    servo_torque_nm: float = 2.0  # chosen: a high-torque RC servo of ≈ 20 kgf·cm
+    cam_speed_deg_s: float = 600.0  # chosen: an RC servo's ≈ 0.1 s / 60° (§3.3.3: the cam is moved '素早く')
+    leaf_damping_ratio: float = 0.05  # chosen: a steel leaf barely damps; the thesis gives no viscosity (§3.3.1)
+
     def bending_stiffness_n_m(self, cam_deg) -> np.ndarray:
         """Tip stiffness of the clamped leaf, 3 E I / L³ (cantilever)."""
         inertia = self.leaf_width_m * self.leaf_thickness_m**3 / 12
         return 3 * self.youngs_modulus_pa * inertia / self.effective_length_m(cam_deg) ** 3
+
+    def rotational_stiffness_nm_rad(self, cam_deg) -> np.ndarray:
+        """The trunk hinge's stiffness E I / l: Eq. 5.8's bending block (P_z, θ_y) with the end's free
+        translation condensed out (a moment at the end, 4EI/l − (6EI/l²)²/(12EI/l³) = EI/l), l from the cam."""
+        inertia = self.leaf_width_m * self.leaf_thickness_m**3 / 12
+        return self.youngs_modulus_pa * inertia / self.effective_length_m(cam_deg)
 
 
 @dataclass(frozen=True)
