@@ -40,6 +40,13 @@ def config(params) -> GAConfig:
     return GAConfig.seed003(generations=int(params["generations"]), population=int(params["population"]))
 
 
+def evaluations(params, generations: int) -> int:
+    """How many fitness runs a GA of ``generations`` made: the first population whole, then only the offspring
+    that replace the culled (the survivors are carried with their fitness)."""
+    c = config(params)
+    return c.population + (generations - 1) * (c.population - c.carried())
+
+
 def evolve(ctx, name: str, fitness: Callable, lo, hi, batch: bool = False, initial: np.ndarray | None = None,
            title: str = "", seed: int | None = None) -> GAResult:
     """Run the GA for ``ctx.params`` on ``fitness`` (maximised) in the box ``[lo, hi]``.

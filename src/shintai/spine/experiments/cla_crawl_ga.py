@@ -117,6 +117,7 @@ def cla_crawl_ga(ctx) -> dict:
     metrics["seconds_per_individual"] = seconds  # the evolved crawl's rollout, single thread
     metrics["realtime_factor"] = eval_s / seconds
     history = result.history
+    ctx.sim_time_s += (ga_run.evaluations(p, len(history)) + len(VARIANTS)) * eval_s
     metrics |= {"generations": len(history), "crawl_best_fitness": float(history.best[-1]),
                 "crawl_initial_best": float(history.best[0]),
                 "crawl_improvement": float(history.best[-1] - history.best[0]),

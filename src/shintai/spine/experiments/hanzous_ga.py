@@ -48,7 +48,8 @@ def compute(ctx):
         genomes[policy], curves[policy] = best, {"best": history.best, "mean": history.mean}
         out |= {f"success_{policy}": int(o.success), f"best_fitness_{policy}": float(result.best_fitness),
                 f"replayed_fitness_{policy}": o.fitness(), f"designed_fitness_{policy}": base.fitness(),
-                f"designed_success_{policy}": int(base.success), f"designed_closest_to_next_bar_{policy}_m": base.closest_to_next_bar_m, f"forward_{policy}_m": o.forward_m,
+                f"designed_success_{policy}": int(base.success),
+                f"designed_closest_to_next_bar_{policy}_m": base.closest_to_next_bar_m, f"forward_{policy}_m": o.forward_m,
                 f"mean_height_{policy}_m": o.mean_height_m, f"hand_force_std_{policy}_n": o.force_std_n,
                 f"peak_trunk_force_{policy}_n": o.peak_trunk_force_n,
                 f"peak_trunk_moment_{policy}_nm": o.peak_trunk_moment_nm,

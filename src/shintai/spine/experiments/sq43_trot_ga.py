@@ -72,7 +72,7 @@ def sq43_trot_ga(ctx):
     fitness(best)  # one individual, timed on its own (the GA's wall time includes start-up and the pool)
     one = time.perf_counter() - t1
     replay = trot_body(best, float(p["duration_s"]), camera=lambda body: film(ctx, body, **VIEW))
-    ctx.sim_time_s += (len(result.history) * int(p["population"]) + 1) * float(p["duration_s"])
+    ctx.sim_time_s += (ga_run.evaluations(p, len(result.history)) + 1) * float(p["duration_s"])
     plot_replay(ctx, replay)
     history = result.history
     gens = len(history)
