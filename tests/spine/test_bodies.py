@@ -209,3 +209,36 @@ def test_the_hand_channel_holds_while_written_and_lets_go_after():
     with pytest.raises(ChannelError, match="two writers"):
         hand = FunctionModule(lambda snap: {"hand": bent}, name="second_hand")
         Loop(body, [hand], base={"hand": bent}).run(0.001)
+
+
+@pytest.mark.parametrize("joint", ["hinge", "ball"])
+@pytest.mark.parametrize("name", ["Cla", "Kenta"])
+def test_compiled_joint_ranges_are_the_robots_limits(name, joint):
+    """§3.6.1 (Cla, ±18°) and §3.7.1 (Kenta, ±10°): every vertebral joint compiles to robots.py's limit in
+    radians — not to the limit read as degrees (±0.31° / ±0.17°, MjSpec's default ``compiler.degree``)."""
+    import mujoco
+
+    from shintai.spine.bodies_mujoco import build_spec
+    from shintai.spine.robots import CLA_LIMIT_RAD, KENTA, KENTA_LIMIT_RAD
+
+    robot, limit = {"Cla": (CLA, CLA_LIMIT_RAD), "Kenta": (KENTA, KENTA_LIMIT_RAD)}[name]
+    model = build_spec(robot, joint=joint).compile()
+    kind = {"hinge": mujoco.mjtJoint.mjJNT_HINGE, "ball": mujoco.mjtJoint.mjJNT_BALL}[joint]
+    vertebral = [j for j in range(model.njnt) if model.jnt_type[j] == kind]
+    assert len(vertebral) == (3 * robot.n if joint == "hinge" else robot.n)
+    assert all(model.jnt_limited[vertebral])
+    expected = [-limit, limit] if joint == "hinge" else [0.0, limit]
+    assert model.jnt_range[vertebral] == pytest.approx(np.tile(expected, (len(vertebral), 1)), abs=1e-12)
+
+
+def test_no_joint_limit_acts_inside_the_range():
+    """Bent 10° on every axis of every joint (inside Cla's ±18°), the spine meets no joint limit: the
+    disc alone resists it."""
+    import mujoco
+
+    body = SpineBody(CLA, interference=False)
+    body.set_theta(np.full(3 * CLA.n, np.radians(10.0)))
+    spine = set(np.flatnonzero(np.isin(body.model.jnt_qposadr, body.spine_qpos)))
+    d = body.data
+    limits = [i for i in range(d.nefc) if d.efc_type[i] == mujoco.mjtConstraint.mjCNSTR_LIMIT_JOINT and d.efc_id[i] in spine]
+    assert limits == []

@@ -6,7 +6,9 @@ Model (spec 003 §5.2):
   thesis's rpy convention: three hinges per joint in the order yaw (z), pitch (y), roll (x), which
   MuJoCo composes as R = Rz(ψ) Ry(θ) Rx(φ) — the posture θ of eq. 4.1 is ``qpos`` directly — or
   one ``ball`` joint (``joint="ball"``). The disc is the joint's stiffness and damping (linear;
-  :meth:`SpineBody.set_disc` changes it at run time).
+  :meth:`SpineBody.set_disc` changes it at run time). The joints are limited at the chain's limits
+  (§3.6.1: ±18° for Cla, §3.7.1: ±10° for Kenta), soft like every MuJoCo limit; the spec is built
+  with ``compiler.degree = False``, so these ranges (and every angle) are in radians.
 * **Muscles = spatial tendons through sites.** A tendon runs from the motor's reel through the
   pull point and every via point to the attachment point: without wrapping its length minus the
   reel part is exactly eq. 4.25.
@@ -36,8 +38,6 @@ Model (spec 003 §5.2):
 
 from __future__ import annotations
 
-import math
-
 import mujoco
 import numpy as np
 
@@ -66,6 +66,7 @@ def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: 
         raise ValueError(f"{robot.name}: the MuJoCo body needs a linear DiscSpec, got {type(robot.disc).__name__}")
     spec = mujoco.MjSpec()
     spec.modelname = robot.name.lower()
+    spec.compiler.degree = False  # every angle in radians (MjSpec, like MJCF, defaults to degrees)
     spec.option.timestep = timestep
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.visual.global_.offwidth, spec.visual.global_.offheight = 640, 480
@@ -97,7 +98,7 @@ def _add_links(spec, robot: SpineRobot, joint: str, loads) -> list:
                             pos=[0, 0, PELVIS_HEIGHT_M / 2 - 0.012], rgba=[0.6, 0.6, 0.65, 1], contype=0, conaffinity=0)
     links = [pelvis]
     r = robot.vertebra_radius_m
-    limit = np.degrees(chain.upper.reshape(-1, 3))  # hard stops at the joint limits (§3.6.1: about ±18°)
+    limit = chain.upper.reshape(-1, 3)  # stops at the joint limits [rad] (§3.6.1: about ±18°; §3.7.1: ±10°)
     for i in range(chain.n):
         body = links[-1].add_body(name=f"link{i + 1}", pos=chain.offsets[i].tolist(), quat=_quat(chain.rest[i]).tolist())
         if joint == "hinge":
@@ -106,11 +107,11 @@ def _add_links(spec, robot: SpineRobot, joint: str, loads) -> list:
                                             ("roll", [1, 0, 0], disc.k_bend_nm_rad, limit[i, 0])):
                 body.add_joint(name=f"j{i + 1}_{axis_name}", type=mujoco.mjtJoint.mjJNT_HINGE, axis=axis,
                                stiffness=k, damping=disc.damping_nms_rad, armature=1e-6, limited=True,
-                               range=[-math.radians(lim), math.radians(lim)])
+                               range=[-lim, lim])
         else:
             body.add_joint(name=f"j{i + 1}", type=mujoco.mjtJoint.mjJNT_BALL, stiffness=disc.k_bend_nm_rad,
                            damping=disc.damping_nms_rad, armature=1e-6, limited=True,
-                           range=[0.0, math.radians(limit[i].max())])
+                           range=[0.0, limit[i].max()])
         height = chain.offsets[i + 1, 2] if i + 1 < chain.n else 0.02
         mass = robot.link_mass_kg[i + 1]
         if mass > 0:
