@@ -1,0 +1,265 @@
+"""HRP2-JSK standing and stepping on its stabilizer stack (seed 000 §5.2, §5.4.1; issue 13).
+
+The stack (:mod:`shintai.humanoid.stabilizer`) in one :class:`~shintai.core.runtime.Loop`, at the 4 ms
+control period, in four stages:
+
+1. reference — :class:`~shintai.humanoid.preview.PreviewModule` (``com_ref``, ``zmp_ref`` from a
+   :func:`~shintai.humanoid.preview.zmp_plan`) and :class:`FootstepModule` (``sole_ref``, ``support``);
+2. stabilizer — :class:`~shintai.humanoid.stabilizer.StabilizerModule` (LIP tracking, ZMP distributor,
+   force difference control: ``tau_d_*``, ``tau_*``, ``f_*z``, ``sole_dz``);
+3. foot damping — :class:`~shintai.humanoid.foot_damping.FootDampingModule` (Eqs. 5.1–5.3: δ on the
+   additive ``foot_damping`` channel; SLC (§5.3) goes inside it when given);
+4. IK — :class:`LegIKModule`: the waist under the CoM reference, the soles at their references rotated
+   by δ and raised by the force-difference heights → :func:`~shintai.humanoid.leg_ik.legs_ik` → ``ctrl``.
+
+The boarding of §5.4 (Fig. 5.6) is this stepping with the left foot's landing raised onto the scooter's
+deck, then the right's: :func:`platform_steps` is that plan on a rigid box.
+
+**Swing foot** (chosen; the thesis has none, hrpsys's GaitGenerator offers cycloid orbits): over the
+single-support phase, phase s ∈ [0, 1], the sole rises on a cycloid to ``max(z₀, z₁) + SWING_HEIGHT``
+at s = ½ and descends to z₁ (each half z = z_a + (z_b − z_a)(θ − sin θ)/2π, θ = 2π·(2s or 2s − 1));
+horizontally it moves on one cycloid (θ − sin θ)/2π of (s − ¼)/½ between s = ¼ and ¾ — so it clears an
+edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The sole stays flat (no yaw in the plans).
+
+**CoM → waist** (chosen): the waist is placed at ``com_ref`` minus the waist-to-CoM offset of the
+``stand`` keyframe (upright waist); hrpsys's AutoBalancer solves a whole-body CoM IK instead. The legs
+moving shift the true CoM by a few mm from that (measured in the tests); the LIP feedback sees it as
+a CoM error.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from shintai.core.runtime import SET, Loop, Module, declare
+from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS
+from shintai.humanoid.foot_damping import FootDampingModule
+from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
+from shintai.humanoid.preview import CHANNELS as PREVIEW_CHANNELS
+from shintai.humanoid.preview import Footstep, PreviewModule, zmp_plan
+from shintai.humanoid.robots.hrp2 import build_hrp2
+from shintai.humanoid.stabilizer import CHANNELS as STABILIZER_CHANNELS
+from shintai.humanoid.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
+from shintai.sim.body import MujocoBody
+
+SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
+PLATFORM_HEIGHT = 0.10  # m, the V-BOARD's deck height the boarding steps onto (brief: ~0.1 m)
+CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **declare("sole_ref", "support", kind=SET),
+            **declare("foot_damping")}
+
+
+@dataclass(frozen=True)
+class SoleStep:
+    """Foot ``side`` lands with its sole point at (x, y, z)."""
+
+    side: str
+    x: float
+    y: float
+    z: float = 0.0
+
+
+def _cycloid(u: float) -> float:
+    """(θ − sin θ)/2π at θ = 2π u, u clipped to [0, 1]: 0 → 1 with zero slope at both ends."""
+    u = min(1.0, max(0.0, u))
+    th = 2 * math.pi * u
+    return (th - math.sin(th)) / (2 * math.pi)
+
+
+def swing_point(start, end, s: float, height: float = SWING_HEIGHT) -> np.ndarray:
+    """The swinging sole point at phase ``s`` ∈ [0, 1] (module docstring)."""
+    p0, p1 = np.asarray(start, float), np.asarray(end, float)
+    top = max(p0[2], p1[2]) + height
+    z = p0[2] + (top - p0[2]) * _cycloid(2 * s) if s < 0.5 else top + (p1[2] - top) * _cycloid(2 * s - 1)
+    xy = p0[:2] + (p1[:2] - p0[:2]) * _cycloid((s - 0.25) / 0.5)
+    return np.array([xy[0], xy[1], z])
+
+
+class FootstepModule(Module):
+    """Writes ``sole_ref`` (left row, right row: the sole points) and ``support`` each period along a
+    :class:`~shintai.humanoid.preview.ZmpPlan`: during each single-support run the other foot swings
+    (:func:`swing_point`) from where it stands to its :class:`SoleStep`'s landing."""
+
+    def __init__(self, plan, soles: dict, steps, height: float = SWING_HEIGHT, name: str = "footsteps"):
+        super().__init__(name, plan.dt)
+        self.plan, self.height = plan, height
+        self.start = {s: np.asarray(soles[s], float).copy() for s in SIDES}
+        self.steps = list(steps)
+        self.support = [SUPPORT_CODE[s] for s in plan.support]
+        # the single-support runs, in order, one per step
+        runs, k = [], 0
+        while k < len(plan.support):
+            if plan.support[k] != "lr":
+                j = k
+                while j < len(plan.support) and plan.support[j] == plan.support[k]:
+                    j += 1
+                runs.append((k, j))
+                k = j
+            else:
+                k += 1
+        if len(runs) != len(self.steps):
+            raise ValueError(f"footsteps: the plan has {len(runs)} single-support phases for {len(self.steps)} steps")
+        self.runs = runs
+        self.k = 0
+
+    def reset(self, snapshot) -> None:
+        self.k = 0
+
+    def soles_at(self, k: int) -> np.ndarray:
+        feet = {s: p.copy() for s, p in self.start.items()}
+        for (a, b), step in zip(self.runs, self.steps):
+            land = np.array([step.x, step.y, step.z])
+            if k < a:
+                break
+            if k < b:
+                feet[step.side] = swing_point(feet[step.side], land, (k - a + 1) / (b - a), self.height)
+                break
+            feet[step.side] = land
+        return np.array([feet["l"], feet["r"]])
+
+    def update(self, snapshot):
+        k = min(self.k, len(self.support) - 1)
+        self.k += 1
+        return {"sole_ref": self.soles_at(k), "support": np.array(self.support[k])}
+
+
+def _rot_xy(roll: float, pitch: float) -> np.ndarray:
+    """Ry(pitch) Rx(roll): δ about world x, then world y."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    return np.array([[cp, sp * sr, sp * cr], [0.0, cr, -sr], [-sp, cp * sr, cp * cr]])
+
+
+class LegIKModule(Module):
+    """Stage 4: reads ``com_ref``, ``sole_ref``, ``foot_damping`` (δ: L roll, L pitch, R roll, R pitch)
+    and ``sole_dz``; writes the whole ``ctrl`` vector: the ``stand`` keyframe's targets with the leg
+    joints from :func:`~shintai.humanoid.leg_ik.leg_ik` (waist upright at ``com_ref − com_offset``).
+    ``unreachable`` counts the legs whose IK missed."""
+
+    def __init__(self, body: MujocoBody, ctrl0, com_offset, name: str = "leg_ik", period: float = CONTROL_PERIOD):
+        super().__init__(name, period)
+        self.ctrl0 = np.asarray(ctrl0, float).copy()
+        self.com_offset = np.asarray(com_offset, float)
+        self.index = {s: [body.id("actuator", f"{s}_{j}") for j in JOINT_NAMES] for s in SIDES}
+        self.unreachable = 0
+        self._eye = np.eye(3)
+
+    def update(self, snapshot):
+        waist = np.asarray(snapshot["com_ref"], float) - self.com_offset
+        soles = np.asarray(snapshot["sole_ref"], float)
+        delta = snapshot.get("foot_damping")
+        dz = snapshot.get("sole_dz")
+        ctrl = self.ctrl0.copy()
+        for i, s in enumerate(SIDES):
+            pos = soles[i].copy()
+            rot = self._eye
+            if delta is not None:
+                rot = _rot_xy(float(delta[2 * i]), float(delta[2 * i + 1]))
+            if dz is not None:
+                pos[2] += float(dz[i])
+            res = leg_ik(s, waist, self._eye, pos, rot)
+            if not res.reachable:
+                self.unreachable += 1
+            ctrl[self.index[s]] = res.q
+        return {"ctrl": ctrl}
+
+
+class Push(Module):
+    """A disturbance, not control: an external force ``force`` (N, world x, y, z) on the waist body from
+    ``t0`` for ``duration`` seconds (written into MuJoCo's ``xfrc_applied``)."""
+
+    def __init__(self, body: MujocoBody, force, t0: float, duration: float, name: str = "push"):
+        super().__init__(name, None)
+        self.body, self.force, self.t0, self.duration = body, np.asarray(force, float), t0, duration
+        self._id = body.id("body", "waist")
+
+    def update(self, snapshot):
+        on = self.t0 <= snapshot["t"] < self.t0 + self.duration
+        self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
+        return None
+
+
+def stand_geometry(body: MujocoBody) -> tuple[dict, np.ndarray]:
+    """The sole points (side → (x, y, z)) and the waist-to-CoM offset (world, upright) of the body's
+    current state (the ``stand`` keyframe after a reset)."""
+    mujoco.mj_kinematics(body.model, body.data)
+    mujoco.mj_comPos(body.model, body.data)
+    root = body.id("body", "waist")
+    soles = {s: body.site_pos(f"{s}_sole") for s in SIDES}
+    return soles, body.data.subtree_com[root] - body.data.xpos[root]
+
+
+def platform_body(height: float = PLATFORM_HEIGHT, x: float = 0.30, y: float = 0.0, size=(0.20, 0.35)):
+    """HRP2 on the floor with a rigid box (top ``height``, centre (x, y), half-sizes ``size``) in front."""
+    from shintai.humanoid import FLOOR, SOLE, scene_spec  # noqa: F401  (the scene the model uses)
+
+    body = build_hrp2()
+    spec = body.spec
+    spec.worldbody.add_geom(name="platform", type=mujoco.mjtGeom.mjGEOM_BOX, size=[size[0], size[1], height / 2],
+                            pos=[x, y, height / 2], rgba=[0.5, 0.45, 0.4, 1], contype=FLOOR, conaffinity=SOLE)
+    model = spec.compile()
+    return MujocoBody(model, substeps=body.substeps, keyframe="stand", spec=spec)
+
+
+class Standing:
+    """HRP2 with the stack (module docstring) on a footstep plan (none: standing still).
+
+    ``steps``: :class:`SoleStep` s; ``damping=False`` drops stage 3 (no δ: the foot torque damping
+    off); ``lip=False`` no LIP tracking; ``force_difference=False`` no height corrections; ``push``:
+    (force (3,), t0, duration) on the waist; ``body`` another hrp2 body (e.g. :func:`platform_body`).
+    """
+
+    def __init__(self, steps=(), damping: bool = True, lip: bool = True, force_difference: bool = True,
+                 push=None, body: MujocoBody | None = None, slc=None, hold: float | None = None):
+        self.body = body if body is not None else build_hrp2()
+        self.body.reset("stand")
+        soles, offset = stand_geometry(self.body)
+        self.soles = soles
+        self.steps = [s if isinstance(s, SoleStep) else SoleStep(*s) for s in steps]
+        feet = [Footstep(s.side, s.x, s.y) for s in self.steps]
+        kw = {} if hold is None else {"hold": hold}
+        self.plan = zmp_plan(soles["l"][:2], soles["r"][:2], feet, **kw)
+        self.preview = PreviewModule(self.plan)
+        self.footsteps = FootstepModule(self.plan, soles, self.steps)
+        self.stabilizer = StabilizerModule(self.body, lip=lip, force_difference=force_difference)
+        self.damping = FootDampingModule(slc=slc) if damping else None
+        self.ik = LegIKModule(self.body, self.body.data.ctrl, offset + np.array([0.0, 0.0, 0.0]))
+        # the reference CoM height: the keyframe's (PreviewModule writes z_c above z = 0, the floor)
+        stages = [[self.preview, self.footsteps], [self.stabilizer]]
+        if self.damping is not None:
+            stages.append([self.damping])
+        stages.append([self.ik])
+        if push is not None:
+            stages[0].insert(0, Push(self.body, *push))
+        self.loop = Loop(self.body, stages=stages, channels=CHANNELS.values())
+
+    @property
+    def duration(self) -> float:
+        return len(self.plan.zmp) * self.plan.dt
+
+    def run(self, seconds: float, every=None) -> None:
+        self.loop.run(seconds, every=every)
+
+    def com(self) -> np.ndarray:
+        return self.body.data.subtree_com[self.body.id("body", "waist")].copy()
+
+    def fallen(self) -> bool:
+        """The waist has dropped 0.15 m below its stand height or tilted more than 0.5 rad."""
+        d = self.body.data
+        w = self.body.id("body", "waist")
+        return bool(d.xpos[w][2] < self._waist_z0 - 0.15 or d.xmat[w][8] < math.cos(0.5))
+
+    @property
+    def _waist_z0(self) -> float:
+        return float(self.body.model.key("stand").qpos[2])
+
+
+def platform_steps(soles: dict, x: float = 0.30, height: float = PLATFORM_HEIGHT) -> list[SoleStep]:
+    """The boarding's steps on a box: the left foot up onto it (``x`` ahead), then the right beside it."""
+    return [SoleStep("l", x, soles["l"][1], height), SoleStep("r", x, soles["r"][1], height)]
+
+
+__all__ = ["CHANNELS", "HRP2_LINKS", "FootstepModule", "LegIKModule", "Push", "SoleStep", "Standing",
+           "platform_body", "platform_steps", "stand_geometry", "swing_point"]
