@@ -37,8 +37,11 @@ the overloaded foot (with Δf of the magnitudes it pushes it down: measured, it 
 
 **Measured CoM** (chosen, the simulator's stand-in for hrpsys's IMU + joint-encoder FK): MuJoCo's
 whole-body CoM of the last physics step (``subtree_com`` of the root); on a flat floor with the feet
-flat this is what the IMU + FK estimate gives. Its velocity is the finite difference over the period,
-low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt).
+flat this is what the IMU + FK estimate gives. Its velocity is the world finite difference over the
+period, low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt). Like hrpsys (its "foot_origin" frame), the
+CoM and the measured ZMP are compared with their references *relative to the stance feet*: shifted by
+(mean reference stance sole point − mean actual one). In world coordinates a foot that lands 13 mm
+off its reference left a 23 mm CoM offset the LIP feedback kept fighting (measured, three steps).
 """
 
 from __future__ import annotations
@@ -194,11 +197,18 @@ class StabilizerModule(Module):
         wrenches = foot_wrenches(self.body, snapshot)
         zmp = two_foot_zmp({s: (w.point, (0.0, 0.0, w.fz), (-w.tau[0], -w.tau[1], 0.0))
                             for s, w in wrenches.items()}, z0=float(np.mean([w.point[2] for w in wrenches.values()])))
-        act = zmp.zmp
+        soles = np.asarray(snapshot["sole_ref"], float)
+        stance = [i for i, side in enumerate(SIDES) if side in support]
+        # the foot-origin frame: actual CoM and ZMP relative to the actual stance feet, re-expressed on
+        # the reference stance feet (module docstring)
+        shift = (soles[stance, :2].mean(axis=0)
+                 - np.mean([wrenches[SIDES[i]].point[:2] for i in stance], axis=0))
+        com = com.copy()
+        com[:2] += shift
+        act = zmp.zmp + shift
         zmp_d = zmp_ref.copy()
         if self.lip and zmp.contacts:
             zmp_d = lip_feedback(zmp_ref, com_ref, ref_vel, com, self.com_vel, act, self.k)
-        soles = np.asarray(snapshot["sole_ref"], float)
         dist = distribute(zmp_d, {"l": soles[0, :2], "r": soles[1, :2]}, support, self.weight)
         out = {"zmp_d": zmp_d, "zmp_act": act}
         for s in SIDES:

@@ -18,8 +18,8 @@ deck, then the right's: :func:`platform_steps` is that plan on a rigid box.
 **Swing foot** (chosen; the thesis has none, hrpsys's GaitGenerator offers cycloid orbits): over the
 single-support phase, phase s ∈ [0, 1], the sole rises on a cycloid to ``max(z₀, z₁) + SWING_HEIGHT``
 at s = ½ and descends to z₁ (each half z = z_a + (z_b − z_a)(θ − sin θ)/2π, θ = 2π·(2s or 2s − 1));
-horizontally it moves on one cycloid (θ − sin θ)/2π of (s − ¼)/½ between s = ¼ and ¾ — so it clears an
-edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The sole stays flat (no yaw in the plans).
+horizontally it moves on one cycloid (θ − sin θ)/2π of (s − d)/(1 − 2d) between s = d and 1 − d
+(d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The sole stays flat (no yaw in the plans).
 
 **CoM → waist** (chosen): the waist is placed at ``com_ref`` minus the waist-to-CoM offset of the
 ``stand`` keyframe (upright waist); hrpsys's AutoBalancer solves a whole-body CoM IK instead. The legs
@@ -36,7 +36,7 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import SET, Loop, Module, declare
-from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS
+from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.foot_damping import FootDampingModule
 from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
 from shintai.humanoid.preview import CHANNELS as PREVIEW_CHANNELS
@@ -47,6 +47,9 @@ from shintai.humanoid.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
 from shintai.sim.body import MujocoBody
 
 SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
+# chosen: the swing moves horizontally only for s ∈ [0.35, 0.65]; at s = 0.35 (and 0.65) the sole is
+# 0.85 of the way up to (down from) its apex, 28 mm above a 0.1 m step's top with SWING_HEIGHT (tested)
+SWING_DELAY = 0.35
 PLATFORM_HEIGHT = 0.10  # m, the V-BOARD's deck height the boarding steps onto (brief: ~0.1 m)
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
@@ -74,7 +77,7 @@ def swing_point(start, end, s: float, height: float = SWING_HEIGHT) -> np.ndarra
     p0, p1 = np.asarray(start, float), np.asarray(end, float)
     top = max(p0[2], p1[2]) + height
     z = p0[2] + (top - p0[2]) * _cycloid(2 * s) if s < 0.5 else top + (p1[2] - top) * _cycloid(2 * s - 1)
-    xy = p0[:2] + (p1[:2] - p0[:2]) * _cycloid((s - 0.25) / 0.5)
+    xy = p0[:2] + (p1[:2] - p0[:2]) * _cycloid((s - SWING_DELAY) / (1 - 2 * SWING_DELAY))
     return np.array([xy[0], xy[1], z])
 
 
@@ -256,10 +259,39 @@ class Standing:
         return float(self.body.model.key("stand").qpos[2])
 
 
+def push_recovery(force, t0: float = 0.5, duration: float = 0.1, settle: float = 2.5, **stack) -> dict:
+    """Stand, push the waist with ``force`` (N, world) for ``duration`` s at ``t0``, run ``settle`` s more.
+    ``recovered``: not :meth:`Standing.fallen`, and the CoM back within 10 mm of its reference relative
+    to the feet (the soles' mean point) with the soles within 20 mm of where they stood."""
+    st = Standing(push=(np.asarray(force, float), t0, duration), **stack)
+    try:
+        st.run(t0 + duration + settle)
+    except Exception:  # noqa: BLE001  a diverged simulation is a fall
+        return {"recovered": False, "fallen": True, "com_error_m": math.nan, "sole_shift_m": math.nan}
+    feet = np.mean([st.body.site_pos(f"{s}_sole")[:2] for s in SIDES], axis=0)
+    ref_feet = np.mean([st.soles[s][:2] for s in SIDES], axis=0)
+    com_error = float(np.linalg.norm((st.com()[:2] - feet) - (np.asarray(st.loop.command["com_ref"])[:2] - ref_feet)))
+    shift = float(max(np.linalg.norm(st.body.site_pos(f"{s}_sole")[:2] - st.soles[s][:2]) for s in SIDES))
+    fallen = st.fallen()
+    return {"recovered": bool(not fallen and com_error < 0.01 and shift < 0.02), "fallen": fallen,
+            "com_error_m": com_error, "sole_shift_m": shift}
+
+
+def largest_push(axis: int = 0, forces=range(50, 501, 25), **stack) -> float:
+    """The largest push (N for 0.1 s on the waist along world ``axis``) of ``forces``, in increasing
+    order, recovered before the first one that is not (0 if none)."""
+    best = 0.0
+    for f in forces:
+        force = np.zeros(3)
+        force[axis] = f
+        if not push_recovery(force, **stack)["recovered"]:
+            break
+        best = float(f)
+    return best
+
+
 def platform_steps(soles: dict, x: float = 0.30, height: float = PLATFORM_HEIGHT) -> list[SoleStep]:
     """The boarding's steps on a box: the left foot up onto it (``x`` ahead), then the right beside it."""
     return [SoleStep("l", x, soles["l"][1], height), SoleStep("r", x, soles["r"][1], height)]
 
 
-__all__ = ["CHANNELS", "HRP2_LINKS", "FootstepModule", "LegIKModule", "Push", "SoleStep", "Standing",
-           "platform_body", "platform_steps", "stand_geometry", "swing_point"]
