@@ -8,10 +8,24 @@ import pytest
 
 from shintai.humanoid.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.preview import hrp2_com_height
-from shintai.humanoid.stabilizer import (LIP_K, StabilizerModule, closed_loop_poles, distribute, foot_wrenches,
-                                         lip_feedback)
-from shintai.humanoid.standing import (SWING_DELAY, FootstepModule, SoleStep, Standing, platform_body, platform_steps,
-                                       push_recovery, swing_point)
+from shintai.humanoid.stabilizer import (
+    LIP_K,
+    StabilizerModule,
+    closed_loop_poles,
+    distribute,
+    foot_wrenches,
+    lip_feedback,
+)
+from shintai.humanoid.standing import (
+    SWING_DELAY,
+    FootstepModule,
+    SoleStep,
+    Standing,
+    platform_body,
+    platform_steps,
+    push_recovery,
+    swing_point,
+)
 
 FEET = {"l": np.array([0.0, 0.06]), "r": np.array([0.0, -0.06])}
 FOOT_X = (-0.105, 0.135)  # the sole box in x (centre 15 mm ahead of the sole point, 240 mm long)

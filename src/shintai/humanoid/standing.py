@@ -181,7 +181,6 @@ class Push(Module):
     def update(self, snapshot):
         on = self.t0 <= snapshot["t"] < self.t0 + self.duration
         self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
-        return None
 
 
 def stand_geometry(body: MujocoBody) -> tuple[dict, np.ndarray]:
