@@ -8,6 +8,7 @@ import pytest
 
 from shintai.humanoid.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.preview import hrp2_com_height
+from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.humanoid.stabilizer import (
     LIP_K,
     StabilizerModule,
@@ -126,6 +127,11 @@ def test_measured_zmp_of_the_stabilizer_matches_foot_attitude_measured_zmp(stand
     assert sum(x.fz for x in w.values()) == pytest.approx(st.stabilizer.weight, rel=0.02)
     ours = two_foot_zmp({s: (x.point, (0, 0, x.fz), (-x.tau[0], -x.tau[1], 0)) for s, x in w.items()}).zmp
     assert np.allclose(ours, measured_zmp(st.body, snap).zmp, atol=2e-3)  # horizontal forces ignored in ours
+    for s in "lr":  # the float arithmetic of FootSensors is ft_reaction's, moved to the sole point and negated
+        force, torque = ft_reaction(st.body, snap, f"{s}_ankle")
+        lever = st.body.site_pos(f"{s}_ankle_ft") - st.body.site_pos(f"{s}_sole")
+        assert w[s].fz == pytest.approx(force[2])
+        assert np.allclose(w[s].tau, -(torque + np.cross(lever, force))[:2])
 
 
 def test_a_push_is_recovered_by_the_stack_and_a_much_larger_one_is_not():
