@@ -18,6 +18,9 @@ from shintai.humanoid.stabilizer import (
     lip_feedback,
 )
 from shintai.humanoid.standing import (
+    BOARDING_CROUCH,
+    BOARDING_STEP_X,
+    PLATFORM_HEIGHT,
     SWING_DELAY,
     FootstepModule,
     SoleStep,
@@ -183,8 +186,27 @@ def test_footsteps_follow_the_plan_and_reject_a_mismatched_step_list():
         FootstepModule(st.plan, st.soles, [])
 
 
-def test_platform_plan_puts_the_left_foot_up_first():
+def test_stance_heights_rise_only_after_the_lower_foot_has_lifted():
+    st = Standing(steps=[SoleStep("l", 0.3, 0.06, 0.1), SoleStep("r", 0.3, -0.06, 0.1)])
+    h, support = st.heights, st.plan.support
+    assert np.allclose(Standing(steps=[("l", 0.0, 0.06), ("r", 0.0, -0.06)]).heights, 0.0)
+    second = [k for k, s in enumerate(support) if s == "l"]  # the right foot's swing (the left on the box)
+    assert np.abs(h[:second[0]]).max() < 1e-9 and h[second[-1]] == pytest.approx(0.1) and h[-1] == pytest.approx(0.1)
+    assert np.all(np.diff(h) >= 0) and np.abs(np.diff(h, 2)).max() / st.plan.dt**2 < 1.1  # ≤ ≈1 m/s²
+
+
+def test_boarding_a_rigid_platform_left_foot_first_ends_standing_on_it():
+    """Item 5 of the brief: the boarding's steps (§5.4, Fig. 5.6) on a rigid 0.1 m box."""
     body = platform_body()
-    steps = platform_steps({"l": (0.0, 0.06, 0.0), "r": (0.0, -0.06, 0.0)})
-    assert [s.side for s in steps] == ["l", "r"] and all(s.z == pytest.approx(0.1) for s in steps)
     assert body.model.geom("platform").size[2] == pytest.approx(0.05)
+    steps = platform_steps({"l": (0.0, 0.06, 0.0), "r": (0.0, -0.06, 0.0)})
+    assert [s.side for s in steps] == ["l", "r"] and all(s.z == pytest.approx(PLATFORM_HEIGHT) for s in steps)
+    st = Standing(steps=steps, body=body, crouch=BOARDING_CROUCH)
+    errs = []
+    st.run(st.duration + 1.0, every={1: lambda snap: errs.append(
+        np.linalg.norm(np.asarray(st.loop.command["zmp_act"]) - np.asarray(st.loop.command["zmp_ref"])))})
+    assert not st.fallen() and st.ik.unreachable == 0
+    for s, y in (("l", 0.06), ("r", -0.06)):
+        assert np.allclose(st.body.site_pos(f"{s}_sole"), (BOARDING_STEP_X, y, PLATFORM_HEIGHT), atol=0.01)
+    errs = np.array(errs)
+    assert np.sqrt(np.nanmean(errs[-250:] ** 2)) < 0.01  # settled on the box (measured ≈3 mm; no damping ≈50 mm)

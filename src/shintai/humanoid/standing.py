@@ -36,11 +36,17 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import SET, Loop, Module, declare
+from shintai.humanoid import FLOOR, SOLE
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.foot_damping import FootDampingModule
 from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
 from shintai.humanoid.preview import CHANNELS as PREVIEW_CHANNELS
-from shintai.humanoid.preview import Footstep, PreviewModule, zmp_plan
+from shintai.humanoid.preview import (
+    PLAN_HOLD_S,
+    Footstep,
+    PreviewModule,
+    zmp_plan,
+)
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.stabilizer import CHANNELS as STABILIZER_CHANNELS
 from shintai.humanoid.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
@@ -51,6 +57,10 @@ SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
 # 0.85 of the way up to (down from) its apex, 28 mm above a 0.1 m step's top with SWING_HEIGHT (tested)
 SWING_DELAY = 0.35
 PLATFORM_HEIGHT = 0.10  # m, the V-BOARD's deck height the boarding steps onto (brief: ~0.1 m)
+# m, chosen: the CoM lowered for the 0.30 m step up (at the stand height the trailing leg is out of
+# reach once the CoM is ≈0.15 m ahead of it, before it lifts: measured, 58 ticks out of reach)
+BOARDING_CROUCH = 0.05
+BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 90 mm past the box's near edge
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
 
@@ -129,6 +139,57 @@ class FootstepModule(Module):
         return {"sole_ref": self.soles_at(k), "support": np.array(self.support[k])}
 
 
+def stance_heights(plan, soles: dict, steps) -> np.ndarray:
+    """Per tick of ``plan``, how far the CoM reference is raised above z_c (chosen; the thesis and the
+    preview control assume a flat floor): during each single support it moves on a cycloid to the
+    stance sole's height, and during the last double support (plus the hold after it) to the mean
+    height of the two soles. A leg is never asked to reach further than on the flat floor: the CoM
+    rises only once the lower foot has left the floor (rising with both feet down overstretched the
+    trailing leg: measured, 68 ticks out of reach stepping onto 0.1 m) and a 0.1 m rise over the 0.8 s
+    single support peaks at ≈1 m/s² (a tenth of g the cart-table model neglects)."""
+    support, n = plan.support, len(plan.support)
+    z = {s: float(soles[s][2]) for s in SIDES}
+    events = []  # (first tick, last tick + 1, target height)
+    steps, i, k = list(steps), 0, 0
+    while k < n:
+        j = k
+        while j < n and support[j] == support[k]:
+            j += 1
+        if support[k] != "lr":
+            events.append((k, j, z[support[k]]))
+            if i < len(steps):  # the swinging foot lands at the end of this run
+                z[steps[i].side] = float(steps[i].z)
+                i += 1
+        elif k > 0 and j == n:
+            events.append((k, n, float(np.mean(list(z.values())))))
+        k = j
+    out = np.zeros(n)
+    here = float(np.mean([float(soles[s][2]) for s in SIDES]))
+    done = 0
+    for k0, k1, target in events:
+        out[done:k0] = here
+        for kk in range(k0, k1):
+            out[kk] = here + (target - here) * _cycloid((kk - k0 + 1) / (k1 - k0))
+        here, done = target, k1
+    out[done:] = here
+    return out
+
+
+class StepPreview(PreviewModule):
+    """:class:`~shintai.humanoid.preview.PreviewModule` with the CoM reference raised by
+    :func:`stance_heights` (stepping up and down)."""
+
+    def __init__(self, plan, heights, name: str = "preview"):
+        super().__init__(plan, name=name)
+        self.heights = np.asarray(heights, float)
+
+    def update(self, snapshot):
+        k = min(self.k, len(self.heights) - 1)
+        out = super().update(snapshot)
+        out["com_ref"][2] += self.heights[k]
+        return out
+
+
 def _rot_xy(roll: float, pitch: float) -> np.ndarray:
     """Ry(pitch) Rx(roll): δ about world x, then world y."""
     cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
@@ -193,15 +254,16 @@ def stand_geometry(body: MujocoBody) -> tuple[dict, np.ndarray]:
     return soles, body.data.subtree_com[root] - body.data.xpos[root]
 
 
-def platform_body(height: float = PLATFORM_HEIGHT, x: float = 0.30, y: float = 0.0, size=(0.20, 0.35)):
-    """HRP2 on the floor with a rigid box (top ``height``, centre (x, y), half-sizes ``size``) in front."""
-    from shintai.humanoid import FLOOR, SOLE, scene_spec  # noqa: F401  (the scene the model uses)
-
+def platform_body(height: float = PLATFORM_HEIGHT, x: float = 0.38, y: float = 0.0, size=(0.20, 0.35)):
+    """HRP2 on the floor with a rigid box (top ``height``, centre (x, y), half-sizes ``size``) in front:
+    by default its near edge 45 mm ahead of the standing soles' toes (x = 0.135 m)."""
     body = build_hrp2()
     spec = body.spec
     spec.worldbody.add_geom(name="platform", type=mujoco.mjtGeom.mjGEOM_BOX, size=[size[0], size[1], height / 2],
                             pos=[x, y, height / 2], rgba=[0.5, 0.45, 0.4, 1], contype=FLOOR, conaffinity=SOLE)
     model = spec.compile()
+    key, stand = model.key("stand"), body.model.key("stand")
+    key.qpos[:], key.qvel[:], key.ctrl[:] = stand.qpos, stand.qvel, stand.ctrl  # build_hrp2 fills the compiled key
     return MujocoBody(model, substeps=body.substeps, keyframe="stand", spec=spec)
 
 
@@ -210,11 +272,16 @@ class Standing:
 
     ``steps``: :class:`SoleStep` s; ``damping=False`` drops stage 3 (no δ: the foot torque damping
     off); ``lip=False`` no LIP tracking; ``force_difference=False`` no height corrections; ``push``:
-    (force (3,), t0, duration) on the waist; ``body`` another hrp2 body (e.g. :func:`platform_body`).
+    (force (3,), t0, duration) on the waist; ``body`` another hrp2 body (e.g. :func:`platform_body`);
+    ``slc`` an :class:`~shintai.humanoid.slc.SLCSchedule` run inside the foot damping (§5.4.1); ``hold``
+    the plan's rest at the start and the end (s); ``crouch`` (m): the CoM reference is lowered by this
+    much during the first hold and stays lower (long steps: the hip of a straight-enough trailing leg
+    reaches only ≈0.15 m ahead of its ankle at the ``stand`` height, see :data:`BOARDING_CROUCH`).
     """
 
     def __init__(self, steps=(), damping: bool = True, lip: bool = True, force_difference: bool = True,
-                 push=None, body: MujocoBody | None = None, slc=None, hold: float | None = None):
+                 push=None, body: MujocoBody | None = None, slc=None, hold: float | None = None,
+                 crouch: float = 0.0):
         self.body = body if body is not None else build_hrp2()
         self.body.reset("stand")
         soles, offset = stand_geometry(self.body)
@@ -223,7 +290,11 @@ class Standing:
         feet = [Footstep(s.side, s.x, s.y) for s in self.steps]
         kw = {} if hold is None else {"hold": hold}
         self.plan = zmp_plan(soles["l"][:2], soles["r"][:2], feet, **kw)
-        self.preview = PreviewModule(self.plan)
+        self.heights = stance_heights(self.plan, soles, self.steps)
+        if crouch:  # lowered on a cycloid over the first hold (the ZMP rests, the CoM is still)
+            ramp = round((PLAN_HOLD_S if hold is None else hold) / self.plan.dt)
+            self.heights -= crouch * np.array([_cycloid((k + 1) / ramp) for k in range(len(self.heights))])
+        self.preview = StepPreview(self.plan, self.heights)
         self.footsteps = FootstepModule(self.plan, soles, self.steps)
         self.stabilizer = StabilizerModule(self.body, lip=lip, force_difference=force_difference)
         self.damping = FootDampingModule(slc=slc) if damping else None
@@ -289,7 +360,7 @@ def largest_push(axis: int = 0, forces=range(50, 501, 25), **stack) -> float:
     return best
 
 
-def platform_steps(soles: dict, x: float = 0.30, height: float = PLATFORM_HEIGHT) -> list[SoleStep]:
+def platform_steps(soles: dict, x: float = BOARDING_STEP_X, height: float = PLATFORM_HEIGHT) -> list[SoleStep]:
     """The boarding's steps on a box: the left foot up onto it (``x`` ahead), then the right beside it."""
     return [SoleStep("l", x, soles["l"][1], height), SoleStep("r", x, soles["r"][1], height)]
 
