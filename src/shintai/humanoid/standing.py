@@ -140,7 +140,7 @@ class FootstepModule(Module):
 
 
 def stance_heights(plan, soles: dict, steps) -> np.ndarray:
-    """Per tick of ``plan``, how far the CoM reference is raised above z_c (chosen; the thesis and the
+    """Per tick of ``plan``, how far the CoM reference is raised above its start (chosen; the thesis and the
     preview control assume a flat floor): during each single support it moves on a cycloid to the
     stance sole's height, and during the last double support (plus the hold after it) to the mean
     height of the two soles. A leg is never asked to reach further than on the flat floor: the CoM
@@ -172,7 +172,7 @@ def stance_heights(plan, soles: dict, steps) -> np.ndarray:
             out[kk] = here + (target - here) * _cycloid((kk - k0 + 1) / (k1 - k0))
         here, done = target, k1
     out[done:] = here
-    return out
+    return out - out[0]  # relative to where the soles stand at the start (z_c is measured there)
 
 
 class StepPreview(PreviewModule):
@@ -244,6 +244,19 @@ class Push(Module):
         self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
 
 
+SETTLE_S = 0.1  # s, chosen: the keyframe's soles touch the floor at zero penetration (≈15 N a foot)
+
+
+def settle_on_floor(body: MujocoBody, seconds: float = SETTLE_S) -> None:
+    """Reset to ``stand`` and let the servos hold it on the floor for ``seconds`` before the stack starts
+    (clock back to 0): the contacts load up to the weight first, so the SLC's landing guards (f_z rising
+    through F_thre, §5.4.1) do not fire on the first ticks (measured: 14.7 N → 277 N per foot in 8 ms)."""
+    body.reset("stand")
+    mujoco.mj_step(body.model, body.data, round(seconds / body.model.opt.timestep))
+    body.data.time = 0.0
+    mujoco.mj_forward(body.model, body.data)
+
+
 def stand_geometry(body: MujocoBody) -> tuple[dict, np.ndarray]:
     """The sole points (side → (x, y, z)) and the waist-to-CoM offset (world, upright) of the body's
     current state (the ``stand`` keyframe after a reset)."""
@@ -283,7 +296,7 @@ class Standing:
                  push=None, body: MujocoBody | None = None, slc=None, hold: float | None = None,
                  crouch: float = 0.0):
         self.body = body if body is not None else build_hrp2()
-        self.body.reset("stand")
+        settle_on_floor(self.body)
         soles, offset = stand_geometry(self.body)
         self.soles = soles
         self.steps = [s if isinstance(s, SoleStep) else SoleStep(*s) for s in steps]
