@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from shintai.core.runtime import FunctionModule
 from shintai.humanoid.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.preview import hrp2_com_height
 from shintai.humanoid.robots.hrp2 import ft_reaction
@@ -211,3 +212,20 @@ def test_boarding_a_rigid_platform_left_foot_first_ends_standing_on_it():
         assert np.allclose(st.body.site_pos(f"{s}_sole"), (BOARDING_STEP_X, y, PLATFORM_HEIGHT), atol=0.01)
     errs = np.array(errs)
     assert np.sqrt(np.nanmean(errs[-250:] ** 2)) < 0.01  # settled on the box (measured ≈3 mm; no damping ≈50 mm)
+
+
+def test_sign_convention_toe_down_raises_the_exerted_pitch_torque_so_eq_5_1_is_negative_feedback():
+    """δ_pitch > 0 (toe down) moves the pressure forward: τ_pitch (exerted) rises, ∂τ/∂δ > 0 (likewise roll)."""
+
+    def tau_after(delta):
+        st = Standing(damping=False, lip=False, force_difference=False)
+        push = FunctionModule(lambda snap: {"foot_damping": np.array(delta)}, name="delta")
+        stages = [list(s) for s in st.loop.stages]
+        stages[1].append(push)
+        st.loop.restage(stages)
+        st.run(0.5)
+        return np.asarray(st.loop.command["tau_L"]).copy()
+
+    base = tau_after([0.0, 0.0, 0.0, 0.0])
+    assert tau_after([0.0, 0.01, 0.0, 0.0])[1] > base[1] + 1.0  # N·m
+    assert tau_after([0.01, 0.0, 0.0, 0.0])[0] > base[0] + 1.0

@@ -116,6 +116,8 @@ class FootstepModule(Module):
         if len(runs) != len(self.steps):
             raise ValueError(f"footsteps: the plan has {len(runs)} single-support phases for {len(self.steps)} steps")
         self.runs = runs
+        self._table = np.array([self.soles_at(k) for k in range(len(self.support))])  # (K, 2, 3), once
+        self._codes = [np.array(c) for c in self.support]
         self.k = 0
 
     def reset(self, snapshot) -> None:
@@ -136,7 +138,7 @@ class FootstepModule(Module):
     def update(self, snapshot):
         k = min(self.k, len(self.support) - 1)
         self.k += 1
-        return {"sole_ref": self.soles_at(k), "support": np.array(self.support[k])}
+        return {"sole_ref": self._table[k], "support": self._codes[k]}
 
 
 def stance_heights(plan, soles: dict, steps) -> np.ndarray:
