@@ -229,3 +229,14 @@ def test_sign_convention_toe_down_raises_the_exerted_pitch_torque_so_eq_5_1_is_n
     base = tau_after([0.0, 0.0, 0.0, 0.0])
     assert tau_after([0.0, 0.01, 0.0, 0.0])[1] > base[1] + 1.0  # N·m
     assert tau_after([0.01, 0.0, 0.0, 0.0])[0] > base[0] + 1.0
+
+
+def test_the_rig_rejects_bad_parameters():
+    with pytest.raises(ValueError, match="crouch"):
+        Standing(crouch=-0.01)
+    with pytest.raises(ValueError, match="push duration"):
+        Standing(push=((100.0, 0.0, 0.0), 0.5, -0.1))
+    with pytest.raises(ValueError, match="force"):
+        Standing(push=((math.nan, 0.0, 0.0), 0.5, 0.1))
+    with pytest.raises(ValueError, match="side"):
+        Standing(steps=[("x", 0.0, 0.0)])

@@ -20,7 +20,10 @@ tracking", IROS 2010). One control period (4 ms) here:
    as each foot's centre-of-pressure offset from its point a_j, i.e. the ankle torques τᵈ_j; the total
    reaction then has its ZMP at p_d. In single support everything is on the stance foot (α = 1 or 0).
 3. **Foot torque damping** (Eqs. 5.1–5.3): :class:`~shintai.humanoid.foot_damping.FootDampingModule` turns
-   τᵈ − τ into the sole attitude corrections δ (roll, pitch) per foot.
+   τᵈ − τ into the sole attitude corrections δ (roll, pitch) per foot — as §5.2.2 defines its terms: τ
+   measured by the soles' 6-axis force sensors, τᵈ "from the ZMP distributor of [55]", δ the roll/pitch
+   displacement of the foot frame's attitude R_R, R_L (here applied about the world x/y axes, which are
+   the foot frame's while the soles have no yaw, as in every plan of :mod:`~shintai.humanoid.standing`).
 4. **Foot force difference control** ([55] Eq. 18): :class:`~shintai.humanoid.foot_damping.ForceDifferenceControl`
    turns Δfᵈ − Δf into sole heights ∓z_ctrl/2, in double support.
 5. The corrected sole poses and the waist placed under the CoM reference → :func:`~shintai.humanoid.leg_ik.legs_ik`
