@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import FunctionModule
+from shintai.humanoid.constants import VBOARD
 from shintai.humanoid.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.preview import hrp2_com_height
 from shintai.humanoid.robots.hrp2 import ft_reaction
@@ -95,6 +96,8 @@ def test_swing_point_lifts_clear_before_moving_and_lands_on_the_step():
     assert swing_point(a, b, SWING_DELAY)[0] == pytest.approx(0.0)  # no forward motion before SWING_DELAY
     assert swing_point(a, b, SWING_DELAY)[2] > 0.1 + 0.02  # by then 2 cm above the step's top
     assert swing_point(b, a, 1 - SWING_DELAY)[2] > 0.1 + 0.02  # stepping down: over the edge before descending
+    deck = np.array([0.3, 0.1175, VBOARD.deck_height])
+    assert swing_point(a, deck, SWING_DELAY)[2] > VBOARD.deck_height + 0.02
     assert swing_point(b, a, 1 - SWING_DELAY)[0] == pytest.approx(0.0)
 
 
@@ -198,9 +201,10 @@ def test_stance_heights_rise_only_after_the_lower_foot_has_lifted():
 
 
 def test_boarding_a_rigid_platform_left_foot_first_ends_standing_on_it():
-    """Item 5 of the brief: the boarding's steps (§5.4, Fig. 5.6) on a rigid 0.1 m box."""
+    """Item 5 of the brief: the boarding's steps (§5.4, Fig. 5.6) on a rigid box of the V-BOARD's deck
+    height (0.12 m), onto its pad positions (±0.1175 m)."""
     body = platform_body()
-    assert body.model.geom("platform").size[2] == pytest.approx(0.05)
+    assert body.model.geom("platform").size[2] == pytest.approx(VBOARD.deck_height / 2)
     steps = platform_steps({"l": (0.0, 0.06, 0.0), "r": (0.0, -0.06, 0.0)})
     assert [s.side for s in steps] == ["l", "r"] and all(s.z == pytest.approx(PLATFORM_HEIGHT) for s in steps)
     st = Standing(steps=steps, body=body, crouch=BOARDING_CROUCH)
@@ -208,10 +212,10 @@ def test_boarding_a_rigid_platform_left_foot_first_ends_standing_on_it():
     st.run(st.duration + 1.0, every={1: lambda snap: errs.append(
         np.linalg.norm(np.asarray(st.loop.command["zmp_act"]) - np.asarray(st.loop.command["zmp_ref"])))})
     assert not st.fallen() and st.ik.unreachable == 0
-    for s, y in (("l", 0.06), ("r", -0.06)):
+    for s, y in (("l", VBOARD.pad_y), ("r", -VBOARD.pad_y)):
         assert np.allclose(st.body.site_pos(f"{s}_sole"), (BOARDING_STEP_X, y, PLATFORM_HEIGHT), atol=0.01)
     errs = np.array(errs)
-    assert np.sqrt(np.nanmean(errs[-250:] ** 2)) < 0.01  # settled on the box (measured ≈3 mm; no damping ≈50 mm)
+    assert np.sqrt(np.nanmean(errs[-250:] ** 2)) < 0.01  # settled on the box (measured ≈3 mm; no damping ≈38 mm)
 
 
 def test_sign_convention_toe_down_raises_the_exerted_pitch_torque_so_eq_5_1_is_negative_feedback():

@@ -28,9 +28,9 @@ largest 0.1 s push on the waist recovered (CoM back within 10 mm, soles within 2
 tracking only acts through the damping), 225 N with LIP and force difference off too; sideways 325 N,
 325 N and 275 N (the force difference control helps sideways, the damping does not). Stepping in place
 (two steps) the measured ZMP follows the plan with 17 mm rms error, 49 mm with the damping off; onto a
-0.1 m box (:func:`platform_steps`) 29 mm against 78 mm, and standing on the box after it 2.7 mm
-against 56 mm (without the damping the ZMP keeps swinging). The feet creep 7–12 mm forward over two
-steps in place (open).
+0.12 m box at the V-BOARD's pad positions (:func:`platform_steps`) 34 mm against 93 mm, and standing on
+the box in the last second 2.7 mm against 38 mm (without the damping the ZMP keeps swinging and the
+feet slide ≈10 mm). The feet creep 7–12 mm forward over two steps in place (open).
 
 **CoM → waist** (chosen): the waist is placed at ``com_ref`` minus the waist-to-CoM offset of the
 ``stand`` keyframe (upright waist); hrpsys's AutoBalancer solves a whole-body CoM IK instead. The legs
@@ -48,7 +48,7 @@ import numpy as np
 
 from shintai.core.runtime import SET, Loop, Module, declare
 from shintai.humanoid import FLOOR, SOLE
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
 from shintai.humanoid.foot_damping import FootDampingModule
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
@@ -66,13 +66,13 @@ from shintai.sim.body import MujocoBody
 
 SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
 # chosen: the swing moves horizontally only for s ∈ [0.35, 0.65]; at s = 0.35 (and 0.65) the sole is
-# 0.85 of the way up to (down from) its apex, 28 mm above a 0.1 m step's top with SWING_HEIGHT (tested)
+# 0.85 of the way up to (down from) its apex: 25 mm above the V-BOARD deck's 0.12 m with SWING_HEIGHT (tested)
 SWING_DELAY = 0.35
-PLATFORM_HEIGHT = 0.10  # m, the V-BOARD's deck height the boarding steps onto (brief: ~0.1 m)
+PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen there), what the boarding steps onto
 # m, chosen: the CoM lowered for the 0.30 m step up (at the stand height the trailing leg is out of
 # reach once the CoM is ≈0.15 m ahead of it, before it lifts: measured, 58 ticks out of reach)
 BOARDING_CROUCH = 0.05
-BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 90 mm past the box's near edge
+BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 15 mm past platform_body's near edge
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
 
@@ -392,8 +392,9 @@ def largest_push(axis: int = 0, forces=range(50, 501, 25), **stack) -> float:
     return best
 
 
-def platform_steps(soles: dict, x: float = BOARDING_STEP_X, height: float = PLATFORM_HEIGHT) -> list[SoleStep]:
-    """The boarding's steps on a box: the left foot up onto it (``x`` ahead), then the right beside it."""
-    return [SoleStep("l", x, soles["l"][1], height), SoleStep("r", x, soles["r"][1], height)]
-
-
+def platform_steps(soles: dict, x: float = BOARDING_STEP_X, height: float = PLATFORM_HEIGHT,
+                   y: float | None = VBOARD.pad_y) -> list[SoleStep]:
+    """The boarding's steps on a box: the left foot up onto it (``x`` ahead), then the right beside it,
+    each at ±``y`` (default: the V-BOARD's pad centres, ±0.1175 m; ``None``: where the feet stand)."""
+    ys = {s: soles[s][1] if y is None else (y if s == "l" else -y) for s in SIDES}
+    return [SoleStep("l", x, ys["l"], height), SoleStep("r", x, ys["r"], height)]
