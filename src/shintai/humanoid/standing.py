@@ -193,9 +193,11 @@ class StepPreview(PreviewModule):
     """:class:`~shintai.humanoid.preview.PreviewModule` with the CoM reference raised by
     :func:`stance_heights` (stepping up and down)."""
 
-    def __init__(self, plan, heights, name: str = "preview"):
-        super().__init__(plan, name=name)
-        self.heights = np.asarray(heights, float)
+    def __init__(self, plan, heights, zc: float | None = None, base: float = 0.0, name: str = "preview"):
+        super().__init__(plan, zc=zc, name=name)
+        self.heights = np.asarray(heights, float) + base  # z_c is above the start's sole plane z = base
+        if len(self.heights) != len(plan.zmp) or not np.all(np.isfinite(self.heights)):
+            raise ValueError(f"preview: heights must be {len(plan.zmp)} finite values, one per plan tick")
 
     def update(self, snapshot):
         k = min(self.k, len(self.heights) - 1)
@@ -270,7 +272,8 @@ def settle_on_floor(body: MujocoBody, seconds: float = SETTLE_S) -> None:
     (clock back to 0): the contacts load up to the weight first, so the SLC's landing guards (f_z rising
     through F_thre, §5.4.1) do not fire on the first ticks (measured: 14.7 N → 277 N per foot in 8 ms)."""
     body.reset("stand")
-    mujoco.mj_step(body.model, body.data, round(seconds / body.model.opt.timestep))
+    for _ in range(round(seconds / body.dt)):
+        body.step()  # with the body's hooks (a scooter's firmware runs before each physics step)
     body.data.time = 0.0
     mujoco.mj_forward(body.model, body.data)
 
@@ -326,7 +329,10 @@ class Standing:
         if crouch:  # lowered on a cycloid over the first hold (the ZMP rests, the CoM is still)
             ramp = round((PLAN_HOLD_S if hold is None else hold) / self.plan.dt)
             self.heights -= crouch * np.array([_cycloid((k + 1) / ramp) for k in range(len(self.heights))])
-        self.preview = StepPreview(self.plan, self.heights)
+        # z_c: the CoM above the soles as the body stands (≈ hrp2_com_height() on the floor; any stand)
+        base = float(np.mean([soles[s][2] for s in SIDES]))
+        self.preview = StepPreview(self.plan, self.heights, zc=float(self.body.data.subtree_com[
+            self.body.id("body", "waist")][2]) - base, base=base)
         self.footsteps = FootstepModule(self.plan, soles, self.steps)
         self.stabilizer = StabilizerModule(self.body, lip=lip, force_difference=force_difference)
         self.damping = FootDampingModule(slc=slc) if damping else None
