@@ -30,7 +30,11 @@ tracking only acts through the damping), 225 N with LIP and force difference off
 (two steps) the measured ZMP follows the plan with 17 mm rms error, 49 mm with the damping off; onto a
 0.12 m box at the V-BOARD's pad positions (:func:`platform_steps`) 34 mm against 93 mm, and standing on
 the box in the last second 2.7 mm against 38 mm (without the damping the ZMP keeps swinging and the
-feet slide ≈10 mm). The feet creep 7–12 mm forward over two steps in place (open).
+feet slide ≈10 mm). The feet creep 7–12 mm forward over two steps in place (open). Probe, not a
+test (ch. 6 is the next step): standing still on the V-BOARD (:func:`~shintai.humanoid.vboard_stand.build_vboard_stand`
+as ``body``) the flat-floor stack (D = 22) keeps the robot up for 5 s while the scooter rocks back and
+forth by up to 0.85 m; with the damping off it falls at ≈3 s; position control alone rides backwards
+5.4 m in 4.5 s (the level-1 drift of §6.2.1).
 
 **CoM → waist** (chosen): the waist is placed at ``com_ref`` minus the waist-to-CoM offset of the
 ``stand`` keyframe (upright waist); hrpsys's AutoBalancer solves a whole-body CoM IK instead. The legs
