@@ -21,3 +21,13 @@ def test_leg_ik_benchmark_times_both_solvers_on_the_same_targets():
     assert out["analytic_us_per_call"] > 0.0 and out["dls_us_per_call"] > 0.0
     assert math.isfinite(out["dls_over_analytic"])
     assert out["max_joint_difference_rad"] < 1e-3  # same branch; the DLS IK stops at its 0.1 mm / 1 mrad tolerance
+
+
+def test_standing_overhead_times_the_stack_against_bare_mj_step():
+    from shintai.humanoid.benchmarks import standing_overhead
+
+    out = standing_overhead(seconds=0.2)
+    assert out["ticks"] == 50 and out["physics_steps"] == 200
+    assert math.isfinite(out["overhead_ratio"]) and out["overhead_ratio"] > 0.0
+    for name in ("preview", "footsteps", "stabilizer", "foot_damping", "leg_ik"):
+        assert out[f"{name}_us"] > 0.0
