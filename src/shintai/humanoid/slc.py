@@ -148,11 +148,13 @@ class SLCSchedule:
     → ``learning`` → (right foot lands, likewise on f_Rz) → ``done``. While learning, each step updates the left-foot pitch D from that
     controller's e_τ and δ; at ``done`` the right-foot pitch D takes the learned value. Reads ``f_Lz`` and
     ``f_Rz`` (N) from the snapshot; ``step(snapshot, feet)`` is called by
-    :class:`shintai.humanoid.foot_damping.FootDampingModule` after its damping step.
+    :class:`shintai.humanoid.foot_damping.FootDampingModule` after its damping step. ``learn=False`` keeps
+    the window (the same guards) without touching any D: the fixed-D run of Figs. 5.6 and 5.8-(a1–d1).
     """
 
-    def __init__(self, slc: SLC | None = None):
+    def __init__(self, slc: SLC | None = None, learn: bool = True):
         self.slc = slc or SLC()
+        self.learn = bool(learn)
         self.state = "waiting"
         self.t_start: float | None = None
         self.t_stop: float | None = None
@@ -183,11 +185,13 @@ class SLCSchedule:
                 self._below_since[k] = t
         if self.state == "waiting" and landed["f_Lz"]:
             self.state, self.t_start = "learning", t
-            feet["L"].D[PITCH] = self.slc.D
+            if self.learn:
+                feet["L"].D[PITCH] = self.slc.D
         elif self.state == "learning" and landed["f_Rz"]:
             self.state, self.t_stop = "done", t
-            feet["R"].D[PITCH] = self.slc.D
-        if self.state == "learning":
+            if self.learn:
+                feet["R"].D[PITCH] = self.slc.D
+        if self.state == "learning" and self.learn:
             left = feet["L"]
             left.D[PITCH] = self.slc.update(left.e_tau[PITCH], left.delta[PITCH])
             self.updates += 1
