@@ -41,6 +41,9 @@ def test_the_slc_window_opens_on_the_left_landing_and_closes_on_the_right_landin
     # the plan's left swing is 1.2–2.0 s and the right's 2.2–3.0 s; the left foot unloads through 25 N at
     # ≈1.2 s, which must not start SLC (the guard fix), nor the right's lift-off chatter at ≈2.2 s stop it
     assert 1.9 < m["t_left_landing_s"] < 2.05 and 2.8 < m["t_right_landing_s"] < 3.05
+    # the landings as the scooter sees them: its pads' contact switches turn on within 10 ms of the guards
+    assert m["t_left_landing_s"] == pytest.approx(m["t_left_switch_on_s"], abs=0.01)
+    assert m["t_right_landing_s"] == pytest.approx(m["t_right_switch_on_s"], abs=0.01)
     assert m["slc_duration_s"] == pytest.approx(m["t_right_landing_s"] - m["t_left_landing_s"])
     assert m["window_without_slc_s"] == pytest.approx(m["slc_duration_s"], abs=0.05)  # same guards, no learning
 

@@ -121,4 +121,7 @@ def run_summary(run) -> dict:
         "peaks": peaks, "board_l_min_deg": float(np.degrees(log.values("theta_l").min())),
         "scooter_travel_m": float(np.ptp(log.values("scooter_x"))),
         "unreachable": st.ik.unreachable,
+        # the boards' contact switches (pad force > switch_force, vboard.py): the landings as the scooter sees them
+        **{f"t_switch_{side}_s": (float(t[on[0]]) if len(on := np.flatnonzero(log.values(f"switch_{side}") > 0.5))
+                                  else math.nan) for side in ("l", "r")},
     }

@@ -86,6 +86,7 @@ def metrics(runs, params):
         "fall_after_slc_start_without_s": fixed["fall_after_start_s"],
         "fall_after_slc_start_with_s": slc["fall_after_start_s"],
         "t_left_landing_s": slc["t_left_landing_s"], "t_right_landing_s": slc["t_right_landing_s"],
+        "t_left_switch_on_s": slc["t_switch_l_s"], "t_right_switch_on_s": slc["t_switch_r_s"],
         "slc_duration_s": slc["window_s"] if slc["window_s"] is not None else math.nan,
         "window_without_slc_s": fixed["window_s"] if fixed["window_s"] is not None else math.nan,
         "damping_initial": params["D0"], "damping_final": slc["D_final"],
