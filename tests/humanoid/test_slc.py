@@ -80,7 +80,8 @@ def test_an_update_below_D_min_is_refused():
 
 
 @pytest.mark.parametrize("field, value", [("D0", -22.0), ("D0", 0.0), ("eta", 0.0), ("eta", 1.5), ("eta", math.nan),
-                                          ("Q", math.nan), ("R", -1.0), ("D_min", 30.0)])
+                                          ("Q", math.nan), ("R", -1.0), ("D_min", 30.0),
+                                          ("air_time", -0.1)])
 def test_bad_parameters_raise_one_line_naming_the_field(field, value):
     with pytest.raises(ValueError, match=f"^{field} must") as info:
         SLCParams(**{field: value})
@@ -99,21 +100,45 @@ def run_schedule(fz_pairs, e_pitch=1.0):
 
 
 def test_slc_starts_at_the_left_landing_and_stops_at_the_right_landing():
-    stand, lift = 280.0, 0.0
+    stand, lift, air = 280.0, 0.0, 30  # 30 ticks = 0.12 s in the air ≥ SLC_AIR_TIME
     phases = ([(stand, stand)] * 5  # Phase 1: both feet loaded on the floor — no start
-              + [(lift, stand)] * 5  # Phase 2: left foot swings
+              + [(lift, stand)] * air  # Phase 2: left foot swings
               + [(30.0, stand)] * 5  # Phase 3: left lands on the board (> 25 N): start; right still loaded
-              + [(stand, lift)] * 5  # Phase 4: right foot swings
+              + [(stand, lift)] * air  # Phase 4: right foot swings
               + [(stand, 30.0)] * 3)  # Phase 5: right lands: stop
     feet, sched, states = run_schedule(phases)
-    assert states[:10] == ["waiting"] * 10
-    assert states[10:20] == ["learning"] * 10
-    assert states[20:] == ["done"] * 3
-    assert sched.updates == 10 and sched.duration == pytest.approx(10 * DT)
+    start = 5 + air
+    assert states[:start] == ["waiting"] * start
+    assert states[start:start + 5 + air] == ["learning"] * (5 + air)
+    assert states[start + 5 + air:] == ["done"] * 3
+    assert sched.updates == 5 + air and sched.duration == pytest.approx((5 + air) * DT)
     learned = sched.slc.D
     assert learned != SLC_D0
     assert feet["L"].D[1] == learned and feet["R"].D[1] == learned  # right pitch takes the learned D
     assert feet["L"].D[0] == DAMPING_D_FLAT and feet["R"].D[0] == DAMPING_D_FLAT  # roll stays at 22.0
+
+
+def test_a_foot_unloading_before_it_lifts_does_not_fire_the_guards():
+    """The jitter of HRP2 boarding the V-BOARD (measured): f_Lz crosses 25 N up and down while the left foot
+    unloads (25.2 → 24.8 → 25.3 → 24.7 N at t ≈ 1.2 s) and the right foot rattles 12 ↔ 54 N as it lifts; SLC
+    starts only at the left foot's placement on the board and stops at the right foot's (§5.4.1)."""
+    stand = 280.0
+    unload_l = [150.0, 60.0, 25.2, 24.8, 25.3, 24.7, 10.0]  # t = 0.02 … : the rising edge 24.8 → 25.3 is no landing
+    swing = [3.0, -7.0, 12.0, 19.0, -2.0] * 35  # 0.7 s in the air, inertial readings below F_thre
+    land = [58.0, 200.0, 400.0]
+    rattle_r = [54.8, 14.9, 72.6, 54.5, 12.7, 54.1, 12.0, 52.9, 10.5]  # the right foot lifting: 4–8 ms bounces
+    fl = [stand] * 5 + unload_l + swing + land + [stand] * (len(rattle_r) + len(swing)) + [stand] * 3
+    n_before_r = 5 + len(unload_l) + len(swing) + len(land)
+    fr = [stand] * n_before_r + rattle_r + swing + [37.0, 120.0, 250.0]
+    _, sched, _ = run_schedule(list(zip(fl, fr)))
+    t_land_l = (5 + len(unload_l) + len(swing)) * DT
+    t_land_r = (n_before_r + len(rattle_r) + len(swing)) * DT
+    assert sched.t_start == pytest.approx(t_land_l) and sched.t_stop == pytest.approx(t_land_r)
+    # without the airborne arming the unloading's rising edge (index 5 + 4) would have started it
+    eager = SLCSchedule(SLC(SLCParams(air_time=0.0)))
+    for i, (a, b) in enumerate(zip(fl, fr)):
+        eager.step({"t": i * DT, "f_Lz": a, "f_Rz": b}, {"L": FootDamping(dt=DT), "R": FootDamping(dt=DT)})
+    assert eager.t_start == pytest.approx(9 * DT) and eager.t_stop < t_land_r
 
 
 def test_no_landing_no_learning():

@@ -15,14 +15,20 @@ SLC tunes the damping gain D of the foot torque damping controller C_τ(s) = T /
   4 ms period enters only as the rate at which Eq. 5.17 is applied (§5.3.1).
 * as an online search index (Eqs. 5.18–5.19, Table 5.1): x = (e_τ, δ)ᵀ, x_d = 0, W = ½ diag(Q, R),
   ρ = D, A = η — it runs on :class:`shintai.core.search_index.SearchIndex` (Eq. 2.13) below.
-* schedule (§5.4.1, Fig. 5.5): on the left-foot pitch only; start when the left foot lands on the board
-  (f_Lz > F_thre), stop when the right foot lands (f_Rz > F_thre), F_thre = 25 N; the roll gains stay at
-  22.0 and the right-foot pitch takes the learned D.
+* schedule (§5.4.1, Fig. 5.5): on the left-foot pitch only; start "at the first foot placement onto the
+  scooter" when f_Lz > F_thre, stop "at the right foot's placement on the other board" when f_Rz > F_thre,
+  F_thre = 25 N; the roll gains stay at 22.0 and the right-foot pitch takes the learned D.
 
 Choices where the thesis is silent (each tested):
 * the guards fire on *landings*, i.e. on f_z rising through F_thre. Read as levels, the start guard would hold
   while both feet stand on the floor (Phase 1) and the stop guard the moment SLC starts, because the right
   foot is still on the floor then (Phase 3);
+* a landing is a *foot placement* (§5.4.1's 足配置): f_z rises through F_thre after the foot has been in the
+  air, f_z ≤ F_thre without a break for at least ``air_time`` (default :data:`SLC_AIR_TIME`). A foot
+  unloading before it lifts reads f_z jittering about F_thre (HRP2 boarding the V-BOARD: f_Lz 25.2 → 24.8 →
+  25.3 → 24.7 N at t = 1.20 s, the real landing at 1.98 s; the right foot rattles 12 ↔ 54 N in 4–8 ms
+  bounces as it lifts): read as rising edges only, those fired SLC 0.8 s early and stopped it on the
+  right foot's lift-off;
 * the right-foot pitch takes the learned D once, when SLC stops (its foot is in the air while SLC runs);
 * D has no lower bound in the thesis, yet divides Eqs. 5.1 and 5.17: an update that would take D below
   ``D_min`` (default 1.0) is refused and D kept (the engine's ``hold``, as Eq. 3.14 keeps a reference);
@@ -37,7 +43,9 @@ import numpy as np
 
 from shintai.core.runtime import Snapshot
 from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
-from shintai.humanoid.constants import F_THRE  # landing threshold of the start/stop guards (§5.4.1)
+from shintai.humanoid.constants import (
+    F_THRE,  # landing threshold of the start/stop guards (§5.4.1)
+)
 from shintai.humanoid.law_params import check_real
 
 # --- constants (Table 5.2 and §5.4.1) ---------------------------------------------------------------
@@ -46,6 +54,10 @@ SLC_R = 1.0e5  # weight of δ² (Table 5.2)
 SLC_ETA = 0.01  # learning rate η (Table 5.2) → Q′ = 1e-3, R′ = 1e3
 SLC_D0 = 22.0  # D at the start, the flat-floor value (§5.4.1)
 SLC_D_MIN = 1.0  # chosen: floor under D (not in the text; D divides Eqs. 5.1 and 5.17)
+# s, chosen: how long f_z must stay ≤ F_thre for the foot to count as in the air, which arms its landing
+# guard (§5.4.1 guards foot *placements*; the thesis gives no hysteresis). Longer than the lift-off
+# jitter and chatter (one to two 4 ms ticks, measured on the boarding), far shorter than a swing (0.8 s).
+SLC_AIR_TIME = 0.1
 ETA_MAX = 1.0  # chosen: η ∈ (0, 1]; Table 5.1 needs A = η > 0, the thesis runs 0.01
 
 
@@ -75,6 +87,7 @@ class SLCParams:
     eta: float = SLC_ETA
     F_thre: float = F_THRE
     D_min: float = SLC_D_MIN
+    air_time: float = SLC_AIR_TIME
 
     def __post_init__(self):
         check_real("D0", self.D0, 0.0, low_open=True)
@@ -83,6 +96,7 @@ class SLCParams:
         check_real("eta", self.eta, 0.0, ETA_MAX, low_open=True)
         check_real("F_thre", self.F_thre, 0.0)
         check_real("D_min", self.D_min, 0.0, self.D0, low_open=True)
+        check_real("air_time", self.air_time, 0.0)
 
     @property
     def Q_prime(self) -> float:
@@ -130,39 +144,54 @@ PITCH = 1  # index of pitch in FootDamping's (roll, pitch)
 class SLCSchedule:
     """When SLC runs during boarding (§5.4.1, Fig. 5.5), and on which gain.
 
-    States: ``waiting`` → (left foot lands: f_Lz rises through F_thre) → ``learning`` → (right foot lands:
-    f_Rz rises through F_thre) → ``done``. While learning, each step updates the left-foot pitch D from that
+    States: ``waiting`` → (left foot lands: f_Lz rises through F_thre after ≥ ``air_time`` at or below it)
+    → ``learning`` → (right foot lands, likewise on f_Rz) → ``done``. While learning, each step updates the left-foot pitch D from that
     controller's e_τ and δ; at ``done`` the right-foot pitch D takes the learned value. Reads ``f_Lz`` and
     ``f_Rz`` (N) from the snapshot; ``step(snapshot, feet)`` is called by
-    :class:`shintai.humanoid.foot_damping.FootDampingModule` after its damping step.
+    :class:`shintai.humanoid.foot_damping.FootDampingModule` after its damping step. ``learn=False`` keeps
+    the window (the same guards) without touching any D: the fixed-D run of Figs. 5.6 and 5.8-(a1–d1).
     """
 
-    def __init__(self, slc: SLC | None = None):
+    def __init__(self, slc: SLC | None = None, learn: bool = True):
         self.slc = slc or SLC()
+        self.learn = bool(learn)
         self.state = "waiting"
         self.t_start: float | None = None
         self.t_stop: float | None = None
         self.updates = 0
         self._prev: dict[str, float] | None = None
+        self._below_since: dict[str, float | None] = {"f_Lz": None, "f_Rz": None}  # start of the run ≤ F_thre
 
     @property
     def duration(self) -> float | None:
         """SLC run time (thesis ≈1.2 s, §5.4.2), once stopped."""
         return None if self.t_stop is None else self.t_stop - self.t_start
 
-    def _landed(self, key: str, f: float) -> bool:
-        thre = self.slc.params.F_thre
-        return self._prev is not None and self._prev[key] <= thre < f
+    def _landed(self, key: str, f: float, t: float) -> bool:
+        """f rises through F_thre after the foot was in the air (≤ F_thre for ≥ ``air_time``)."""
+        p = self.slc.params
+        since = self._below_since[key]
+        return (self._prev is not None and self._prev[key] <= p.F_thre < f and since is not None
+                and t - since >= p.air_time - 1e-9)
 
     def step(self, snapshot: Snapshot, feet: dict) -> str:
         f = {k: float(snapshot[k]) for k in ("f_Lz", "f_Rz")}
-        if self.state == "waiting" and self._landed("f_Lz", f["f_Lz"]):
-            self.state, self.t_start = "learning", float(snapshot["t"])
-            feet["L"].D[PITCH] = self.slc.D
-        elif self.state == "learning" and self._landed("f_Rz", f["f_Rz"]):
-            self.state, self.t_stop = "done", float(snapshot["t"])
-            feet["R"].D[PITCH] = self.slc.D
-        if self.state == "learning":
+        t = float(snapshot["t"])
+        landed = {k: self._landed(k, f[k], t) for k in f}
+        for k, value in f.items():  # the runs of f ≤ F_thre (in the air or unloading)
+            if value > self.slc.params.F_thre:
+                self._below_since[k] = None
+            elif self._below_since[k] is None:
+                self._below_since[k] = t
+        if self.state == "waiting" and landed["f_Lz"]:
+            self.state, self.t_start = "learning", t
+            if self.learn:
+                feet["L"].D[PITCH] = self.slc.D
+        elif self.state == "learning" and landed["f_Rz"]:
+            self.state, self.t_stop = "done", t
+            if self.learn:
+                feet["R"].D[PITCH] = self.slc.D
+        if self.state == "learning" and self.learn:
             left = feet["L"]
             left.D[PITCH] = self.slc.update(left.e_tau[PITCH], left.delta[PITCH])
             self.updates += 1
