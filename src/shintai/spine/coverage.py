@@ -161,7 +161,7 @@ ROWS = (
                "作の部分は追従しきれなかった' — no error number, no demonstration speed",
         why_not="nothing compared: the thesis prints no demonstration speed or error, and ours (15 mm/s peak muscle "
                 "speed) was chosen inside the band its outcome implies (10.4–20.7 mm/s, 1/8–1/4 of Table 3.2's "
-                "82.9 mm/s), so 2–4× tracking (0.9–2.8 % error) and 8× saturation (32 % of ticks) follow from it",
+                "82.9 mm/s), so 2–4× tracking (0.9–2.9 % error) and 8× saturation (37 % of ticks) follow from it",
     ),
     Row(
         key="003:table4.2",
@@ -197,8 +197,8 @@ ROWS = (
         result="§4.5.2: '人間が脊椎の姿勢を変えて手を離すと戻る' (Fig. 4.13); Figs. 4.14–4.17: 'バネ定数が大きいほど"
                "筋長の変化が小さくても張力の変化は大きくなる様子がわかる'. Plots only, no number",
         difference="the hand is an imposed 8° roll-and-pitch displacement (ours), so only the tension half of the "
-                   "claim is exercised (1.8 / 5.0 / 15.2 / 38.3 N/mm at k_s = 50–400 with our chosen unit scale, "
-                   "30 N/m per count ratio at rest); released, the spine returns within 0.53°",
+                   "claim is exercised (1.8 / 5.1 / 15.0 / 35.5 N/mm at k_s = 50–400 with our chosen unit scale, "
+                   "30 N/m per count ratio at rest); released, the spine returns within 0.52°",
     ),
     Row(
         key="003:table4.7",
@@ -210,9 +210,10 @@ ROWS = (
                "7.17, 4.20 — larger on the way back; '—' where the spine could not hold and the experimenter "
                "supported it by hand; L + T buckled, no data. (Its columns order S-high before S-mid; §4.7.2 says "
                "'7種類' for the 8 listed modes)",
-        why_not="our errors are 1.6–10× smaller than Table 4.7's (all-L 1.35° / 0.42° against 5.40° / 3.68°; 11 of "
-                "14 mode–axis means beyond the declared 2°), and its '—' (the spine caught by hand) starts where ours "
-                "is lost in 8 of 14 sequences (lost = not at rest: a joint at its stop or still falling)",
+        why_not="our errors are 1.3–10× smaller than Table 4.7's (all-L 0.91° / 0.38° against 4.42° / 3.68° over the "
+                "postures both hold; 9 of 14 mode–axis means beyond the declared 2°), and its '—' (the spine caught by "
+                "hand) starts where ours is lost in 5 of 14 sequences (lost = not at rest: a joint at its stop or still "
+                "falling)",
     ),
     Row(
         key="003:table4.8",
@@ -226,10 +227,11 @@ ROWS = (
                "0.26/0.41, 0.86/0.99; 8. L + S high 6.87/4.47, ≥30/≥30, 0.25/0.33, 1.29/1.04. §4.7.3: LL, S-mid "
                "and L + LL cannot hold large pitch against gravity; modes 7 and 8 have larger errors and mean "
                "currents",
-        why_not="9 of 16 held-angle cells agree at the thesis's own criterion (lost = the spine does not come to rest: "
-                "a joint at its stop or still falling; the former 30° rule: 10): S-high, L + S-mid, L + S-high lose "
-                "pitch at ±30 and all-S-mid, L + S-mid roll at −20 / −30 (thesis ≥30), L + T holds 10° (thesis 0); "
-                "L + S draws the least current, not the most (0.022 vs 0.038 A)",
+        why_not="6 of 16 held-angle cells agree at the thesis's own criterion (lost = the spine does not come to rest: "
+                "a joint at its stop or still falling; the former 30° rule: 11): all-L, S-high, L + S-mid, L + S-high "
+                "lose pitch at ±30 and all-S-mid, L + S-mid roll at −20 / −30 (thesis ≥30), all-LL and L + LL hold "
+                "pitch to 20° (thesis 10), L + T holds 10° (thesis 0); L + S draws the least current, not the most "
+                "(0.024 vs 0.039 A)",
     ),
     Row(
         key="003:tableA",

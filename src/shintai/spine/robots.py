@@ -752,7 +752,8 @@ SAMPLE_PERIOD_S = 0.020  # §5.9.2: direct motion teaching records the muscle le
 CALIBRATION_KGF = 0.3  # "just taut" for the LL encoder zeroing (§4.6.4), chosen
 # N/m per thesis unit of k_s (ADC counts per encoder count): the newton-linear spring law's conversion, and
 # the count law's stiffness at its rest point (cla.cla_spring); calibrated once so that all-S-high's pitch
-# errors in E11 are of Table 4.8's size (notes/control-modes.md)
+# errors in E11 are of Table 4.8's size (notes/control-modes.md), on the MuJoCo Cla whose joint limits were then
+# ±0.31° instead of ±18° (not redone after that fix: all-S-high's mean pitch error 2.21° then, 2.71° now, Table 4.8: 3.86°)
 K_S_UNIT_N_M = 30.0
 # E11 (§4.7.2): when is a posture lost — Table 4.7's "—", the end of Table 4.8's "最大姿勢保持角"? The thesis
 # gives no angle, only what happened: "表中で — となっている部分は、姿勢を保持できずに大きく崩れてしまい実験者が
