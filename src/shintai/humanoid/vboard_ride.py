@@ -52,7 +52,11 @@ from shintai.humanoid.law_params import check_real
 from shintai.humanoid.mlc import SpeedGovernor
 from shintai.humanoid.speed_governing import VO_PERIOD, LinearVelocityFilter, plant_inputs
 from shintai.humanoid.standing import CHANNELS as STANDING_CHANNELS
-from shintai.humanoid.standing import Standing
+from shintai.humanoid.corrections import ChestPostureControl
+from shintai.humanoid.foot_attitude import pitch as rot_pitch
+from shintai.humanoid.leg_ik import leg_ik
+from shintai.humanoid.stabilizer import SIDES as FEET
+from shintai.humanoid.standing import LegIKModule, Standing, _rot_xy
 from shintai.humanoid.vboard_stand import build_vboard_stand
 from shintai.humanoid.vehicles.vboard import SIDES, board_pitch, scooter_velocity
 
@@ -72,7 +76,7 @@ GYRO_NOISE = 0.005  # rad/s, chosen: a MEMS gyro's white noise at 250 Hz
 EXCITE_AMPLITUDE = 6.0e-5  # rad per control period, chosen: a 1 s half-period moves the boards 0.86°, v ±0.3 m/s
 EXCITE_PERIOD = 2.0  # s, chosen: the square wave's period (a triangle of θ, ≈ T_v of Table 6.2 per half)
 LEVELS = (1, 2, 3)
-CHANNELS = {**STANDING_CHANNELS, **declare("v", "omega", kind=SET), **declare("foot_pitch")}
+CHANNELS = {**STANDING_CHANNELS, **declare("v", "omega", kind=SET), **declare("foot_pitch", "ref:chest_pitch")}
 
 
 class Lift:
@@ -184,6 +188,60 @@ class FootPitch(Module):
         return {"foot_damping": np.array([0.0, self.theta[1], 0.0, self.theta[0]])}
 
 
+def chest_pitch(snapshot) -> float:
+    """φ_C, the chest's pitch from its IMU (+ leaning forward, about +y)."""
+    return rot_pitch(quat_to_rot(snapshot["imu_quat"]))
+
+
+class ChestPitchControl(ChestPostureControl):
+    """§4.3.3's real-time chest posture control (Eq. 4.8, Kajita's [55]) on the pitch component, as Fig. 4.10 (B)
+    uses it on the V-BOARD: Δφ̇_C = k_C (φ_C^d − φ_C) − Δφ_C/T_C on φ_C = :func:`chest_pitch`; contribution
+    ``ref:chest_pitch`` = Δφ_C. (The tricycle's :class:`~shintai.humanoid.corrections.ChestPostureControl` is
+    the roll component; k_C, T_C are its chosen values, the thesis gives none.)"""
+
+    def __init__(self, **kw):
+        super().__init__(chest_pitch, name="posture", **kw)
+
+    def update(self, snapshot):
+        delta = self.step(self.roll_of(snapshot))
+        self.log(snapshot["t"], **{"posture.delta": delta, "posture.phi": self.roll_of(snapshot)})
+        return {"ref:chest_pitch": delta}
+
+
+def _ry(a: float) -> np.ndarray:
+    c, s_ = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s_], [0.0, 1.0, 0.0], [-s_, 0.0, c]])
+
+
+class ChestPitchIK(LegIKModule):
+    """The leg IK with Eq. 4.9's target correction R_C^{d*} = R_C^d R^{centre}(0, Δφ_C, 0): the upper body (waist
+    target, position and attitude) turned by Δφ_C = ``ref:chest_pitch`` about the midpoint of the two soles —
+    on the V-BOARD the scooter's centre, the rotation centre §4.3.3 names for Fig. 4.10 (B)."""
+
+    def update(self, snapshot):
+        d = float(snapshot.get("ref:chest_pitch", 0.0))
+        if d == 0.0:
+            return super().update(snapshot)
+        soles = np.asarray(snapshot["sole_ref"], float)
+        centre = soles.mean(axis=0)
+        rot = _ry(d)
+        waist = centre + rot @ (np.asarray(snapshot["com_ref"], float) - self.com_offset - centre)
+        delta = snapshot.get("foot_damping")
+        dz = snapshot.get("sole_dz")
+        ctrl = self.ctrl0.copy()
+        for i, side in enumerate(FEET):
+            pos, sole_rot = soles[i].copy(), self._eye
+            if delta is not None:
+                sole_rot = _rot_xy(float(delta[2 * i]), float(delta[2 * i + 1]))
+            if dz is not None:
+                pos[2] += float(dz[i])
+            res = leg_ik(side, waist, rot, pos, sole_rot)
+            if not res.reachable:
+                self.unreachable += 1
+            ctrl[self.index[side]] = res.q
+        return {"ctrl": ctrl}
+
+
 def square_wave(amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERIOD, t0: float = 0.0):
     """u(t) = ±amplitude, + for the first half of each period from ``t0`` (0 before ``t0``)."""
     def u(t: float) -> float:
@@ -205,7 +263,7 @@ class VboardRide:
 
     def __init__(self, level: int = 2, theta_o_error_deg: float = 0.0, D: float = D_VBOARD, gains=((0.0,) * 3,) * 2,
                  learn: bool = False, excite=None, lift: bool = True, gap: float = LIFT_GAP, speed: float = LIFT_SPEED,
-                 seed: int = 0, noise: bool = True):
+                 seed: int = 0, noise: bool = True, posture: bool = False):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         err = check_real("theta_o_error_deg", theta_o_error_deg, -3.0, 3.0)
@@ -240,6 +298,12 @@ class VboardRide:
         if level >= 2:
             self.foot_pitch = FootPitch(excite)
             stages[-2].append(self.foot_pitch)  # beside the damping, before the IK
+        self.posture = None
+        if posture:  # §4.3.3, Fig. 4.10 (B): chest posture control, the IK turning the upper body about the feet
+            self.posture = ChestPitchControl()
+            stages[0].append(self.posture)
+            ik = st.ik
+            stages[-1] = [ChestPitchIK(body, ik.ctrl0, ik.com_offset) if m is ik else m for m in stages[-1]]
         self.stages = stages
         self.channels = list(CHANNELS.values())
 
@@ -268,4 +332,5 @@ def theta_o(side: str) -> float:
     return VBOARD.theta_o(side)
 
 
-__all__ = ["VboardRide", "ScooterSensors", "FootPitch", "Lift", "square_wave", "theta_o", "SIDES", "D_VBOARD"]
+__all__ = ["VboardRide", "ScooterSensors", "FootPitch", "Lift", "ChestPitchControl", "ChestPitchIK", "square_wave",
+           "theta_o", "SIDES", "D_VBOARD"]
