@@ -43,22 +43,26 @@ from collections import deque
 
 import numpy as np
 
-from shintai.core.runtime import SET, Module, declare
 from shintai.core.constants import GRAVITY
+from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
-from shintai.humanoid.foot_attitude import measured_zmp, quat_to_rot
-from shintai.humanoid.foot_damping import FootDamping, FootDampingModule
-from shintai.humanoid.law_params import check_real
-from shintai.humanoid.mlc import SpeedGovernor
-from shintai.humanoid.speed_governing import VO_PERIOD, LinearVelocityFilter, plant_inputs
-from shintai.humanoid.standing import CHANNELS as STANDING_CHANNELS
 from shintai.humanoid.corrections import ChestPostureControl
+from shintai.humanoid.foot_attitude import measured_zmp, quat_to_rot
 from shintai.humanoid.foot_attitude import pitch as rot_pitch
+from shintai.humanoid.foot_damping import FootDamping
+from shintai.humanoid.law_params import check_real
 from shintai.humanoid.leg_ik import leg_ik
+from shintai.humanoid.mlc import SpeedGovernor
+from shintai.humanoid.speed_governing import (
+    VO_PERIOD,
+    LinearVelocityFilter,
+    plant_inputs,
+)
 from shintai.humanoid.stabilizer import SIDES as FEET
+from shintai.humanoid.standing import CHANNELS as STANDING_CHANNELS
 from shintai.humanoid.standing import LegIKModule, Standing, _rot_xy
 from shintai.humanoid.vboard_stand import build_vboard_stand
-from shintai.humanoid.vehicles.vboard import SIDES, board_pitch, scooter_velocity
+from shintai.humanoid.vehicles.vboard import board_pitch, scooter_velocity
 
 # --- constants ------------------------------------------------------------------------------------------
 D_VBOARD = 40.0  # N·m·s/rad, the damping gain SLC reached boarding the V-BOARD (§5.4.2: '約 D = 40.0'), and
@@ -330,7 +334,3 @@ class VboardRide:
 def theta_o(side: str) -> float:
     """The nominal θ_sO (rad) the thesis compares against (Eq. A.1's regression intercept)."""
     return VBOARD.theta_o(side)
-
-
-__all__ = ["VboardRide", "ScooterSensors", "FootPitch", "Lift", "ChestPitchControl", "ChestPitchIK", "square_wave",
-           "theta_o", "SIDES", "D_VBOARD"]

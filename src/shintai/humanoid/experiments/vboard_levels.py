@@ -59,7 +59,7 @@ def metrics(runs, params):
 
 
 def plots(ctx, runs, params):
-    with ctx.figure("zmp_and_pitch", 4, 2, figsize=(12, 11), sharex="col") as (fig, ax):
+    with ctx.figure("zmp_and_pitch", 4, 2, figsize=(12, 11), sharex="col") as (_fig, ax):
         for j, (name, run) in enumerate(runs.items()):
             rec, ride = run.log, run.state
             t0 = touchdown(run)
@@ -77,7 +77,7 @@ def plots(ctx, runs, params):
             ax[3, j].set_xlabel("t [s]")
             for a in ax[:, j]:
                 a.legend(fontsize=7)
-    with ctx.figure("travel", 1, 1, figsize=(8, 4)) as (fig, ax):
+    with ctx.figure("travel", 1, 1, figsize=(8, 4)) as (_fig, ax):
         for name, run in runs.items():
             t0 = touchdown(run)
             ax.plot(run.log.times("x") - t0, run.log.values("x"), label=name)

@@ -7,8 +7,14 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
-from shintai.humanoid.speed_governing import identify_plant
-from shintai.humanoid.vboard_ride import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, VboardRide, square_wave
+from shintai.humanoid.speed_governing import identify_plant, lowpass
+from shintai.humanoid.vboard_ride import (
+    D_VBOARD,
+    EXCITE_AMPLITUDE,
+    EXCITE_PERIOD,
+    VboardRide,
+    square_wave,
+)
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -52,7 +58,7 @@ def series(run):
     rec = run.log
     n = min(len(rec.values("sensors.v")), len(rec.values("foot_pitch.u_v")), len(rec.values("board_R")))
     t = rec.times("sensors.v")[:n]
-    get = lambda k: rec.values(k)[:n]  # noqa: E731
+    get = lambda k: rec.values(k)[:n]
     return t, {k: get(k) for k in ("sensors.v", "sensors.omega", "sensors.true_v", "sensors.true_omega",
                                    "foot_pitch.u_v", "foot_pitch.u_omega", "board_R", "board_L",
                                    "foot_pitch.theta_R", "foot_pitch.theta_L")}
@@ -88,10 +94,8 @@ def metrics(runs, params):
 
 
 def plots(ctx, runs, params):
-    from shintai.humanoid.speed_governing import lowpass
-
     m = metrics(runs, params)
-    with ctx.figure("identification", 3, 2, figsize=(13, 9)) as (fig, ax):
+    with ctx.figure("identification", 3, 2, figsize=(13, 9)) as (_fig, ax):
         for j, (axis, run, u, y, yt, T, K) in enumerate((
                 ("v", "v", "foot_pitch.u_v", "sensors.v", "sensors.true_v", m["T_v_s"], m["K_v"]),
                 ("ω", "omega", "foot_pitch.u_omega", "sensors.omega", "sensors.true_omega", m["T_omega_s"],
@@ -139,7 +143,7 @@ experiment(
               "(upper bound)", kind="consistency"),
         Check("K_v_board_ratio", ">", 0.85, "follows from Eq. 6.10 (lower bound)", name="K_v_board_ratio_low",
               kind="consistency"),
-        Check("K_v", ">", 0.0, "thesis Table 6.2: K_v = 5.88×10² > 0 (a foot pitched toes-down drives forward)",
+        Check("K_v", ">", 0.0, "thesis §6.2.2, Table 6.2: K_v = 5.88×10² > 0 (a foot pitched toes-down drives forward)",
               kind="reproduction"),
         Check("r2_v", ">", 0.5, "thesis §6.2.2: '変化が観察できる部分については概ねモデルデータと実際の計測データが揃って"
               "おり同定に成功している' (Fig. 6.9 (a); R² > 0.5 is our reading of 概ね)", kind="reproduction"),

@@ -55,7 +55,7 @@ def metrics(runs, params):
 
 
 def plots(ctx, runs, params):
-    with ctx.figure("trunk_pitch", 3, 1, figsize=(10, 9), sharex=True) as (fig, ax):
+    with ctx.figure("trunk_pitch", 3, 1, figsize=(10, 9), sharex=True) as (_fig, ax):
         for name, run in runs.items():
             rec = run.log
             t = rec.times("x") - run.state.lift.t_release
