@@ -28,6 +28,15 @@ Usage (the API a scenario uses)::
     loop = Loop(ride.body, stages=ride.stages, channels=ride.channels)   # or Rig(stages=..., channels=...)
     loop.run(10.0)                 # ride.lift.t_release, ride.sensors.true_v, ride.fallen(), ride.zmp(snapshot)
 
+**Measured** (seeded, deterministic; the scenarios' notes give more): the lift lets go ≈1.0 s after the lowering
+starts (≈0.5 s after the soles take load). Level 1 rolls off backwards, accelerating, and falls ≈6 s after
+boarding; level 2 keeps the ZMP on the scooter's centre and drifts back ≈2 cm/s. **Level 3 caveat** (for the
+speed-governing scenarios): the foot damping (Eq. 5.1, D = 40) cancels the governor's foot pitch within ≈0.2 s —
+a 1.15° toes-down step moves the boards 0.11° and the scooter +3 cm/s for ≈0.1 s, then back — so u has little
+and, below ≈1 Hz, wrong-signed authority over v (``humanoid.vboard-plant-id``: R² 0.003 from u, 0.98 from the
+boards' own pitch); fixed PID gains (2e-3, 1e-3, 0) integrate tens of degrees of foot pitch and the robot falls
+within 6 s. Zero gains ride as level 2. The wiring is the thesis's (Eq. 6.5's d is the damping's δ).
+
 **Sensors** (Table 6.1; chosen where it gives no number): ω = the chest gyro's yaw rate (4 ms) with white
 noise ``GYRO_NOISE``; v = Eq. 6.3's filter (:class:`~shintai.humanoid.speed_governing.LinearVelocityFilter`)
 on a_x (chest accelerometer, gravity removed, along the robot's heading; 4 ms, noise ``ACC_NOISE``) and x_VO

@@ -10,7 +10,7 @@ from shintai.humanoid.vboard_ride import D_VBOARD, LIFT_SPEED, VboardRide, theta
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-VIEW = {"azimuth": 90.0, "elevation": -10.0, "distance": 3.0, "lookat": [0.0, 0.0, 0.7]}
+VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
 EARLY_S = 0.5  # s after boarding: Fig. 6.3-(b1)'s window '0.0[s]-0.5[s](搭乗直後)'
 
 

@@ -45,7 +45,7 @@ def rig(params, variant):
         th = {s: float(snapshot[f"board_{s}_pitch"][0]) for s in "rl"}
         return {"board_R": th["r"], "board_L": th["l"]}
     return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=START_S + params["excite_s"],
-               until=lambda s: ride.fallen(), record={1: board}, view={"azimuth": 60.0, "distance": 3.5}, state=ride)
+               until=lambda s: ride.fallen(), record={1: board}, view={"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}, state=ride)
 
 
 def fit(u, y, window):

@@ -10,7 +10,7 @@ from shintai.humanoid.vboard_ride import D_VBOARD, VboardRide, chest_pitch
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, experiment
 
-VIEW = {"azimuth": 90.0, "elevation": -10.0, "distance": 3.0, "lookat": [0.0, 0.0, 0.7]}
+VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
 
 
 def rig(params, variant):
