@@ -35,6 +35,7 @@ from shintai.humanoid.mlc import MLC_OMEGA, MLC_V, MLCParams, SpeedGovernor
 from shintai.humanoid.prior_value_integrator import R_SAT_V, PriorValueIntegrator
 from shintai.humanoid.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
 from shintai.humanoid.vboard_ride import VboardRide
+from shintai.scenarios.experiment import Rig
 
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
 PLANTS = ("board", "table6.2")
@@ -60,18 +61,21 @@ class GatedGovernor(SpeedGovernor):
 
 @functools.lru_cache(maxsize=2)
 def identified_plant(source: str = "board") -> dict:
-    """K and T for v and ω as ``humanoid.vboard-plant-id`` identifies them at its defaults (both of its runs,
-    ≈15 s of wall time, cached per process): ``source="board"`` the fit to the boards' pitch increments,
-    ``"u"`` the fit to the commanded u (K_v < 0 in our rig). Returns {"K_v", "T_v", "K_omega", "T_omega", "r2_v",
-    "r2_omega"}."""
-    from shintai.humanoid.experiments import vboard_plant_id as pid
-    from shintai.scenarios.experiment import run_rig
-    from shintai.scenarios.registry import get
+    """K and T for v and ω as the scenario ``humanoid.vboard-plant-id`` identifies them at its defaults (run through
+    the scenario runner into a temporary folder: both of its runs, ≈10 s of wall time, cached per process):
+    ``source="board"`` its fit to the boards' pitch increments, ``"u"`` its fit to the commanded u (K_v < 0 in our
+    rig). Returns {"K_v", "T_v", "K_omega", "T_omega", "r2_v", "r2_omega"}."""
+    import tempfile
+
+    from shintai.scenarios.runner import run_scenario
 
     if source not in ("board", "u"):
         raise ValueError(f"source must be 'board' or 'u', got {source!r}")
-    params = get("humanoid.vboard-plant-id").resolve()
-    m = pid.metrics({v: run_rig(pid.rig(params, v)) for v in ("v", "omega")}, params)
+    with tempfile.TemporaryDirectory() as out:
+        result = run_scenario("humanoid.vboard-plant-id", out=out, quiet=True)
+    if "error" in result:
+        raise RuntimeError(f"humanoid.vboard-plant-id failed: {result['error']}")
+    m = result["metrics"]
     tag = "_board" if source == "board" else ""
     return {"K_v": m[f"K_v{tag}"], "T_v": m[f"T_v{tag}_s"], "K_omega": m[f"K_omega{tag}"],
             "T_omega": m[f"T_omega{tag}_s"], "r2_v": m[f"r2_v{tag}"], "r2_omega": m[f"r2_omega{tag}"]}
@@ -117,6 +121,26 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
     ride.stages = [[gov if m is ride.governor else m for m in stage] for stage in ride.stages]
     ride.governor = gov
     return ride
+
+
+VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
+
+
+def governed_rig(params: dict, mode: str, learn: bool = True) -> Rig:
+    """One run of the scenarios: :func:`governed_ride` from their parameters (``plant``, ``learn_s``,
+    ``start_delay_s``, ``eta_scale``, ``theta_o_error_deg``, ``damping_d``), stopping at a fall or ``learn_s`` after
+    the learning start; records the ride's signals every 5 ticks."""
+    pv = plant_values(params["plant"])
+    ride = governed_ride(pv, mode=mode, learn=learn, start_delay=params.get("start_delay_s", START_DELAY),
+                         theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
+                         eta_scale=params.get("eta_scale", 1.0), seed=params.get("seed", 0))
+    ride.plant = pv
+
+    def until(snapshot) -> bool:
+        t0 = ride.governor.t_start
+        return ride.fallen() or (t0 is not None and float(snapshot["t"]) >= t0 + params["learn_s"])
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["learn_s"] + 10.0, until=until,
+               record={5: ride.signals}, view=VIEW, state=ride)
 
 
 # --- analysis -------------------------------------------------------------------------------------------

@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.experiments.speed_governing import build
 from shintai.humanoid.prior_value_integrator import R_SAT_V
 from shintai.humanoid.speed_governing_ride import (
     PLANTS,
     START_DELAY,
+    governed_rig,
     governor_series,
     replay_integrator,
     ui_jumps,
@@ -25,7 +25,7 @@ MODES = ("corrected", "saturated")
 
 
 def rig(params, variant):
-    return build(params, variant)
+    return governed_rig(params, variant)
 
 
 def increase_ticks(s: dict) -> np.ndarray:
@@ -62,6 +62,9 @@ def metrics(runs, params):
             u = replay_integrator(s, mode)
             k = increase_ticks(s)
             out[f"max_ui_jump_{mode}_replay"] = float(np.max(np.abs(u[k] - u[k - 1]))) if k.size else 0.0
+            if mode == "saturated" and k.size:  # when the largest saturated jump happens (thesis: at 4 s)
+                t0 = runs["corrected"].state.governor.t_start or 0.0
+                out["t_max_jump_saturated_replay_s"] = float(s["t"][k[np.argmax(np.abs(u[k] - u[k - 1]))]] - t0)
         out["corrected_replay_error"] = float(np.max(np.abs(replay_integrator(s, "corrected") - s["uI"]))) if s["uI"].size else 0.0
     if "saturated" in series:
         out["eq643_residual"] = eq643_residual(series["saturated"])

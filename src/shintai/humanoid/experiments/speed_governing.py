@@ -14,39 +14,21 @@ from shintai.humanoid.constants import CONTROL_PERIOD, DEG
 from shintai.humanoid.speed_governing_ride import (
     PLANTS,
     START_DELAY,
-    governed_ride,
+    governed_rig,
     governor_series,
-    plant_values,
     ui_jumps,
     unstable_intervals,
 )
 from shintai.humanoid.vboard_ride import D_VBOARD
-from shintai.scenarios.experiment import Rig, per_variant
+from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}
 TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch)
 AXES = ("v", "omega")
 
 
-def build(params, mode: str, learn: bool = True):
-    """The rig of one run: the governed ride, integrator ``mode``, stopping at a fall or ``learn_s`` after the
-    learning start (shared with ``humanoid.integrator-comparison``)."""
-    pv = plant_values(params["plant"])
-    ride = governed_ride(pv, mode=mode, learn=learn, start_delay=params.get("start_delay_s", START_DELAY),
-                         theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                         eta_scale=params.get("eta_scale", 1.0), seed=params.get("seed", 0))
-    ride.plant = pv
-
-    def until(snapshot) -> bool:
-        t0 = ride.governor.t_start
-        return ride.fallen() or (t0 is not None and float(snapshot["t"]) >= t0 + params["learn_s"])
-    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["learn_s"] + 10.0, until=until,
-               record={5: ride.signals}, view=VIEW, state=ride)
-
-
 def rig(params, variant):
-    return build(params, "corrected", learn=variant == "learn")
+    return governed_rig(params, "corrected", learn=variant == "learn")
 
 
 def summary(run) -> dict:
@@ -170,6 +152,7 @@ experiment(
     params=[
         Param("learn_s", 60.0, "simulated time from the learning start [s] (thesis: converged ≈38 s, Fig. 6.16 ≈54 s)",
               lo=1.0, hi=300.0),
+        Param("baseline", True, "also run the 'off' variant (governor at zero gains, no learning: level 2)"),
         Param("plant", "board", "K, T for MLC's sensitivity (Eqs. 6.20–6.29): 'board' = humanoid.vboard-plant-id's "
               "fit to the boards' pitch (its fit from u has K_v < 0), 'table6.2' = the thesis's numbers",
               choices=PLANTS),
@@ -203,5 +186,5 @@ experiment(
                                                   "not run here)", None),
             "eta_v": ThesisValue(1e-7, "seed 000 Table 6.6: diag(10⁻⁷, 10⁻⁷, 10⁻⁷) for v", None),
             "eta_omega": ThesisValue(1e-9, "seed 000 Table 6.6: diag(10⁻⁹, 10⁻⁹, 10⁻⁹) for ω", None)},
-    rig=rig, variants=("learn", "off"), filmed=("learn",), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=lambda p: ("learn", "off") if p["baseline"] else ("learn",), filmed=("learn",), metrics=metrics, plots=plots, video=True,
 )
