@@ -89,6 +89,7 @@ def test_speed_governing_runs_short(tmp_path):
     assert m["v_K_P_learn"] + m["v_K_I_learn"] + m["v_K_D_learn"] > 0.0 and m["plant_K_v"] == TABLE["K_v"]
     assert 2.0 < m["ride_learn_s"] < 2.2 and m["fallen_learn"] == 0
     assert m["v_unstable_learn_s"] > 1.99  # gains from 0: outside Eq. 6.41 for the whole first batch
+    assert m["v_last_unstable_start_learn_s"] == pytest.approx(0.0, abs=0.01)
     assert (tmp_path / "fig6_15_learn.png").exists()
 
 

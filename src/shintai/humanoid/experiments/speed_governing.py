@@ -59,6 +59,9 @@ def summary(run) -> dict:
         iv = unstable_intervals(s["t"] - t0, s["stable"])
         out[f"{a}_unstable_s"] = float(sum(b - a_ for a_, b in iv))
         out[f"{a}_unstable_intervals"] = len(iv)
+        ok = np.flatnonzero(s["stable"] > 0)  # Eq. 6.41 first met (the gains start outside it, K_I = 0)
+        out[f"{a}_first_stable_s"] = float(s["t"][ok[0]] - t0) if ok.size else math.nan
+        out[f"{a}_last_unstable_start_s"] = iv[-1][0] if iv else math.nan
         out[f"{a}_stable_at_end"] = int(s["stable"][-1] > 0) if s["stable"].size else 0
         jumps = ui_jumps(s)
         out[f"{a}_max_ui_jump"] = float(jumps.max()) if jumps.size else 0.0
