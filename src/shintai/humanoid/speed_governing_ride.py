@@ -12,8 +12,8 @@
   :mod:`shintai.humanoid.mlc`'s. The I action uses the prior-value-correcting integrator (Eqs. 6.33–6.39) or,
   for §6.4.2, the I-gain-ratio saturation r_sat = 1.5 (Eq. 6.42).
 * **Plant for the sensitivity recursion** (Eqs. 6.20–6.29 need P's K and T): the thesis uses its identified
-  Table 6.2. Ours come from ``humanoid.vboard-plant-id`` (:func:`identified_plant` runs that scenario's rig and
-  metrics). Its fit from the commanded u gives K_v < 0 (R² 0.003: the foot damping cancels the commanded pitch,
+  Table 6.2. Ours come from ``humanoid.vboard-plant-id`` (:func:`identified_plant` runs that scenario at its
+  defaults through the scenario runner). Its fit from the commanded u gives K_v < 0 (R² 0.003: the foot damping cancels the commanded pitch,
   see that scenario's notes) — a plant MLC cannot use (K > 0 in Eq. 6.20 and Eq. 6.41) — so ``plant="board"``
   (default) takes the same runs' fit of v̇, ω̇ to the boards' own pitch increments (Eqs. 6.6–6.10's plant,
   R² 0.98 for v); ``plant="table6.2"`` takes the thesis's numbers as printed (its units of u are not ours).
