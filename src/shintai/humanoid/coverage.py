@@ -340,7 +340,15 @@ ROWS = (
         result="§6.4.1: '各 PID ゲインは初期値を0とした状態から学習を開始させ,図 6.15 は約 38[s],図 6.16 は約 54[s] で"
                "式 6.32 の学習制御の終了条件を満たして収束した'; 'Dゲインに比べて Pゲイン,Iゲインが制御系として支配的'; "
                "v, ω follow v^d = ω^d = 0 near 35 s; the integrator correction keeps u_I smooth at 5–8 s",
-        not_built=_GOVERNOR,
+        difference="humanoid.speed-governing (learn; off = the same start with the governor off): lift-placed start "
+                   "(ours, 5 cm/s), learning 0.5 s after the lift lets go; MLC's plant K, T from "
+                   "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, T_v 0.05 s; its fit from u has "
+                   "K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
+        why_not="the robot falls 12.2 s after the learning start, the governor-off baseline at 12.3 s: our level 2 "
+                "diverges in yaw (ω 0.001 → 0.45 rad/s in 12 s); at Table 6.6's rates the gains are still O(10⁻⁵) "
+                "then (thesis O(10⁻³)), and the foot damping cancels the governor's foot pitch "
+                "(humanoid.vboard-plant-id): no convergence (thesis ≈38 s); with rates ×10³ the gains reach O(10⁻³), "
+                "P and I dominant, but the foot pitch runs to 32° and it falls at 9.9 s",
     ),
     Row(
         key="000:fig6.16",
@@ -348,7 +356,9 @@ ROWS = (
         what="the same learning after the robot boarded by itself (ch. 5 damping gains applied)",
         result="§6.4.1: converged at '約 54[s]'; 'v は 4[s]-8[s] で ω は 0[s]-2[s] において不安定な状態となり,この期間では"
                "評価関数 J_v, J_ω も各々高まって'; the targets are followed near 50 s",
-        not_built=_GOVERNOR,
+        not_built="not runnable: learning starts when both feet have landed (§6.4.1), and humanoid.vboard-boarding "
+                  "falls both ways (with SLC at 4.22 s, 1.32 s after the right foot's landing — less than one 2 s "
+                  "mini-batch); humanoid.speed-governing runs the lift-placed start (Fig. 6.15) and falls at 12 s",
     ),
     Row(
         key="000:fig6.17",
@@ -357,7 +367,11 @@ ROWS = (
              "data (0–6 s)",
         result="§6.4.2: '飽和制約を設けた場合(緑線)は瞬間的な変化を伴い制御入力が増加している' at 4 s, while the "
                "proposed integrator gives a smooth u_I; the extra slope is (r_sat − 1)u_I/Δt (Eq. 6.43 vs 6.44)",
-        not_built=_GOVERNOR,
+        difference="humanoid.integrator-comparison: on the lift-placed run (Fig. 6.16's boarding does not stay up), "
+                   "10 s; the corrected run's e_v and K_I^v(n) replayed through Eq. 6.42 (the thesis's method) and one "
+                   "closed-loop run per integrator. The saturated u_I^v jumps by up to ≈390× the corrected one's "
+                   "largest step, at the 8 s switching (thesis: 4 s); Eq. 6.43's extra (r_sat − 1)u_I holds to rounding. "
+                   "u_I^v stays below 10⁻⁶ rad per tick (the gains are O(10⁻⁵)), too small to move the robot",
     ),
     # --- chapter 7 -------------------------------------------------------------------------------------------
     Row(
