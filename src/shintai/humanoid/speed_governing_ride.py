@@ -12,8 +12,9 @@
   :mod:`shintai.humanoid.mlc`'s. The I action uses the prior-value-correcting integrator (Eqs. 6.33–6.39) or,
   for §6.4.2, the I-gain-ratio saturation r_sat = 1.5 (Eq. 6.42).
 * **Plant for the sensitivity recursion** (Eqs. 6.20–6.29 need P's K and T): the thesis uses its identified
-  Table 6.2. Ours come from ``humanoid.vboard-plant-id`` (:func:`identified_plant` runs that scenario at its
-  defaults through the scenario runner). Its fit from the commanded u gives K_v < 0 (R² 0.003: the foot damping cancels the commanded pitch,
+  Table 6.2. Ours come from ``humanoid.vboard-plant-id``'s identification at its defaults
+  (:func:`shintai.humanoid.plant_id.identified_plant`). Its fit from the commanded u gives K_v < 0 (R² 0.003: the
+  foot damping cancels the commanded pitch,
   see that scenario's notes) — a plant MLC cannot use (K > 0 in Eq. 6.20 and Eq. 6.41) — so ``plant="board"``
   (default) takes the same runs' fit of v̇, ω̇ to the boards' own pitch increments (Eqs. 6.6–6.10's plant,
   R² 0.98 for v); ``plant="table6.2"`` takes the thesis's numbers as printed (its units of u are not ours).
@@ -24,7 +25,6 @@
 
 from __future__ import annotations
 
-import functools
 from dataclasses import replace
 
 import numpy as np
@@ -32,6 +32,7 @@ import numpy as np
 from shintai.core.recorder import Recorder
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.mlc import MLC_OMEGA, MLC_V, MLCParams, SpeedGovernor
+from shintai.humanoid.plant_id import identified_plant
 from shintai.humanoid.prior_value_integrator import R_SAT_V, PriorValueIntegrator
 from shintai.humanoid.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
 from shintai.humanoid.vboard_ride import VboardRide
@@ -57,28 +58,6 @@ class GatedGovernor(SpeedGovernor):
                 return {self.channel: np.zeros(2)}
             self.t_start = float(snapshot["t"])
         return super().update(snapshot)
-
-
-@functools.lru_cache(maxsize=2)
-def identified_plant(source: str = "board") -> dict:
-    """K and T for v and ω as the scenario ``humanoid.vboard-plant-id`` identifies them at its defaults (run through
-    the scenario runner into a temporary folder: both of its runs, ≈10 s of wall time, cached per process):
-    ``source="board"`` its fit to the boards' pitch increments, ``"u"`` its fit to the commanded u (K_v < 0 in our
-    rig). Returns {"K_v", "T_v", "K_omega", "T_omega", "r2_v", "r2_omega"}."""
-    import tempfile
-
-    from shintai.scenarios.runner import run_scenario
-
-    if source not in ("board", "u"):
-        raise ValueError(f"source must be 'board' or 'u', got {source!r}")
-    with tempfile.TemporaryDirectory() as out:
-        result = run_scenario("humanoid.vboard-plant-id", out=out, quiet=True)
-    if "error" in result:
-        raise RuntimeError(f"humanoid.vboard-plant-id failed: {result['error']}")
-    m = result["metrics"]
-    tag = "_board" if source == "board" else ""
-    return {"K_v": m[f"K_v{tag}"], "T_v": m[f"T_v{tag}_s"], "K_omega": m[f"K_omega{tag}"],
-            "T_omega": m[f"T_omega{tag}_s"], "r2_v": m[f"r2_v{tag}"], "r2_omega": m[f"r2_omega{tag}"]}
 
 
 def plant_values(plant: str) -> dict:
