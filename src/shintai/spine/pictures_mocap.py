@@ -1,0 +1,79 @@
+"""Pictures of ``spine.bvh-retarget`` (seed 003 Fig. 5.28): twist against time, the human as a stick figure and
+the robots' shoulder lines against their pelvis lines from above."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.spine import mocap
+
+COLOURS = {"human": "k", "cla": "tab:blue", "kenta": "tab:green", "hrp2": "tab:orange", "hrp_rigid": "tab:red"}
+
+
+def twist(ctx, runs) -> None:
+    human = runs["human"]
+    t = human.times_s
+    with ctx.figure("twist", 2, 1, figsize=(7.0, 6.4), sharex=True) as (fig, (ax, bx)):
+        ax.plot(t, human.twist_deg, "k-", lw=2.5, label="human (BVH)")
+        for robot in mocap.ROBOTS:
+            r = runs[robot]
+            ax.plot(t, r.twist_deg, "-", color=COLOURS[robot], label=robot)
+            sat = r.saturated
+            if sat.any():
+                ax.fill_between(t, 0, 1, where=sat, color=COLOURS[robot], alpha=0.12, step="mid",
+                                transform=ax.get_xaxis_transform())
+        ax.set_ylabel("trunk twist: shoulder line vs pelvis line [deg]")
+        ax.legend(fontsize=8, loc="upper right")
+        ax.set_title("shaded: a joint target clamped at its limit", fontsize=8)
+        for robot, style in (("cla", "-"), ("kenta", "--")):
+            r = runs[robot]
+            yaw = np.degrees(r.targets[:, 2::3])
+            bx.plot(t, yaw, style, color=COLOURS[robot], lw=1)
+            bx.axhline(np.degrees(r.upper[2]), color=COLOURS[robot], ls=":", lw=1)
+            bx.plot([], [], style, color=COLOURS[robot], label=f"{robot}: yaw of each joint (dotted: limit)")
+        r = runs["hrp2"]
+        bx.plot(t, np.degrees(r.targets[:, 0]), color=COLOURS["hrp2"], label="hrp2: waist yaw")
+        bx.axhline(np.degrees(r.upper[0]), color=COLOURS["hrp2"], ls=":", lw=1)
+        bx.set_xlabel("time [s]")
+        bx.set_ylabel("joint target [deg]")
+        bx.legend(fontsize=8, loc="upper right")
+
+
+def _bones(bvh):
+    return [(j.parent, i) for i, j in enumerate(bvh.joints) if j.parent >= 0]
+
+
+def figures(ctx, runs) -> None:
+    """Left: the human from the front at four frames. Right: from above at the peak twist, each trunk's pelvis
+    line (thin) and shoulder line (thick), the human's and the robots', offset for clarity."""
+    human, bvh = runs["human"], runs["bvh"]
+    peak = int(np.argmax(np.abs(human.twist_deg)))
+    picks = sorted({0, peak // 2, peak, len(human.times_s) - 1})
+    with ctx.figure("figures", 1, 2, figsize=(11.0, 4.8)) as (fig, (ax, bx)):
+        az = np.radians(35.0)  # seen from the front, 35° to the figure's left
+        x = human.positions[..., 0] * np.cos(az) + human.positions[..., 2] * np.sin(az)
+        y = human.positions[..., 1]
+        span = np.ptp(x[0]) + 1e-9
+        for k, f in enumerate(picks):
+            dx = k * 1.3 * span - x[f, 0]
+            for a, b in _bones(bvh):
+                ax.plot([x[f, a] + dx, x[f, b] + dx], [y[f, a], y[f, b]], "k-", lw=1.5)
+            ax.text(x[f, 0] + dx, np.max(y[f]) * 1.04, f"t = {human.times_s[f]:.2f} s\ntwist "
+                    f"{human.twist_deg[f]:.0f}°", ha="center", fontsize=7)
+        ax.set_aspect("equal")
+        ax.set_axis_off()
+        ax.set_title("the BVH human, seen from the front-left", fontsize=9)
+        rows = [("human", None)] + [(r, runs[r]) for r in mocap.ROBOTS]
+        for k, (name, r) in enumerate(rows):
+            x0 = 2.6 * k
+            yaw = np.radians(human.twist_deg[peak] if r is None else r.twist_deg[peak])
+            bx.plot([x0, x0], [-1, 1], "-", color="0.6", lw=1)  # pelvis line: left–right, seen from above
+            bx.plot([x0 + np.sin(yaw), x0 - np.sin(yaw)], [-np.cos(yaw), np.cos(yaw)], "-", color=COLOURS[name],
+                    lw=4)
+            bx.text(x0, -1.15, f"{name}\n{round(float(np.degrees(yaw))) + 0:d}°", ha="center", va="top", fontsize=8)
+        bx.set_aspect("equal")
+        bx.set_xlim(-1.5, 2.6 * (len(rows) - 1) + 1.5)
+        bx.set_ylim(-1.9, 1.3)
+        bx.set_axis_off()
+        bx.set_title(f"from above at t = {human.times_s[peak]:.2f} s: shoulder line (thick),\npelvis line (grey), "
+                     "forward to the right", fontsize=9)
