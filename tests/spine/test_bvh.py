@@ -122,7 +122,7 @@ def test_spined_robots_twist_and_the_rigid_humanoid_does_not():
 
 
 def test_scenario_short_run(tmp_path):
-    result = run_scenario("spine.bvh-retarget", out=tmp_path, quiet=True)
+    result = run_scenario("spine.bvh-retarget", out=tmp_path, quiet=True, overrides={"mujoco_frames": "false"})
     assert "error" not in result and all(c["ok"] for c in result["checks"])
     m = result["metrics"]
     assert m["twist_tracking_error_cla_deg"] < 5 and m["twist_tracking_error_kenta_deg"] < 5
@@ -134,7 +134,7 @@ def test_scenario_short_run(tmp_path):
 def test_scenario_user_file(tmp_path):
     user = tmp_path / "mine.bvh"
     user.write_text(mocap.SHIPPED_CLIP.read_text())
-    result = run_scenario("spine.bvh-retarget", out=tmp_path / "run", quiet=True, overrides={"bvh": str(user)})
+    result = run_scenario("spine.bvh-retarget", out=tmp_path / "run", quiet=True, overrides={"bvh": str(user), "mujoco_frames": "false"})
     assert result["params"]["bvh"] == str(user) and result["metrics"]["frames"] == 91
     bad = tmp_path / "bad.bvh"
     bad.write_text(SMALL.replace("Frames: 2", "Frames: two"))

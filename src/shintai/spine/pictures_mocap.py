@@ -77,3 +77,75 @@ def figures(ctx, runs) -> None:
         bx.set_axis_off()
         bx.set_title(f"from above at t = {human.times_s[peak]:.2f} s: shoulder line (thick),\npelvis line (grey), "
                      "forward to the right", fontsize=9)
+
+
+# MuJoCo frames: each robot's body posed kinematically at the retargeted joint targets (no dynamics), seen from
+# the front-left like the human above. (robot, body to look at, camera distance [m])
+FILMED = (("cla", "link3", 0.55), ("kenta", "link5", 0.75), ("hrp2", "chest", 2.4), ("hrp_rigid", "chest", 2.4))
+TILE = (300, 380)  # width, height of each robot's picture
+
+
+def _bodies():
+    from shintai.humanoid.robots.hrp2 import build_hrp2
+    from shintai.spine.bodies_mujoco import SpineBody
+    from shintai.spine.robots import CLA, KENTA
+
+    return {"cla": SpineBody(CLA), "kenta": SpineBody(KENTA), "hrp2": build_hrp2(), "hrp_rigid": build_hrp2()}
+
+
+def _pose(body, robot: str, targets) -> None:
+    if robot in mocap.SPINE_ROBOTS:
+        body.set_theta(targets)
+        return
+    import mujoco
+
+    body.reset("stand")
+    for name, value in zip(("waist_yaw", "waist_pitch"), targets):
+        body.data.qpos[body.model.joint(name).qposadr[0]] = value
+    mujoco.mj_forward(body.model, body.data)
+
+
+def film(ctx, runs, video: bool) -> None:
+    """``mujoco_peak.png``: the four robots at the peak twist; with ``video`` also ``video.mp4``, every frame (in the
+    order of :data:`FILMED`: Cla, Kenta, HRP2, the rigid-trunk humanoid)."""
+    import imageio
+
+    from shintai.sim.render import make_camera, make_renderer
+
+    human = runs["human"]
+    bodies = _bodies()
+    peak = int(np.argmax(np.abs(human.twist_deg)))
+    frames = range(len(human.times_s)) if video else [peak]
+    cams, renderers = {}, {}
+    try:
+        for robot, look, distance in FILMED:
+            cams[robot] = make_camera(bodies[robot], distance=distance, azimuth=215.0, elevation=-12.0)
+            renderers[robot] = make_renderer(bodies[robot].model, *TILE)
+        writer = imageio.get_writer(ctx.video_path, format="FFMPEG", codec="libx264", macro_block_size=2,
+                                    fps=1.0 / float(np.mean(np.diff(human.times_s)))) if video else None
+        for f in frames:
+            tiles = []
+            for robot, look, _ in FILMED:
+                body = bodies[robot]
+                _pose(body, robot, runs[robot].targets[f])
+                cams[robot].lookat[:] = body.data.xpos[body.id("body", look)]
+                renderers[robot].update_scene(body.data, cams[robot])
+                tiles.append(renderers[robot].render())
+            if f == peak:
+                _peak_picture(ctx, tiles, runs, peak)
+            if writer is not None:
+                writer.append_data(np.hstack(tiles))
+        if writer is not None:
+            writer.close()
+    finally:
+        for r in renderers.values():
+            r.close()
+
+
+def _peak_picture(ctx, tiles, runs, peak: int) -> None:
+    with ctx.figure("mujoco_peak", 1, len(tiles), figsize=(3.0 * len(tiles), 4.3)) as (fig, axes):
+        for ax, image, (robot, _, _) in zip(axes, tiles, FILMED):
+            ax.imshow(image)
+            ax.set_axis_off()
+            ax.set_title(f"{robot}: twist {round(float(runs[robot].twist_deg[peak])) + 0:d}° "
+                         f"(human {round(float(runs['human'].twist_deg[peak])):d}°)", fontsize=9)
