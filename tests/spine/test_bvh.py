@@ -109,6 +109,20 @@ def test_retargeting_keeps_joint_limits(mapping):
     assert np.isclose(np.abs(mocap.retarget(stretched, "kenta", mapping).targets).max(), np.radians(10.0))
 
 
+def test_hrp2_arms_stay_within_table_a2():
+    from shintai.humanoid.constants import ARM_JOINTS, joint_range
+
+    arms = mocap.hrp2_arms(mocap.load())
+    spec = {j.name: j for j in ARM_JOINTS}
+    for name, values in arms.targets.items():
+        lo, hi = joint_range(spec[name[2:]], name[0])
+        assert np.all(values >= lo - 1e-12) and np.all(values <= hi + 1e-12), name
+    # hanging at the start: the arms 15° out (−75° from the T-pose), right roll negative, left positive
+    assert np.isclose(np.degrees(arms.targets["r_shoulder_roll"][0]), -15) and np.isclose(
+        np.degrees(arms.targets["l_shoulder_roll"][0]), 15)
+    assert arms.direction_error_deg[0] < 1e-6 and arms.saturated.any()
+
+
 def test_spined_robots_twist_and_the_rigid_humanoid_does_not():
     human = mocap.human_trunk(mocap.load())
     assert 50 < human.twist_deg.max() < 56
@@ -126,7 +140,7 @@ def test_scenario_short_run(tmp_path):
     assert "error" not in result and all(c["ok"] for c in result["checks"])
     m = result["metrics"]
     assert m["twist_tracking_error_cla_deg"] < 5 and m["twist_tracking_error_kenta_deg"] < 5
-    assert m["max_twist_hrp_rigid_deg"] == 0 and m["saturation_hrp2_s"] > 0
+    assert m["max_twist_hrp_rigid_deg"] == 0 and m["saturation_hrp2_s"] > 0 and m["arm_saturation_hrp2_s"] > 0
     assert (tmp_path / "twist.png").is_file() and (tmp_path / "figures.png").is_file()
     assert json.loads((tmp_path / "metrics.json").read_text())["scenario"] == "spine.bvh-retarget"
 

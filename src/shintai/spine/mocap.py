@@ -23,8 +23,9 @@ trunk rotation (hips → chest, the product of the spine joints' rotations) is e
 each joint angle clamped to the robot's limits (Cla ±18°, Kenta ±10° per axis, §3.6.1, §3.7.1). The HRP2
 model of seed 000 (Table A.2) has a waist yaw (±45°) and pitch (−5°…+60°) and no roll: Θ's yaw and pitch go
 to them, clamped. The humanoid of Fig. 5.28 — the HRP of 2001, "脊椎を持たないヒューマノイド" — has no trunk
-joint at all (``hrp_rigid``: the same model with the waist held at zero). The arms are not retargeted (Cla's
-arms are a fixed load in our model, Kenta has no arm model here).
+joint at all (``hrp_rigid``: the same model with the waist held at zero). Only the HRP2's arms are retargeted
+(:func:`hrp2_arms`: shoulder pitch and roll from the upper arm's direction, elbow from the forearm's angle);
+Cla's arms are a fixed load in our model and Kenta has no arm model here.
 
 **Twist.** A trunk's twist is the yaw of its shoulder line against its pelvis line, measured in the pelvis
 frame's horizontal plane: for the human the line between the two upper-arm roots against the line between the
@@ -260,3 +261,59 @@ def retarget(trunk: HumanTrunk, robot: str, mapping: str = "uniform") -> Retarge
         raise ValueError(f"robot {robot!r}: expected one of {', '.join(ROBOTS)}")
     saturated = np.any(np.abs(raw - targets) > 1e-12, axis=1)
     return Retargeted(robot, names, targets, lower, upper, saturated, _twist_of(top), top)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# HRP2's arms
+# ---------------------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class ArmTargets:
+    """HRP2 arm joint targets [rad] from the BVH's upper arms and forearms, clamped to Table A.2's ranges."""
+
+    targets: dict[str, np.ndarray]  # joint name (``r_shoulder_pitch`` …) → (F,)
+    saturated: np.ndarray  # (F,) some arm target clamped
+    direction_error_deg: np.ndarray  # (F,) angle between the human's and the robot's upper-arm direction
+
+
+def hrp2_arms(bvh: Bvh) -> ArmTargets:
+    """The upper arm's direction in the chest frame (robot axes) → shoulder pitch and roll of an arm hanging
+    along −z at zero (R = Ry(pitch) Rx(roll): d = (−cos r sin p, sin r, −cos r cos p)); the forearm's angle
+    to the upper arm → elbow pitch (negative forward, Table A.2); shoulder and wrist yaw stay 0 (an upper
+    arm's own axial rotation is not matched). Forward kinematics of the clamped pitch/roll gives the
+    achieved direction."""
+    roles = trunk_joints(bvh)
+    index = {j.name: i for i, j in enumerate(bvh.joints)}
+    R, p = bvh.world()
+    chest = R[:, index[roles["chest"]]]
+    from shintai.humanoid.constants import ARM_JOINTS
+
+    spec = {j.name: j for j in ARM_JOINTS}
+    targets, saturated, error = {}, np.zeros(bvh.n_frames, bool), np.zeros(bvh.n_frames)
+    for side, role in (("r", "right_shoulder"), ("l", "left_shoulder")):
+        arm = index[roles[role]]
+        fore = next((i for i, j in enumerate(bvh.joints) if j.parent == arm), None)
+        hand = next((i for i, j in enumerate(bvh.joints) if fore is not None and j.parent == fore), None)
+        if fore is None or hand is None:
+            raise ValueError(f"{bvh.source}: {roles[role]} has no forearm and hand below it")
+        upper_dir = np.einsum("fba,fb->fa", chest, p[:, fore] - p[:, arm])  # in the chest frame
+        fore_dir = np.einsum("fba,fb->fa", chest, p[:, hand] - p[:, fore])
+        d = upper_dir @ TO_ROBOT.T
+        d /= np.linalg.norm(d, axis=1, keepdims=True)
+        roll = np.arcsin(np.clip(d[:, 1], -1, 1))
+        pitch = np.arctan2(-d[:, 0], -d[:, 2])
+        lo, hi = joint_range(spec["shoulder_pitch"], side)
+        turns = pitch[:, None] + np.array([0.0, -2 * np.pi, 2 * np.pi])  # the turn that needs the least clamping
+        pitch = turns[np.arange(len(pitch)), np.argmin(np.maximum(lo - turns, 0) + np.maximum(turns - hi, 0), axis=1)]
+        cos_elbow = np.einsum("fa,fa->f", upper_dir, fore_dir) / (
+            np.linalg.norm(upper_dir, axis=1) * np.linalg.norm(fore_dir, axis=1))
+        raw = {"shoulder_pitch": pitch, "shoulder_roll": roll, "elbow_pitch": -np.arccos(np.clip(cos_elbow, -1, 1))}
+        for name, value in raw.items():
+            lo, hi = joint_range(spec[name], side)
+            clamped = np.clip(value, lo, hi)
+            saturated |= np.abs(clamped - value) > 1e-9
+            targets[f"{side}_{name}"] = clamped
+        pr, rr = targets[f"{side}_shoulder_pitch"], targets[f"{side}_shoulder_roll"]
+        achieved = np.stack([-np.cos(rr) * np.sin(pr), np.sin(rr), -np.cos(rr) * np.cos(pr)], axis=1)
+        error = np.maximum(error, np.degrees(np.arccos(np.clip(np.einsum("fa,fa->f", achieved, d), -1, 1))))
+    return ArmTargets(targets, saturated, error)

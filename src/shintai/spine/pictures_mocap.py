@@ -80,7 +80,7 @@ def figures(ctx, runs) -> None:
 
 
 # MuJoCo frames: each robot's body posed kinematically at the retargeted joint targets (no dynamics), seen from
-# the front-left like the human above. (robot, body to look at, camera distance [m])
+# the front-left like the human above; both humanoids with the HRP2 arm targets (mocap.hrp2_arms). (robot, body to look at, camera distance [m])
 FILMED = (("cla", "link3", 0.55), ("kenta", "link5", 0.75), ("hrp2", "chest", 2.4), ("hrp_rigid", "chest", 2.4))
 TILE = (300, 380)  # width, height of each robot's picture
 
@@ -93,14 +93,14 @@ def _bodies():
     return {"cla": SpineBody(CLA), "kenta": SpineBody(KENTA), "hrp2": build_hrp2(), "hrp_rigid": build_hrp2()}
 
 
-def _pose(body, robot: str, targets) -> None:
+def _pose(body, robot: str, targets, arms: dict[str, float]) -> None:
     if robot in mocap.SPINE_ROBOTS:
         body.set_theta(targets)
         return
     import mujoco
 
     body.reset("stand")
-    for name, value in zip(("waist_yaw", "waist_pitch"), targets):
+    for name, value in {"waist_yaw": targets[0], "waist_pitch": targets[1], **arms}.items():
         body.data.qpos[body.model.joint(name).qposadr[0]] = value
     mujoco.mj_forward(body.model, body.data)
 
@@ -127,7 +127,9 @@ def film(ctx, runs, video: bool) -> None:
             tiles = []
             for robot, look, _ in FILMED:
                 body = bodies[robot]
-                _pose(body, robot, runs[robot].targets[f])
+                arms = runs.get("arms")
+                _pose(body, robot, runs[robot].targets[f], {} if arms is None else
+                      {name: float(v[f]) for name, v in arms.targets.items()})
                 cams[robot].lookat[:] = body.data.xpos[body.id("body", look)]
                 renderers[robot].update_scene(body.data, cams[robot])
                 tiles.append(renderers[robot].render())

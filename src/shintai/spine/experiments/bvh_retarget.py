@@ -47,6 +47,15 @@ def compute(ctx):
         out[f"saturation_{robot}_s"] = float(np.sum(r.saturated) * bvh.frame_time_s)
         violation = max(violation, float(np.max(np.maximum(r.targets - r.upper, r.lower - r.targets))))
         signals |= {f"twist_{robot}_deg": r.twist_deg, f"saturated_{robot}": r.saturated.astype(float)}
+    try:  # HRP2's arms, where the file has forearms and hands below its shoulders
+        arms = mocap.hrp2_arms(bvh)
+    except ValueError:
+        arms = None
+    ctx.runs["arms"] = arms
+    if arms is not None:
+        out["arm_direction_error_hrp2_deg"] = float(np.max(arms.direction_error_deg))
+        out["arm_saturation_hrp2_s"] = float(np.sum(arms.saturated) * bvh.frame_time_s)
+        signals |= {"arm_direction_error_hrp2_deg": arms.direction_error_deg}
     out["limit_violation_deg"] = max(0.0, float(np.degrees(violation)))
     for k, t in enumerate(human.times_s):
         ctx.recorder.record(float(t), **{name: float(v[k]) for name, v in signals.items()})
