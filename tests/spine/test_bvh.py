@@ -148,7 +148,8 @@ def test_scenario_short_run(tmp_path):
 def test_scenario_user_file(tmp_path):
     user = tmp_path / "mine.bvh"
     user.write_text(mocap.SHIPPED_CLIP.read_text())
-    result = run_scenario("spine.bvh-retarget", out=tmp_path / "run", quiet=True, overrides={"bvh": str(user), "mujoco_frames": "false"})
+    result = run_scenario("spine.bvh-retarget", out=tmp_path / "run", quiet=True,
+                          overrides={"bvh": str(user), "mujoco_frames": "false"})
     assert result["params"]["bvh"] == str(user) and result["metrics"]["frames"] == 91
     bad = tmp_path / "bad.bvh"
     bad.write_text(SMALL.replace("Frames: 2", "Frames: two"))

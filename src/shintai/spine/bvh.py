@@ -143,7 +143,8 @@ class _Tokens:
 
     def take(self, expected: str, first: str | None = None, n_words: int | None = None) -> tuple[int, list[str]]:
         words = self.peek()
-        if words is None or (first is not None and words[0] != first) or (n_words is not None and len(words) != n_words):
+        if (words is None or (first is not None and words[0] != first)
+                or (n_words is not None and len(words) != n_words)):
             raise self.error(expected)
         line = self.lines[self.pos][0]
         self.pos += 1

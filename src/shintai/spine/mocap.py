@@ -198,7 +198,7 @@ def human_trunk(bvh: Bvh) -> HumanTrunk:
     shoulders, hips = in_pelvis("left_shoulder", "right_shoulder"), in_pelvis("left_hip", "right_hip")
     twist = line_yaw_deg(shoulders[:, 2], shoulders[:, 0]) - line_yaw_deg(hips[:, 2], hips[:, 0])
     twist = (twist + 180.0) % 360.0 - 180.0
-    to_robot = lambda Rb: TO_ROBOT @ Rb @ TO_ROBOT.T  # noqa: E731
+    to_robot = lambda Rb: TO_ROBOT @ Rb @ TO_ROBOT.T
     rotation = to_robot(np.einsum("fba,fbc->fac", Rp, R[:, index[roles["chest"]]]))
     segments = np.stack([to_robot(bvh.local_rotations(name))
                          for name in spine_path(bvh, roles["pelvis"], roles["chest"])], axis=1)

@@ -13,7 +13,7 @@ COLOURS = {"human": "k", "cla": "tab:blue", "kenta": "tab:green", "hrp2": "tab:o
 def twist(ctx, runs) -> None:
     human = runs["human"]
     t = human.times_s
-    with ctx.figure("twist", 2, 1, figsize=(7.0, 6.4), sharex=True) as (fig, (ax, bx)):
+    with ctx.figure("twist", 2, 1, figsize=(7.0, 6.4), sharex=True) as (_fig, (ax, bx)):
         ax.plot(t, human.twist_deg, "k-", lw=2.5, label="human (BVH)")
         for robot in mocap.ROBOTS:
             r = runs[robot]
@@ -49,7 +49,7 @@ def figures(ctx, runs) -> None:
     human, bvh = runs["human"], runs["bvh"]
     peak = int(np.argmax(np.abs(human.twist_deg)))
     picks = sorted({0, peak // 2, peak, len(human.times_s) - 1})
-    with ctx.figure("figures", 1, 2, figsize=(11.0, 4.8)) as (fig, (ax, bx)):
+    with ctx.figure("figures", 1, 2, figsize=(11.0, 4.8)) as (_fig, (ax, bx)):
         az = np.radians(35.0)  # seen from the front, 35° to the figure's left
         x = human.positions[..., 0] * np.cos(az) + human.positions[..., 2] * np.sin(az)
         y = human.positions[..., 1]
@@ -80,7 +80,8 @@ def figures(ctx, runs) -> None:
 
 
 # MuJoCo frames: each robot's body posed kinematically at the retargeted joint targets (no dynamics), seen from
-# the front-left like the human above; both humanoids with the HRP2 arm targets (mocap.hrp2_arms). (robot, body to look at, camera distance [m])
+# the front-left like the human above; both humanoids with the HRP2 arm targets (mocap.hrp2_arms).
+# (robot, body to look at, camera distance [m])
 FILMED = (("cla", "link3", 0.55), ("kenta", "link5", 0.75), ("hrp2", "chest", 2.4), ("hrp_rigid", "chest", 2.4))
 TILE = (300, 380)  # width, height of each robot's picture
 
@@ -145,7 +146,7 @@ def film(ctx, runs, video: bool) -> None:
 
 
 def _peak_picture(ctx, tiles, runs, peak: int) -> None:
-    with ctx.figure("mujoco_peak", 1, len(tiles), figsize=(3.0 * len(tiles), 4.3)) as (fig, axes):
+    with ctx.figure("mujoco_peak", 1, len(tiles), figsize=(3.0 * len(tiles), 4.3)) as (_fig, axes):
         for ax, image, (robot, _, _) in zip(axes, tiles, FILMED):
             ax.imshow(image)
             ax.set_axis_off()

@@ -5,7 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.scenarios.registry import Check, Param, ParameterError, ThesisValue, experiment
+from shintai.scenarios.registry import (
+    Check,
+    Param,
+    ParameterError,
+    ThesisValue,
+    experiment,
+)
 from shintai.spine import mocap, pictures_mocap
 from shintai.spine.bvh import BvhError
 
