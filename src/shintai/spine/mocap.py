@@ -140,7 +140,7 @@ def load(path: str | Path | None = None) -> Bvh:
 
 TRUNK_NAMES = {  # candidates per role, first match wins (common BVH namings)
     "pelvis": ("Hips", "hip", "Pelvis", "pelvis", "Root"),
-    "chest": ("Chest", "Spine2", "Spine1", "chest", "abdomen"),
+    "chest": ("Chest", "Spine2", "Spine1", "chest", "abdomen", "Spine"),  # the highest spine joint
     "left_shoulder": ("LeftArm", "LeftUpArm", "lShldr", "LeftShoulder", "l_shoulder"),
     "right_shoulder": ("RightArm", "RightUpArm", "rShldr", "RightShoulder", "r_shoulder"),
     "left_hip": ("LeftUpLeg", "LeftHip", "lThigh", "l_hip"),
