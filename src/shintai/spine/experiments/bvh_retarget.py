@@ -84,7 +84,7 @@ experiment(
     source="seed 003 §5.8, Fig. 5.28",
     covers=("003:fig5.28",),
     summary="a BVH clip (a trunk wind-up before a back flip, written by shintai; or --set bvh=FILE) retargeted to "
-            "Cla's 5 and Kenta's 10 spine joints, the HRP2's waist and a rigid-trunk humanoid: twist reached",
+            "Cla's 5 and Kenta's 10 spine joints, the HRP2's waist and arms and a rigid-trunk humanoid: twist reached",
     params=(
         Param("bvh", "", "a BVH file to play instead of the shipped clip (spine/twist_clip.bvh)"),
         Param("mapping", "uniform", "uniform: the trunk rotation shared equally by the spine joints (§4.4.4); "
