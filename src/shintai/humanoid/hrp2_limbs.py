@@ -51,7 +51,7 @@ CRANK_AXIS_IN_SOLE = np.array([0.0, 1.0, 0.0])  # the pedal axle along the sole'
 SOLE_IN_VEHICLE = R_y(PEDAL_SOLE_PITCH)  # the sole frame's orientation in the vehicle frame
 _GRIP_Y = np.array([0.0, 1.0, 0.0])  # the grip site's y axis (the bar) at θ_h = 0
 _STEER_AXIS = steer_axis()  # the nominal model's steering axis (constant)
-_ORIGIN, _EYE = np.zeros(3), np.eye(3)  # the waist frame's own pose (the feet's closed-form IK works in it)
+_ORIGIN, _EYE = (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the waist frame's own pose
 
 
 def waist_pose(body: MujocoBody) -> tuple[np.ndarray, np.ndarray]:
@@ -118,7 +118,10 @@ class Hrp2Limb:
         self.q = np.array([body.joint_qpos(j) for j in self.joints])
         self.qadr = np.array([body.model.joint(j).qposadr[0] for j in self.joints])
         self.unreachable = 0
-        self._sole_in_waist = self.frame.rot_in_waist @ SOLE_IN_VEHICLE  # the sole's target orientation, waist frame
+        # the feet's closed-form IK works in the waist frame: ξ's transform (offset, flat rotation) and the
+        # sole's target orientation there, as Python floats (formed once; the weld does not move)
+        self._to_waist = (self.frame.offset.tolist(), self.frame.rot_in_waist.ravel().tolist())
+        self._sole_in_waist = tuple((self.frame.rot_in_waist @ SOLE_IN_VEHICLE).ravel().tolist())
         self.fallbacks = 0  # foot solves the closed form could not give inside the limits (DLS used)
         # ft_reaction's force, with its per-call look-ups done once (the torque is not needed here)
         self._ft_site = body.id("site", f"{self.sensor}_ft")
@@ -169,8 +172,9 @@ class Hrp2Limb:
 
         The DLS IK (a hand; a foot's fallback) starts from the limb's previous command."""
         if self.kind == "foot":
-            f = self.frame
-            pos = f.offset + f.rot_in_waist @ np.asarray(xi, dtype=float)
+            x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
+            (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
+            pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
             result = leg_ik(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
             if result.ok:
                 q = self.body.data.qpos.copy()
