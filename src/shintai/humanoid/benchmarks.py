@@ -40,11 +40,22 @@ vehicle frame once per waist pose, the handle model's zero directions once per m
 IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
 Both the controller runs and bare mj_step are the faster of two runs.
 
+Issue 13 item 2: the feet on the closed-form leg IK (:meth:`~shintai.humanoid.hrp2_limbs.Hrp2Limb.solve`;
+trajectories change slightly, see the scenario notes). Twelve interleaved pairs in one process (feet on the
+DLS IK vs the closed form, each run against its own bare mj_step, three sessions, load average 1–4 on the
+2 cores, bare mj_step 0.39–0.69 s so the ratios spread widely): pedalling 2.8–6.2× (median 3.4×) →
+1.9–3.5× (median 2.4×), closed form cheaper in 11 of 12 pairs, fastest runs 1.73 → 1.05 s; driving
+5.0–9.8× (median 7.5×) → 4.0–6.0× (median 5.3×), 10 of 12 pairs, fastest runs 2.81 → 2.40 s. A foot's solve
+inside these runs: ≈212 µs DLS → ≈47 µs closed form at that load (≈4.5×; the DLS fallback never ran, no
+unreachable tick). Still short of ≤ 1.5×: the rest of the tick (laws, interpolators, estimates, the hands'
+DLS IK when driving, logging, the Loop) is Python, as above.
+
 ``humanoid.leg-ik`` (issue 13 item 2): the analytic leg IK (:mod:`shintai.humanoid.leg_ik`) against
 the DLS IK per call on the same 500 sole targets of a pedalling-like foot path, as a ratio in one
 run. Measured on the loaded 2-core machine (load average ≈7): analytic ≈22–27 µs, DLS ≈390–510 µs
 a call (warm-started, one step and the check each), ratio ≈15×; the two agree to ≈7e-5 rad (the
-DLS IK stops at its 0.1 mm / 1 mrad tolerance).
+DLS IK stops at its 0.1 mm / 1 mrad tolerance). Re-measured in this round: 9.6 / 141 µs (14.7×) at a quiet
+moment, 18.9 / 143 µs and 38 / 584 µs (7.6×, 15.3×) under load; agreement 6.7e-5 rad.
 
 ``humanoid.standing-overhead`` (issue 13): the standing stack's 4 ms Loop tick (preview, footsteps,
 stabilizer, foot damping, leg IK; :class:`~shintai.humanoid.standing.Standing`) against bare mj_step for

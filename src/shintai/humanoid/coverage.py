@@ -94,10 +94,10 @@ ROWS = (
                "観察された.片方の脚マニピュレータに受動機能を備えることで,図 3.22 -(II) のように目標接触力追従が可能"
                "となり,受動機能側の足とペダルの接触力が十分に保たれていることが分かる.' (measured on the real robot)",
         difference="MuJoCo with the crank centre 10 mm off (ours; the thesis's model error is not given): passive "
-                   "foot 153.0 N mean, 7.2 N RMS error, min 129.6 N, against 13.5 N RMS with both legs active",
+                   "foot 153.0 N mean, 7.1 N RMS error, min 130.8 N, against 13.4 N RMS with both legs active",
         why_not="the both-active feet centre at 151.0 N, not near 160 N (155–165 N: ±5 N ours, half the gap between "
                 "the 160 and 150 N the thesis tells apart); they do exceed 150 N, and the contrast itself reproduces: "
-                "the passive foot tracks 150 N with 7.2 N RMS error against 13.5 N with two active legs",
+                "the passive foot tracks 150 N with 7.1 N RMS error against 13.4 N with two active legs",
     ),
     Row(
         key="000:fig3.22-active",

@@ -4,8 +4,11 @@
 * ``point`` — forward kinematics of the grasp centre / sole (sites ``s_grasp`` / ``s_sole``).
 * ``force`` — f^msr of Eq. 3.13: the environment's force on the hand / foot from the wrist / ankle
   6-axis F/T sensor (:func:`~shintai.humanoid.robots.hrp2.ft_reaction`; pressing on a pedal gives +z).
-* ``command`` — u of Eqs. 3.10–3.11: the IK (:mod:`shintai.sim.ik`) of that limb's joints
-  (7 arm / 6 leg joints, within their Table A.2 ranges) for the target ξ, as joint-servo targets.
+* ``command`` — u of Eqs. 3.10–3.11: the IK of that limb's joints (7 arm / 6 leg joints, within
+  their Table A.2 ranges) for the target ξ, as joint-servo targets. A foot uses the closed-form leg
+  IK (:mod:`shintai.humanoid.leg_ik`, issue 13 item 2) and falls back to the DLS IK
+  (:mod:`shintai.sim.ik`) only where the closed form gives no answer inside the limits (see
+  :meth:`Hrp2Limb.solve`); a hand, 7 joints for a 5-constraint target, uses the DLS IK.
   An unreachable ξ (IK does not converge inside the joint limits, the Reachability-Map stand-in)
   keeps the previous command — the second branch of Eq. 3.14 applied to the joint input; such
   ticks are counted in ``unreachable``.
@@ -34,6 +37,7 @@ import numpy as np
 from shintai.humanoid import quat_axis
 from shintai.humanoid.active import R_y
 from shintai.humanoid.constants import PEDAL_SOLE_PITCH
+from shintai.humanoid.leg_ik import leg_ik
 from shintai.humanoid.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.robots.hrp2 import SIDES
 from shintai.humanoid.switching import estimate_handle_angle
@@ -47,6 +51,7 @@ CRANK_AXIS_IN_SOLE = np.array([0.0, 1.0, 0.0])  # the pedal axle along the sole'
 SOLE_IN_VEHICLE = R_y(PEDAL_SOLE_PITCH)  # the sole frame's orientation in the vehicle frame
 _GRIP_Y = np.array([0.0, 1.0, 0.0])  # the grip site's y axis (the bar) at θ_h = 0
 _STEER_AXIS = steer_axis()  # the nominal model's steering axis (constant)
+_ORIGIN, _EYE = (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # the waist frame's own pose
 
 
 def waist_pose(body: MujocoBody) -> tuple[np.ndarray, np.ndarray]:
@@ -113,6 +118,11 @@ class Hrp2Limb:
         self.q = np.array([body.joint_qpos(j) for j in self.joints])
         self.qadr = np.array([body.model.joint(j).qposadr[0] for j in self.joints])
         self.unreachable = 0
+        # the feet's closed-form IK works in the waist frame: ξ's transform (offset, flat rotation) and the
+        # sole's target orientation there, as Python floats (formed once; the weld does not move)
+        self._to_waist = (self.frame.offset.tolist(), self.frame.rot_in_waist.ravel().tolist())
+        self._sole_in_waist = tuple((self.frame.rot_in_waist @ SOLE_IN_VEHICLE).ravel().tolist())
+        self.fallbacks = 0  # foot solves the closed form could not give inside the limits (DLS used)
         # ft_reaction's force, with its per-call look-ups done once (the torque is not needed here)
         self._ft_site = body.id("site", f"{self.sensor}_ft")
         self._ft_key = f"{self.sensor}_force"
@@ -150,7 +160,32 @@ class Hrp2Limb:
         return ik.Target(pos=self.frame.to_world(xi), axis=(BAR_IN_HAND, -SIDES[self.side[0]] * rot @ bar))
 
     def solve(self, xi) -> ik.IKResult:
-        """IK of this limb's joints for ξ, from its previous command (the rest of the body as measured)."""
+        """IK of this limb's joints for ξ (the rest of the body as measured).
+
+        A foot: the closed-form leg IK (:func:`~shintai.humanoid.leg_ik.leg_ik`) for the sole at ξ with
+        orientation ``SOLE_IN_VEHICLE``, solved in the **waist frame** (ξ → waist through the weld's
+        fixed transform), so the answer depends on ξ only, not on the waist's world pose; exact (FK to
+        1e-9), residual (0, 0). Where it gives no answer inside Table A.2's ranges (out of reach, or a
+        joint beyond a limit) the DLS IK below decides as before: clamped at a limit it may still meet
+        the target within its tolerance (1e-4 m, 1e-3 rad), and its ``ok`` is the Eq. 3.14 gate.
+        Such solves are counted in ``fallbacks``.
+
+        The DLS IK (a hand; a foot's fallback) starts from the limb's previous command."""
+        if self.kind == "foot":
+            x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
+            (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
+            pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
+            result = leg_ik(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
+            if result.ok:
+                q = self.body.data.qpos.copy()
+                q[self.qadr] = result.q
+                return ik.IKResult(q, True, (0.0, 0.0))
+            self.fallbacks += 1
+        return self.dls_solve(xi)
+
+    def dls_solve(self, xi) -> ik.IKResult:
+        """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
+        (the rest of the body as measured; the tricycle's feet used it alone before issue 13)."""
         q0 = self.body.data.qpos.copy()
         q0[self.qadr] = self.q
         return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)

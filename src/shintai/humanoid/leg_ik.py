@@ -23,11 +23,11 @@ A target beyond ``L1 + L2`` gets the stretched knee (q4 = 0) pointing at it: ``r
 ``reach_error`` the distance the ankle misses by. Joint limits (Table A.2, mirrored for the left
 leg) are reported, not enforced: ``within_limits`` and ``violated``.
 
-Not yet used by the tricycle's feet (issue 13 asks for a before/after reproduce comparison first): it
-would replace ``ik.solve`` in :meth:`shintai.humanoid.hrp2_limbs.Hrp2Limb.solve` for ``kind == "foot"``
-(target: the sole site at ``frame.to_world(ξ)`` with ``rot @ SOLE_IN_VEHICLE``, the waist pose from the
-body's data), which :mod:`~shintai.humanoid.tricycle_rig` and :mod:`~shintai.humanoid.ride` reach
-through ``riding_limbs(body, "foot")``; ``ok`` there = :attr:`LegIKResult.ok`.
+Used by the tricycle's feet (:meth:`shintai.humanoid.hrp2_limbs.Hrp2Limb.solve`, ``kind == "foot"``,
+which :mod:`~shintai.humanoid.tricycle_rig` and :mod:`~shintai.humanoid.ride` reach through
+``riding_limbs(body, "foot")``): the sole at ξ with ``SOLE_IN_VEHICLE``, solved in the waist frame; the
+DLS IK only where :attr:`LegIKResult.ok` is False. Not by ch. 4's ``Rider`` (one whole-body DLS solve
+with the sole's pitch free about the pedal axle: five constraints per foot, no unique closed form).
 """
 
 from __future__ import annotations
