@@ -27,6 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from shintai.core.geometry import rot_y, rot_z
 from shintai.humanoid.constants import F_THRE
 from shintai.humanoid.leg_ik import JOINT_NAMES, leg_fk
 from shintai.humanoid.robots.hrp2 import ft_reaction
@@ -37,14 +38,6 @@ CONTACT_FZ = F_THRE
 SIDES = ("l", "r")
 
 
-def _rz(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def _ry(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def quat_to_rot(quat) -> np.ndarray:
@@ -61,7 +54,7 @@ def quat_to_rot(quat) -> np.ndarray:
 
 def chest_in_waist(waist_yaw: float, waist_pitch: float) -> np.ndarray:
     """ᴮR_C from the two waist joints."""
-    return _rz(waist_yaw) @ _ry(waist_pitch)
+    return rot_z(waist_yaw) @ rot_y(waist_pitch)
 
 
 def foot_in_waist(side: str, leg_q) -> np.ndarray:

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shintai.core.geometry import rot_x, rot_y, rot_z
 from shintai.humanoid.constants import HRP2_LINKS, LEG_JOINTS, Hrp2Links, joint_range
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each leg (as robots.hrp2.SIDES)
@@ -68,19 +69,7 @@ class LegIKResult:
         return {f"{side}_{n}": float(v) for n, v in zip(JOINT_NAMES, self.q)}
 
 
-def _rx(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
-
-def _ry(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def _rz(a: float) -> np.ndarray:
-    c, s = math.cos(a), math.sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def hip_point(side: str, waist_pos, waist_rot, links: Hrp2Links = HRP2_LINKS) -> np.ndarray:
@@ -158,8 +147,8 @@ def leg_fk(side: str, q, waist_pos, waist_rot, links: Hrp2Links = HRP2_LINKS) ->
     NumPy; the tests check it and :func:`leg_ik` against MuJoCo's ``mj_kinematics``)."""
     q1, q2, q3, q4, q5, q6 = (float(v) for v in q)
     rw = np.asarray(waist_rot, float)
-    r_hip = rw @ _rz(q1) @ _rx(q2) @ _ry(q3)
-    r_shank = r_hip @ _ry(q4)
-    r_foot = r_shank @ _ry(q5) @ _rx(q6)
+    r_hip = rw @ rot_z(q1) @ rot_x(q2) @ rot_y(q3)
+    r_shank = r_hip @ rot_y(q4)
+    r_foot = r_shank @ rot_y(q5) @ rot_x(q6)
     ankle = hip_point(side, waist_pos, rw, links) - r_hip[:, 2] * links.thigh - r_shank[:, 2] * links.shank
     return ankle - r_foot[:, 2] * links.ankle_height, r_foot

@@ -53,6 +53,7 @@ from collections import deque
 import numpy as np
 
 from shintai.core.constants import GRAVITY
+from shintai.core.geometry import rot_y
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
 from shintai.humanoid.corrections import ChestPostureControl
@@ -221,10 +222,6 @@ class ChestPitchControl(ChestPostureControl):
         return {"ref:chest_pitch": delta}
 
 
-def _ry(a: float) -> np.ndarray:
-    c, s_ = math.cos(a), math.sin(a)
-    return np.array([[c, 0.0, s_], [0.0, 1.0, 0.0], [-s_, 0.0, c]])
-
 
 class ChestPitchIK(LegIKModule):
     """The leg IK with Eq. 4.9's target correction R_C^{d*} = R_C^d R^{centre}(0, Δφ_C, 0): the upper body (waist
@@ -237,7 +234,7 @@ class ChestPitchIK(LegIKModule):
             return super().update(snapshot)
         soles = np.asarray(snapshot["sole_ref"], float)
         centre = soles.mean(axis=0)
-        rot = _ry(d)
+        rot = rot_y(d)
         waist = centre + rot @ (np.asarray(snapshot["com_ref"], float) - self.com_offset - centre)
         delta = snapshot.get("foot_damping")
         dz = snapshot.get("sole_dz")
