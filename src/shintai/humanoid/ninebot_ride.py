@@ -224,11 +224,12 @@ class NinebotRide:
 
     ``control``: "stabilizer" (Fig. 7.7: no C_traj, no C_v) or "parallel" (Fig. 7.8); ``learn``: MLC on;
     ``gains`` ((traj), (v)) initial gains; ``v_d(t)`` the target speed from the learning start;
-    ``training_wheels``; ``roll_shaping`` Eq. 7.6 (for the run without training wheels)."""
+    ``training_wheels``; ``roll_shaping`` Eq. 7.6 (for the run without training wheels); ``placement`` of the
+    correction (:class:`ModifiedStabilizer`); ``push`` (force (3,), t0, duration) on the chest."""
 
     def __init__(self, control: str = "parallel", learn: bool = True, gains=((0.0,) * 3,) * 2, v_d=None,
                  training_wheels: bool = True, roll_shaping: bool = False, n: NinebotSpec = NINEBOT,
-                 start_delay: float = START_DELAY, seed: int = 0, placement: str = "after_lip"):
+                 start_delay: float = START_DELAY, seed: int = 0, placement: str = "after_lip", push=None):
         if control not in ("stabilizer", "parallel"):
             raise ValueError(f"control must be 'stabilizer' or 'parallel', got {control!r}")
         body = build_ninebot_stand(n, training_wheels)
@@ -239,6 +240,8 @@ class NinebotRide:
         body.reset("stand")
         self.lift.hold()
         self.standing = Standing(body=body)
+        if push is not None:  # on the chest, before every physics step (the lift owns the waist's xfrc_applied)
+            body.before_physics.append(_Tap(body, *push))
         self.body, self.n = body, n
         self.lift.lowering = True
         lift = self.lift
@@ -301,3 +304,15 @@ class _Target(Module):
     def update(self, snapshot):
         t0 = self.t0()
         return {"v_d": 0.0 if not math.isfinite(t0) else float(self.v_d(float(snapshot["t"]) - t0))}
+
+
+class _Tap:
+    """A force (N, world) on the chest from body time ``t0`` for ``duration`` s; run before every physics step."""
+
+    def __init__(self, body, force, t0: float, duration: float):
+        self.data, self.force, self.t0, self.t1 = body.data, np.asarray(force, float), t0, t0 + duration
+        self.id = body.id("body", "chest")
+
+    def __call__(self) -> None:
+        on = self.t0 <= self.data.time < self.t1
+        self.data.xfrc_applied[self.id, :3] = self.force if on else 0.0

@@ -19,8 +19,8 @@ The model (chosen). The internal pitch controller is taken as ideal: the vehicle
 footboards, motor stator) never pitches — it has slides x, y, z, a yaw and a roll hinge, no pitch joint, so the
 world carries the pitch moment the real controller's balance would. What the firmware does with that moment is the
 thesis's model: :class:`NinebotFirmware` (run before every physics step) measures M_y⁰ of Eq. A.5 from the
-footboards' normal contact loads about p⁰ (the axle's ground point: M_y⁰ = Σ f_n (x_c − x⁰) along the heading,
-i.e. W (p − p⁰) with p the rider's measured ZMP on the boards), lags it by the firmware's ``lag``, and
+footboards' normal contact loads about p⁰ (``NinebotSpec.p0`` from the axle along the heading: M_y⁰ =
+Σ f_n (x_c − p⁰), i.e. W (p − p⁰) with p the rider's measured ZMP on the boards), lags it by the firmware's ``lag``, and
 speed-servoes the hub motor to Ω = k M_y⁰ (Eq. A.6; τ = k_v (Ω_ref − Ω), |τ| ≤ ``max_torque``). The
 training wheels (``training_wheels=True``) are two free-spinning wheels on the frame under the footboards' outer
 ends, touching the ground: they hold the roll; without them the roll hinge is free (an inverted pendulum the rider
@@ -81,6 +81,10 @@ class NinebotSpec:
     # K₀ = r k W: chosen 5 s⁻¹ — a rider's ZMP 60 mm ahead of the axle (a clear lean on the 0.22 m pad) rides at
     # 0.3 m/s, the thesis's v^d of Fig. 7.13; k then follows from r and W (:meth:`k`)
     K0: float = 5.0
+    # p⁰: the firmware's moment zero point, x from the axle [m]. The thesis gives none, and says the relation of the
+    # boards to the wheel is unknown to the rider ('足部ボードの傾斜量と駆動輪の関係が未知', §7.3.3); 0 here, the
+    # scenarios set their own (``p0_m``) against a rider whose mass centre was placed over the axle
+    p0: float = 0.0
     # the firmware's speed servo: k_v makes the loaded wheel (≈68 kg at r: m r² ≈ 2.2 kg m²) reach its speed in
     # ≈0.1 s; torque limit 60 N m (a 500 W hub motor at low speed); the measured moment is lagged by 0.05 s
     # (the internal pitch loop's response: the firmware reads the tilt, not the moment)
@@ -101,6 +105,9 @@ class NinebotSpec:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"NinebotSpec.{name} must be a finite positive number, got {value!r}")
+        if not (math.isfinite(self.p0) and abs(self.p0) < self.pad_size[0] / 2):
+            raise ValueError(f"NinebotSpec.p0 must be a finite x on the footboards (|p0| < {self.pad_size[0] / 2} m), "
+                             f"got {self.p0!r}")
 
     @property
     def k(self) -> float:
@@ -202,7 +209,7 @@ class NinebotFirmware:
         self._f = np.zeros(6)
 
     def measured_moment(self) -> float:
-        """M_y⁰ = Σ f_n (x_c − x⁰)·heading over the contacts on the footboards (Eq. A.5, p⁰ under the axle)."""
+        """M_y⁰ = Σ f_n ((x_c − x_axle)·heading − p⁰) over the contacts on the footboards (Eq. A.5)."""
         m, d = self.model, self.data
         origin = d.xpos[self.frame]
         heading = d.xmat[self.frame].reshape(3, 3)[:, 0]
@@ -211,7 +218,7 @@ class NinebotFirmware:
             c = d.contact[i]
             if c.geom1 in self.pads or c.geom2 in self.pads:
                 mujoco.mj_contactForce(m, d, i, self._f)
-                total += self._f[0] * float((c.pos - origin) @ heading)
+                total += self._f[0] * (float((c.pos - origin) @ heading) - self.n.p0)
         return total
 
     def __call__(self) -> None:
