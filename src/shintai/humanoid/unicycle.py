@@ -121,7 +121,7 @@ def draw_learning(ax, run, label: str) -> None:
         if mod is not None and mod.mlc.batches:
             b = mod.mlc.batches
             ax[3].semilogy([x.t_end - t0 for x in b], [max(x.J, 1e-12) for x in b], style, ms=3,
-                           label=f"J ({mod.name})")
+                           label=f"J ({mod.name}; both see the one e_v)")
     ax[3].set_ylabel("(e) J (Eq. 6.17)")
     ax[3].legend(fontsize=7)
     _, _, tz, zd, za = zmp_errors(run, t0)
