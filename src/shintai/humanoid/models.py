@@ -1,9 +1,10 @@
 """The humanoid's MuJoCo models for export (``shintai model``, :mod:`shintai.sim.export`): HRP2-JSK standing
 (App. A.2.1), the tricycle (App. A.1.1), HRP2-JSK seated on it with both hands on the handle (ch. 3),
 Kenshiro's planar legs on the crank (§3.5.5), the V-BOARD scooter (App. A.1.2) and HRP2-JSK standing on it
-(§6.2.1), the Ninebot One S2 unicycle (App. A.1.3) and HRP2-JSK standing on it (§7.3.3). The exported V-BOARD has its actuators but not its firmware (Python, run before every physics step):
-in MuJoCo's own viewer its wheels take torques from ``wheel_s_motor``. Likewise the Ninebot's firmware (Eqs. A.5–A.6)
-is Python: exported, its ``ninebot_motor`` is a bare velocity servo."""
+(§6.2.1), the Ninebot One S2 unicycle (App. A.1.3) and HRP2-JSK standing on it (§7.3.3). The exported V-BOARD
+has its actuators but not its firmware (Python, run before every physics step): in MuJoCo's own viewer its
+wheels take torques from ``wheel_s_motor``. Likewise the Ninebot's firmware (Eqs. A.5–A.6) is Python: exported,
+its ``ninebot_motor`` is a bare velocity servo."""
 
 from shintai.humanoid.ninebot_ride import build_ninebot_stand
 from shintai.humanoid.riding import build_riding

@@ -16,6 +16,7 @@ from shintai.scenarios.registry import Param
 VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}
 V_DIVERGED = 0.3  # m/s, the brief's threshold for speed_diverged / the time to |v| > 0.3 m/s
 TAIL_S = 2.0  # s, "final" values are means over the last 2 s (one mini-batch)
+V_SETTLED = 0.01  # m/s, chosen: "settled" = |v| below 1 cm/s from then to the end of the run (Fig. 7.9 (d)'s ≈18 s)
 # the V-BOARD's learned v gains (K_P, K_I, K_D) to compare with: MLC at the thesis's rates on Table 6.2's plant
 # (humanoid.speed-governing's notes: our riding V-BOARD run falls before its gains grow; the thesis's Fig. 6.15 (b1)
 # gains are of the same O(1e-3))
@@ -69,6 +70,9 @@ def summary(run) -> dict:
     out["speed_diverged"] = int(fast.size > 0)
     out["t_speed_03_s"] = float(t[fast[0]]) if fast.size else math.nan
     out["max_abs_v_mps"] = float(np.max(np.abs(v[after]))) if after.any() else math.nan
+    above = np.flatnonzero(after & (np.abs(v) >= V_SETTLED))
+    settled = after & (np.arange(t.size) > (above[-1] if above.size else -1))
+    out["t_settled_s"] = float(t[settled][0]) if settled.any() and not ride.fallen() else math.nan
     tail = t >= t[-1] - TAIL_S
     out["final_v_mps"] = float(np.mean(v[tail]))
     out["final_abs_v_mps"] = float(np.mean(np.abs(v[tail])))

@@ -56,7 +56,7 @@ experiment(
               kind="reproduction", row="000:fig7.10"),
     ],
     thesis={"t_settled_s": ThesisValue(18.0, "seed 000 §7.3.3, Fig. 7.9 (a4) 't = 18.0[s]', Fig. 7.10 "
-                                             "'(18[s]付近)にはエラーを小さく抑える'", None),
+                                             "'(18[s]付近)にはエラーを小さく抑える'", "t_settled_as_written_s"),
             "v_gain_ratio": ThesisValue(0.1, "seed 000 §7.3.3: '10 分の 1 未満'", "v_gain_ratio_to_vboard_as_written")},
     rig=rig, metrics=metrics, plots=plots, video=True,
     variants=lambda p: tuple(VARIANTS) if p["variants"] == "both" else (p["variants"],),
