@@ -426,11 +426,11 @@ ROWS = (
                "0–2 s before any learning; the Ninebot's K_P^v, K_D^v (sic) learnt values are '平行二輪電動スクーター"
                "での学習値の 10 分の 1 未満' while K_P^traj grows large — trajectory correction dominates",
         difference="humanoid.unicycle-learning: η for K^traj (2×10⁻⁵) and T_traj (0.05 s) chosen; variant "
-                    "'reference' (ours) shifts the LIP tracking's references by the correction instead of p^{d*}",
+                   "'reference' (ours) shifts the LIP tracking's references by the correction instead of p^{d*}",
         why_not="as written (Eq. 7.2 after the LIP tracking) the correction runs away: hrpsys's LIP gains make its "
                 "static gain negative (x = c/(1 + k1 + k3) = −2.3 c), |v| > 0.3 m/s at 13.8 s, falls at 14.9 s; "
-                "the 'reference' variant settles v to 4 mm/s in ≈20 s with K_I^traj, not K_P^traj, dominant, "
-                "K^v 6×10⁻⁵ of the V-BOARD's",
+                "the 'reference' variant keeps |v| < 1 cm/s from 9.2 s (4 mm/s at 30 s) with K_I^traj, not K_P^traj, "
+                "dominant, K^v 6×10⁻⁵ of the V-BOARD's",
     ),
     Row(
         key="000:fig7.10",
