@@ -113,6 +113,21 @@ def test_modified_stabilizer_adds_c_to_p_d_star():
         ModifiedStabilizer(body, "before")
 
 
+def test_lip_tracking_reverses_a_static_correction_of_p_d_star():
+    """Why ``humanoid.unicycle-learning``'s as-written variant runs away (its notes): at rest (p = x, ẋ = 0) the LIP law
+    p* = p_ref + k1 (x_ref − x) + k3 (p_ref − p) + c with p* = x has x = c / (1 + k1 + k3), of the opposite sign for
+    hrpsys's gains, while shifting both references by c ('reference') gives x = c."""
+    from shintai.humanoid.stabilizer import LIP_K
+
+    k1, _, k3 = LIP_K
+    c = 0.01
+    x_after = c / (1 + k1 + k3)
+    assert x_after == pytest.approx(c + k1 * (0 - x_after) + k3 * (0 - x_after))  # the equilibrium
+    assert x_after < 0 and x_after == pytest.approx(-2.3 * c, rel=0.02)
+    x_ref = c  # references shifted by c: p* = c + k1 (c − x) + k3 (c − x) = x at x = c
+    assert c + k1 * (c - x_ref) + k3 * (c - x_ref) == pytest.approx(x_ref)
+
+
 def test_unicycle_scenarios_run_short(tmp_path):
     out = run_scenario("humanoid.unicycle-no-learning", out=tmp_path / "a", quiet=True, overrides={"duration_s": "0.6"})
     assert "error" not in out, out.get("error")
