@@ -37,10 +37,10 @@ from shintai.humanoid import fill_keyframe, scene_spec, set_joints
 from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS, STANDING_POSTURE, SUBSTEPS
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.foot_attitude import quat_to_rot
-from shintai.humanoid.mlc import EPS_V, MLC, MLC_V, SIGMA_V, MLCParams
+from shintai.humanoid.mlc import MLC, MLC_V, SIGMA_V, MLCParams
 from shintai.humanoid.prior_value_integrator import PID
 from shintai.humanoid.robots.hrp2 import LEG, SIDES, add_hrp2, side_posture
-from shintai.humanoid.speed_governing import foot_pitch_increments, lowpass  # noqa: F401 (lowpass: doc)
+from shintai.humanoid.speed_governing import foot_pitch_increments
 from shintai.humanoid.stabilizer import StabilizerModule
 from shintai.humanoid.standing import Standing
 from shintai.humanoid.vboard_ride import CHANNELS as RIDE_CHANNELS
@@ -63,7 +63,6 @@ JOY_FULL = 0.05  # rad of vehicle roll at full stick (chosen, the operator model
 ALPHA = 0.5 * CONTROL_PERIOD  # rad per tick at full stick: φ_C^d moves ≤ 0.5 rad/s (Eq. 7.6's α, not given)
 COM_ITERATIONS = 3
 CHANNELS = {**RIDE_CHANNELS, **declare("zmp_mod", "ref:chest_roll", kind=SET)}
-__all__ = ["EPS_V"]
 
 
 def standing_posture(model: mujoco.MjModel, n: NinebotSpec = NINEBOT) -> np.ndarray:
