@@ -67,8 +67,8 @@ def replay_vs_history(ctx, db, log) -> None:
         ax0.legend(fontsize=8)
         ax0.set_title(f"taught: dots = the {len(nodes)} history entries' node postures", fontsize=9)
         ax1.set_xlabel("replay time [s]")
-        ax1.set_title("history replayed at constant length speed: dots = the same nodes (§5.9.2: the time axis "
-                      "is not similar)", fontsize=9)
+        ax1.set_title("replayed at constant length speed: dots = the same nodes\n(§5.9.2: the time axis is "
+                      "not similar)", fontsize=9)
 
 
 def triggers(ctx, log, levels) -> None:

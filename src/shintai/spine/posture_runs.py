@@ -18,9 +18,7 @@ from shintai.core.runtime import Loop
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.posture_database import PostureDatabase
-from shintai.spine.posture_session import (
-    EXEC_DWELL_S, LIMP, MOVE, PLAY, SETTLE_S, Action, Experimenter, Supervisor,
-)
+from shintai.spine.posture_session import EXEC_DWELL_S, LIMP, MOVE, PLAY, SETTLE_S, Action, Experimenter, Supervisor
 from shintai.spine.robots import CLA, SAMPLE_PERIOD_S
 from shintai.spine.tactile import STRONG, WEAK, TriggerLevels
 from shintai.spine.teach_runs import teaching_body
@@ -32,9 +30,9 @@ MOTION_A_DEG, MOTION_B_DEG = (0.0, 18.0, 0.0), (-12.0, 5.0, 8.0)
 MOTION_STEPS = 5
 
 
-def session_actions(weak_n: float, strong_n: float, execute: bool = True, short: bool = False) -> list[Action]:
-    """The default session (module doc): pushes on the shoulder block (x forward, y left) [N]. ``short``: one
-    strong and one weak push, the replay (and the execution), for tests."""
+def session_actions(weak_n: float, strong_n: float, execute: bool = True, size: str = "full") -> list[Action]:
+    """The session (module doc): pushes on the shoulder block (x forward, y left) [N]. ``size`` "short": one
+    strong and one weak push, then the replay (and the execution); "tiny": one weak push and the replay."""
     acts = [
         Action("push", (strong_n, 0.0, 0.0), teach_deg=TEACH_FORWARD_DEG, expect=STRONG),
         Action("push", (0.0, weak_n, 0.0), expect=WEAK),
@@ -44,8 +42,10 @@ def session_actions(weak_n: float, strong_n: float, execute: bool = True, short:
         Action("push", (0.0, -weak_n, 0.0), expect=WEAK),
         Action("replay"),
     ]
-    if short:
+    if size == "short":
         acts = [acts[0], acts[1], acts[-1]]
+    elif size == "tiny":
+        acts = [acts[1], acts[-1]]
     if execute:
         motion = np.linspace(MOTION_A_DEG, MOTION_B_DEG, MOTION_STEPS)
         acts.append(Action("execute", motion_deg=tuple(map(tuple, motion))))

@@ -37,7 +37,8 @@ from shintai.spine.tactile import STRONG, Fired, PushTrigger, TriggerLevels, mom
 D_LEN_MM = 3.0  # node threshold in length space: chosen ≈ Cla's 5° whole-spine pitch (3.2 mm; roll 5.9, yaw 2.4)
 D_SENSOR_DEG = 5.0  # posture-sensor threshold (§5.9.1 uses one, value not given): chosen 5°
 MOVE_S = 1.0  # a nudge's minimum-jerk move (chosen)
-SETTLE_S = 0.6  # after a move, before the trigger re-arms and takes its tension baseline (chosen)
+SETTLE_S = 1.0  # after a move, before the trigger re-arms and takes its tension baseline (chosen: at 0.6 s a
+# short run's |τ̂| still rose to 0.16 N m, past the weak level, within 0.3 s of re-arming — tensions still settling)
 BASELINE_S = 2.0  # the tension baseline follows slow drift (first order, this time constant) between pushes:
 # tensions keep creeping for seconds after a move (the length integral, reel friction); a 0.4 s push passes (chosen)
 LIMP_SETTLE_S = 1.5  # after teaching, before re-arming: the hand lets go meanwhile (chosen)

@@ -94,13 +94,15 @@ class PushTrigger:
 
     A push starts when |τ̂| ≥ weak; it fires STRONG the moment |τ̂| ≥ strong; otherwise, when it ends (|τ̂|
     below ``release`` × its peak) after at least ``min_push_s``, it fires WEAK with the axis and sign of the
-    largest component at the peak and a nudge of gain × peak."""
+    largest component at the peak and a nudge of gain × peak. After a strong push nothing fires until |τ̂| has
+    fallen below the weak level (the same push is not felt twice)."""
 
     def __init__(self, levels: TriggerLevels = TriggerLevels()):
         self.levels = levels
         self.reset()
 
-    def reset(self) -> None:
+    def reset(self, latched: bool = False) -> None:
+        self.latched = latched  # after a strong push: nothing until |τ̂| falls below the weak level
         self.start: float | None = None
         self.peak = 0.0
         self.peak_tau = np.zeros(3)
@@ -109,6 +111,9 @@ class PushTrigger:
         lv = self.levels
         tau = np.asarray(tau, dtype=float)
         size = float(np.linalg.norm(tau))
+        if self.latched:
+            self.latched = size >= lv.weak_nm
+            return None
         if self.start is None:
             if size < lv.weak_nm:
                 return None
@@ -119,7 +124,7 @@ class PushTrigger:
         sign = float(np.sign(self.peak_tau[axis]))
         if size >= lv.strong_nm:
             fired = Fired(STRONG, t, axis, sign, self.peak)
-            self.reset()
+            self.reset(latched=True)
             return fired
         if size < lv.release * self.peak:
             long_enough = t - self.start >= lv.min_push_s
@@ -129,7 +134,7 @@ class PushTrigger:
         return None
 
 
-def nudge_target(model: SpineModel, estimate_whole, fired: Fired) -> np.ndarray:
+def nudge_target(model: SpineModel, estimate_whole, fired: Fired) -> tuple[np.ndarray, np.ndarray]:
     """§5.9.3's weak push: the estimated whole-spine posture Θ (from the NN) changed by the nudge on the
     pressed axis, as target muscle lengths by eq. 4.25 of the uniform bend; returns (lengths (m,), Θ')."""
     whole = np.asarray(estimate_whole, dtype=float).copy()

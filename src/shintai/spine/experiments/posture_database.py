@@ -16,7 +16,8 @@ from shintai.spine.posture_session import D_LEN_MM
 from shintai.spine.robots import CLA
 from shintai.spine.tactile import TriggerLevels
 
-Q_DEF = "seed 003 §5.9.1 'データベースのいずれの要素からも一定距離以上離れたデータは、新しい要素としてデータベースに追加する'"
+Q_DEF = ("seed 003 §5.9.1 'データベースのいずれの要素からも一定距離以上離れたデータは、"
+         "新しい要素としてデータベースに追加する'")
 Q_TRIG = "seed 003 §5.9.3 '弱く押されたときは相対的な姿勢の指示とみなし、強く押されたときは絶対的な姿勢の指示とみなす'"
 Q_REPLAY = "seed 003 §5.9.2 '姿勢履歴の再生により … 大量のデータを記録することなく、教示動作の再生が可能になる'"
 Q_TIME = "seed 003 §5.9.2 '一定の速さで姿勢履歴を辿ると, 教示時の動作とは時間軸は相似でない動作になる'"
@@ -39,7 +40,8 @@ Q_TIME = "seed 003 §5.9.2 '一定の速さで姿勢履歴を辿ると, 教示�
         Param("strong_nm", TriggerLevels.strong_nm, "strong trigger level on |τ̂| [N m] (chosen)", lo=0.02, hi=10.0),
         Param("teach_kgf", 1.0, "T-mode tension while taught (§4.2.1: e.g. 1 kgf)", lo=0.1, hi=5.0),
         Param("nn_iterations", 1000, "L-BFGS iterations of the §4.4.3 NN (8-40-15)", lo=10, hi=20000),
-        Param("session", "full", "full: 2 strong + 4 weak pushes; short: 1 + 1 (tests)", choices=("full", "short")),
+        Param("session", "full", "full: 2 strong + 4 weak pushes; short: 1 + 1; tiny: 1 weak (tests)",
+              choices=("full", "short", "tiny")),
         Param("execute", True, "also execute a model motion A → B by nearest nodes (Fig. 5.29)"),
     ],
     checks=[
@@ -82,7 +84,7 @@ def posture_database_scenario(ctx):
     nn = inverse_model.NeuralInverse(CLA.model, (40,), np.random.default_rng(ctx.rng.integers(2**32)))
     nn.fit(iterations=p["nn_iterations"], record_every=max(1, p["nn_iterations"] // 10))
     levels = TriggerLevels(weak_nm=p["weak_nm"], strong_nm=p["strong_nm"])
-    actions = session_actions(p["weak_push_n"], p["strong_push_n"], p["execute"], short=p["session"] == "short")
+    actions = session_actions(p["weak_push_n"], p["strong_push_n"], p["execute"], p["session"])
     ctx.progress(0.1, "session")
     run = run_session(actions, nn, p["d_len_mm"], p["d_sensor_deg"] or None, levels, p["teach_kgf"],
                       film=lambda body: film(ctx, body, **CLA_VIEW))
