@@ -98,6 +98,8 @@ def session_metrics(run: dict, levels: TriggerLevels) -> dict[str, float]:
         m[f"triggers_{level}_as_meant"] = sum(actions[i].expect == level and i in first and first[i].level == level
                                               for i in pushes)
     m["pushes_missed"] = sum(i not in first for i in pushes)
+    m["weak_axis_as_pushed"] = sum(f.level == WEAK and (f.axis, f.sign) == _pushed_axis(actions[i].force_n)
+                                   for i, f in first.items() if i in pushes)
     m["triggers_unprompted"] = sum(i not in pushes for _, i in log.fired)
     m["triggers_extra"] = sum(i in pushes for _, i in log.fired) - sum(i in first for i in pushes)
     push_times = np.array([t for t, _ in log.force]) if log.force else np.zeros(0)
@@ -115,6 +117,13 @@ def session_metrics(run: dict, levels: TriggerLevels) -> dict[str, float]:
     m |= _replay_metrics(db, log)
     m |= _execute_metrics(db, log)
     return m
+
+
+def _pushed_axis(force) -> tuple[int, float]:
+    """The whole-spine axis a horizontal push on the shoulders bends about when the spine is straight: x
+    (forward) → +pitch, y (left) → −roll."""
+    fx, fy = force[0], force[1]
+    return (1, float(np.sign(fx))) if abs(fx) >= abs(fy) else (0, float(-np.sign(fy)))
 
 
 def _peak(log, first, actions, level) -> float:

@@ -39,6 +39,9 @@ D_SENSOR_DEG = 5.0  # posture-sensor threshold (§5.9.1 uses one, value not give
 MOVE_S = 1.0  # a nudge's minimum-jerk move (chosen)
 SETTLE_S = 1.0  # after a move, before the trigger re-arms and takes its tension baseline (chosen: at 0.6 s a
 # short run's |τ̂| still rose to 0.16 N m, past the weak level, within 0.3 s of re-arming — tensions still settling)
+ARM_STILL_NM = 0.05  # the trigger arms only once the tensions have held still for STILL_S: no 20 ms sample of
+# the last STILL_S differs from the newest by this much as a moment (chosen: a third of the weak level; with a fixed
+# 1.5 s wait the first default run fired a weak trigger with no push, on tensions still settling after teaching)
 BASELINE_S = 2.0  # the tension baseline follows slow drift (first order, this time constant) between pushes:
 # tensions keep creeping for seconds after a move (the length integral, reel friction); a 0.4 s push passes (chosen)
 LIMP_SETTLE_S = 1.5  # after teaching, before re-arming: the hand lets go meanwhile (chosen)
@@ -98,7 +101,8 @@ class Supervisor(Module):
         self.player: SequencePlayer | None = None
         self.log = SessionLog()
         self.next_sample = 0.0
-        self.recent: deque = deque()
+        self.recent: deque = deque()  # the last STILL_S of 20 ms samples: encoders and tensions
+        self.recent_T: deque = deque()
         self.action = -1  # index of the person's current action (for the log)
 
     @property
@@ -140,7 +144,7 @@ class Supervisor(Module):
         elif self.state in (MOVE, PLAY):
             self._l_r = self.player.advance(t - self._t_prev)
             if not self.player.busy:
-                self.state, self.arm_at, self.base = HOLD, t + SETTLE_S, None
+                self.state, self.arm_at, self.base, self.arms = HOLD, t + SETTLE_S, None, None
         elif self.state == LIMP:
             self._limp(t, enc)
         self._t_prev = t
@@ -164,13 +168,21 @@ class Supervisor(Module):
         lg.whole.append(whole)
         lg.state.append(self.state)
         self.recent.append(enc.copy())
+        self.recent_T.append(np.asarray(snap["tension"], dtype=float).copy())
         while len(self.recent) > max(1, int(round(STILL_S / SAMPLE_PERIOD_S))) + 1:
             self.recent.popleft()
+            self.recent_T.popleft()
 
     def _armed(self, t, enc, T) -> None:
-        if self.base is None:  # the tension the spine holds with; moment arms at the estimated posture
-            self.base = T.copy()
-            self.arms = moment_arms(self.model, self.estimate_whole(enc))
+        if self.base is None:  # arming: moment arms at the estimated posture, then wait for still tensions
+            if self.arms is None:
+                self.arms = moment_arms(self.model, self.estimate_whole(enc))
+            window = np.array(self.recent_T)
+            if len(window) <= int(round(STILL_S / SAMPLE_PERIOD_S)):
+                return
+            if float(np.linalg.norm((window - window[-1]) @ self.arms, axis=1).max()) >= ARM_STILL_NM:
+                return
+            self.base = T.copy()  # the tension the spine holds with
             self.trigger.reset()
             return
         tau = push_moment(self.arms, T, self.base)
@@ -199,7 +211,7 @@ class Supervisor(Module):
         if moved and still:
             self._l_r = enc.copy()
             self._modes, self._new_modes = np.full(self.model.m, int(Mode.L)), True
-            self.state, self.arm_at, self.base = HOLD, t + LIMP_SETTLE_S, None
+            self.state, self.arm_at, self.base, self.arms = HOLD, t + LIMP_SETTLE_S, None, None
 
     def _nudge(self, fired: Fired, enc, t) -> None:
         """§5.9.3 weak push: NN posture + force-dependent angle → eq. 4.25 lengths; §4.7: L shortening, LL
