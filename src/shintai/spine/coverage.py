@@ -497,6 +497,10 @@ ROWS = (
         result="§5.9.2: Fig. 5.30's bottom rows replay the taught motion from the posture history ('上段の姿勢に対応す"
                "ると思われる姿勢'); the replay's time axis is not similar to the teaching's, unlike 20 ms direct "
                "teaching; §5.9.4: the A ⇒ B motion of Fig. 5.29 was not tried. Photographs, no number",
-        not_built=ISSUE_17 + ": spine.posture-database",
+        difference="on Cla (E9's arms-down set-up), not Kenta: our Kenta spine has no validated controller set-up; "
+                   "Cla has no touch sensor, so a push is felt through its tension sensors as a moment on the spine "
+                   "(τ̂ = Jᵀ ΔT); the threshold (3 mm ≈ 5° whole-spine pitch), the two push levels (0.15 / 0.6 N m), "
+                   "the nudge gain and the replay speed are ours (the thesis gives none); the posture-sensor split "
+                   "is off by default (Cla's pelvis is fixed; its accelerometers add only motion noise, up to 30°)",
     ),
 )
