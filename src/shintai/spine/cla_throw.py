@@ -100,7 +100,7 @@ def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) ->
     series (every ms): the hand's speed [m/s], the spine's whole-body
     angles [deg] and the shoulder and elbow angles [rad], and the pattern."""
     body = ClaBody("seated", desk=False)
-    control, zero = spine_control(body)
+    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
     pattern = ThrowPattern(zero, p["spine_s"], p["shoulder_s"], p["elbow_s"], sequenced)
     loop = Loop(body, stages=[[pattern], [control]], channels=SETPOINTS)
     rows, t0 = [], body.t

@@ -53,6 +53,7 @@ def plot(ctx, runs: dict) -> None:
     summary="Whole-body Cla (MuJoCo, muscle spine) throws overhand: spine, then shoulder, then elbow started so "
             "their speed peaks coincide; peak hand speed with the spine vs the same throw with the spine locked",
     params=[
+        Param("calibration_s", 1.0, "§4.6.4 encoder zeroing before the run [s]", lo=0.1, hi=5.0),
         Param("spine_s", 0.6, "the spine's throw move (minimum jerk) [s] (chosen)", lo=0.1, hi=2.0),
         Param("shoulder_s", 0.3, "the shoulder's throw move [s] (chosen)", lo=0.05, hi=2.0),
         Param("elbow_s", 0.2, "the elbow's and wrist's throw move [s] (chosen)", lo=0.05, hi=2.0),
