@@ -55,9 +55,9 @@ def _set(m, d, lean: float, arm) -> None:
     mujoco.mj_comPos(m, d)
 
 
-def hand_at(m, lean: float, arm) -> np.ndarray:
+def hand_at(m, lean: float, arm, d: mujoco.MjData | None = None) -> np.ndarray:
     """The right hand's centre for spine lean ``lean`` [rad] and arm joints ``arm`` (kinematics only)."""
-    d = mujoco.MjData(m)
+    d = mujoco.MjData(m) if d is None else d
     _set(m, d, lean, arm)
     return d.site_xpos[m.site("hand_r").id].copy()
 
@@ -100,9 +100,9 @@ def reach_at_desk(m, lean: float = 0.0) -> float:
     """The farthest x [m] the right hand's centre reaches at the desk's contact height with the spine leaning
     ``lean`` (elbow and wrist straight, the shoulder swept)."""
     z = CLA_DESK_HEIGHT_M + CLA_HAND_RADIUS_M
-    best = -np.inf
-    for sp in np.linspace(0.0, 3.0, 601):
-        p = hand_at(m, lean, (sp, 0.0, 0.0))
+    best, d = -np.inf, mujoco.MjData(m)
+    for sp in np.linspace(0.0, 3.0, 301):
+        p = hand_at(m, lean, (sp, 0.0, 0.0), d)
         if p[2] >= z:
             best = max(best, p[0])
     return float(best)
