@@ -321,8 +321,8 @@ ROWS = (
         result="§5.2.2: the spine is controlled until the shoulders are level. Photographs, no number",
         difference="on our whole-body MuJoCo Cla (muscle spine, L mode) the disturbance is ours, a stool tilted "
                    "10° in roll, then to (−6°, 8°) in roll and pitch: the shoulders settle within 0.3° of level "
-                   "(10° and 11° without levelling) after 1–2 sense → NN posture → move rounds; a round sensed while "
-                   "the stool was still moving overshoots once",
+                   "(10° and 11° without levelling) after two sense → NN posture → move rounds per tilt; a round "
+                   "sensed while the stool was still moving overshoots once (−14°)",
     ),
     Row(
         key="003:fig5.3",
