@@ -45,7 +45,8 @@ from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
 from shintai.spine.cla import calibrated, cla_gains
 from shintai.spine.cla_crawl import _pos_actuator
-from shintai.spine.control import Mode, MuscleControl
+from shintai.spine.control import SETPOINTS, Mode, MuscleControl
+from shintai.spine.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import (
     CLA,
     CLA_ARM_KG,
@@ -98,6 +99,7 @@ SEATED_POSE = {"hip": 1.5708, "knee": 1.5708, "shoulder_pitch": 0.0, "elbow": 0.
 STAND_HEIGHT_M = -CLA_HIP_M[2] + CLA_THIGH_M + CLA_SHANK_M + 2 * CLA_FOOT_HALF_M[2]  # pelvis origin above floor
 ROBOT, WORLD = 1, 1  # contact bits: robot contact geoms (hands, sole corners) touch world geoms and objects only
 LIMB_ROLL_AXIS = {"r": [-1.0, 0.0, 0.0], "l": [1.0, 0.0, 0.0]}  # + = outward for both sides
+SEAT_KP, SEAT_KV, SEAT_TORQUE_NM = 300.0, 10.0, 60.0  # the tilting seat's drive (chosen: stiff, a person's hands)
 
 
 def _sign(side: str) -> float:
@@ -114,9 +116,11 @@ def _hinge(body, name: str, axis, lo: float, hi: float) -> None:
                    damping=0.02, armature=1e-4)
 
 
-def build_spec(posture: str = "seated", desk: bool = True) -> mujoco.MjSpec:
+def build_spec(posture: str = "seated", desk: bool = True, seat_tilt: bool = False) -> mujoco.MjSpec:
     """Whole-body Cla (module docstring), ``posture`` "seated" (on a stool; ``desk``: a desk and objects in
-    front) or "standing" (free on the floor)."""
+    front) or "standing" (free on the floor). ``seat_tilt`` (seated): the seat tilts with the pelvis on two
+    hinges at the seat's top, ``seat_roll`` (+ = to the right) and ``seat_pitch`` (+ = forward), each driven by a
+    stiff position actuator of the same name (the experimenter tilting the chair, §5.2.2's disturbance)."""
     if posture not in POSTURES:
         raise ValueError(f"posture must be one of {POSTURES}, got {posture!r}")
     spec = build_spine(CLA, loads=CLA_TRUNK_LOADS[:1], joint="hinge", interference=True, timestep=CLA_TIMESTEP_S)
@@ -137,15 +141,24 @@ def build_spec(posture: str = "seated", desk: bool = True) -> mujoco.MjSpec:
         pelvis.pos = [0, 0, STAND_HEIGHT_M + 0.002]
         pelvis.add_freejoint(name="root")
     else:
-        world.add_geom(name="seat", type=mujoco.mjtGeom.mjGEOM_BOX, size=[*CLA_SEAT_HALF_M, 0.012],
-                       pos=[-0.02, 0, CLA_SEAT_HEIGHT_M - 0.012], rgba=[0.55, 0.4, 0.3, 1], contype=0,
-                       conaffinity=WORLD)
+        seat_top = CLA_SEAT_HEIGHT_M - PELVIS_HEIGHT_M  # in the pelvis frame
+        holder = pelvis if seat_tilt else world
+        holder.add_geom(name="seat", type=mujoco.mjtGeom.mjGEOM_BOX, size=[*CLA_SEAT_HALF_M, 0.012],
+                        pos=[-0.02, 0, (seat_top if seat_tilt else CLA_SEAT_HEIGHT_M) - 0.012],
+                        rgba=[0.55, 0.4, 0.3, 1], contype=0, conaffinity=WORLD)
+        if seat_tilt:
+            for name, axis in (("seat_roll", [1, 0, 0]), ("seat_pitch", [0, 1, 0])):
+                pelvis.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_HINGE, axis=axis, pos=[0, 0, seat_top],
+                                 range=[-0.6, 0.6], limited=True, damping=1.0, armature=0.01)
     _add_arms(spec)
     _add_head(spec)
     _add_legs(spec)
     for joint in LIMB_JOINTS:
         limit = CLA_NECK_TORQUE_NM if joint.startswith("neck") else CRAWL_LIMB_TORQUE_NM
         _pos_actuator(spec, joint, CRAWL_LIMB_KP, CRAWL_LIMB_KV, limit)
+    if posture == "seated" and seat_tilt:
+        for joint in ("seat_roll", "seat_pitch"):
+            _pos_actuator(spec, joint, SEAT_KP, SEAT_KV, SEAT_TORQUE_NM)
     for joint in SPINE_JOINTS:
         spec.add_equality(name=f"lock_{joint}", type=mujoco.mjtEq.mjEQ_JOINT, name1=joint, active=False,
                           solref=[0.001, 1.0], solimp=[0.9999, 0.9999, 0.001, 0.5, 2])
@@ -289,8 +302,10 @@ class ClaBody(SpineBody):
     ``sole_force`` (8,) the FSRs [N] (r1..r4, l1..l4), ``spine_locked`` (bool); every named sensor
     (``fsr_*``, ``hand_r_pos``, ``hand_l_pos``, ``gaze``, ``acc_chest``, ``acc_waist``) as MujocoBody does."""
 
-    def __init__(self, posture: str = "seated", desk: bool = True, control_period: float | None = None):
-        super().__init__(CLA, timestep=CLA_TIMESTEP_S, control_period=control_period, spec=build_spec(posture, desk))
+    def __init__(self, posture: str = "seated", desk: bool = True, control_period: float | None = None,
+                 seat_tilt: bool = False):
+        super().__init__(CLA, timestep=CLA_TIMESTEP_S, control_period=control_period,
+                         spec=build_spec(posture, desk, seat_tilt))
         self.posture = posture
         m = self.model
         self._locks = np.array([self.id("equality", f"lock_{j}") for j in SPINE_JOINTS])
@@ -384,10 +399,24 @@ def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0) -
     return control, CLA.model.lengths(np.zeros(3 * CLA.n))
 
 
+def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, first=(), last=(),
+               recorder=None) -> Loop:
+    """A Loop whose first stage (``first``: modules writing ``goal`` and limb targets) is followed by the
+    posture player (``move_s`` per goal) and then the muscle controller with ``last`` (observers)."""
+    stages = [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]
+    return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
+
+
+def whole(theta) -> np.ndarray:
+    """Whole-spine (roll, pitch, yaw) of a posture θ (…, 3n): the sums over the joints (uniform bend)."""
+    theta = np.asarray(theta, dtype=float)
+    return theta.reshape(theta.shape[:-1] + (CLA.n, 3)).sum(axis=-2)
+
+
 def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
     """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
     Loop(body, [control]).run(seconds)
 
 
-__all__ = ["ClaBody", "build_spec", "spine_control", "settle", "start_targets", "LIMB_JOINTS", "SPINE_JOINTS",
-           "OBJECTS", "POSTURES", "PELVIS_HEIGHT_M"]
+__all__ = ["ClaBody", "build_spec", "spine_control", "spine_loop", "whole", "settle", "start_targets",
+           "LIMB_JOINTS", "SPINE_JOINTS", "OBJECTS", "POSTURES", "PELVIS_HEIGHT_M"]
