@@ -1,6 +1,6 @@
-"""Cla standing: the arm-swing reflex of §5.2.7 that keeps it near the front–back centre of the soles while the spine bends
-sideways (the centre of pressure itself, eq. 3.5 from the four FSRs of each foot, is the whole-body Cla's
-snapshot ``cop``: :class:`~shintai.spine.cla_body.ClaBody`).
+"""Cla standing: the arm-swing reflex of §5.2.7 that keeps the centre of pressure near the front–back centre of
+the soles while the spine bends sideways (the centre of pressure itself, eq. 3.5 from the four FSRs of each
+foot, is the whole-body Cla's snapshot ``cop``: :class:`~shintai.spine.cla_body.ClaBody`).
 
 §5.2.7 (Fig. 5.8): "ゆっくりと左右の脊椎を屈曲する運動を行う. … 常に足裏の前後方向の中心付近に重心の投影点が来る
 ように, 両腕を前後にゆっくりと動かしながらバランスをとる. 足裏の重心投影点が足裏中心より前方に来たら, 両腕を後に

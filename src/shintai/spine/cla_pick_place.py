@@ -14,9 +14,10 @@ spine straight. The hand closes (:class:`Grip`) at the end of the reach if its s
 :data:`GRIP_TOLERANCE_M` of the object (a weld, :meth:`~shintai.spine.cla_body.ClaBody.grip`: Cla's hand is
 not described), and opens at the end of the lowering.
 
-**The scene** (:func:`set_scene`): §5.2.1's chair is "足が地面に着かない程度の高さ" — just high enough that the feet
-do not touch the floor. cla_body's stool holds the pelvis 0.45 m up with the soles 0.27 m above its floor; the
-floor is raised here to :data:`FLOOR_CLEARANCE_M` below the soles (the chair's height is not in the text).
+**The scene** (:func:`seated_spec`, :func:`set_scene`): §5.2.1's chair is "足が地面に着かない程度の高さ" — just high
+enough that the feet do not touch the floor. cla_body's stool holds the pelvis 0.45 m up with the soles 0.27 m
+above its floor; the floor is raised here to :data:`FLOOR_CLEARANCE_M` below the soles (the chair's height is not
+in the text).
 """
 
 from __future__ import annotations
@@ -27,10 +28,24 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import LIMB_JOINTS, SPINE_JOINTS, ClaBody, spine_control, start_targets
+from shintai.spine.cla_body import (
+    LIMB_JOINTS,
+    SPINE_JOINTS,
+    ClaBody,
+    build_spec,
+    spine_control,
+    start_targets,
+)
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.cla_reach import ArmIK
-from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M
+from shintai.spine.robots import (
+    CLA,
+    CLA_DESK_HALF_M,
+    CLA_DESK_HEIGHT_M,
+    CLA_DESK_NEAR_M,
+    CLA_HAND_RADIUS_M,
+    CLA_OBJECT_HALF_M,
+)
 
 # Chosen, because not in the text:
 FLOOR_CLEARANCE_M = 0.01  # the soles 1 cm above the floor ("足が地面に着かない程度の高さの椅子", §5.2.1)
@@ -41,24 +56,40 @@ YAW_DEG = 60.0  # the twist toward the desk: two thirds of the range
 GRIP_TOLERANCE_M = 0.01  # the hand closes on the object if its surface is within 1 cm of the object's top
 HOVER_M = 0.04  # the hand's approach height above where it grips or releases
 PLACED_TOLERANCE_M = 0.005  # resting on the desk: the object's bottom within 5 mm of the desk top
+
+
+def over_desk(hand) -> bool:
+    """Would an object held in this hand rest on the desk if let go: the hand above the desk's top (inside its
+    outline, the object's half size in from the edges) and no higher than an object's height + 1 cm above it."""
+    x, y, z = hand
+    h = CLA_OBJECT_HALF_M
+    return bool(CLA_DESK_NEAR_M + h < x < CLA_DESK_NEAR_M + 2 * CLA_DESK_HALF_M[0] - h
+                and abs(y) < CLA_DESK_HALF_M[1] - h
+                and 0.0 < z - CLA_HAND_RADIUS_M - CLA_DESK_HEIGHT_M < 2 * h + 0.01)
 # Key durations [s] (§5.2: "ゆっくり" is all the text says of speed)
 DURATIONS = {"rest": 0.5, "bend": 2.0, "reach": 1.0, "grip": 0.3, "lift": 2.0, "twist": 2.0, "lower": 1.0,
              "release": 0.3, "withdraw": 1.0}
 VARIANTS = ("spine", "locked")
 
 
-def floor_height(body: ClaBody) -> float:
-    """The raised floor: :data:`FLOOR_CLEARANCE_M` below the lowest sole contact sphere at the start."""
-    m, d = body.model, body.data
+def seated_spec() -> mujoco.MjSpec:
+    """cla_body's seated spec with the floor raised to :data:`FLOOR_CLEARANCE_M` below the lowest sole contact
+    sphere (module docstring)."""
+    spec = build_spec("seated")
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, m.key("seated").id)
+    mujoco.mj_forward(m, d)
     soles = [i for i in range(m.ngeom) if (m.geom(i).name or "").startswith("sole_")]
-    return float(min(d.geom_xpos[i][2] - m.geom_size[i][0] for i in soles)) - FLOOR_CLEARANCE_M
+    z = float(min(d.geom_xpos[i][2] - m.geom_size[i][0] for i in soles)) - FLOOR_CLEARANCE_M
+    spec.geom("floor").pos = [0.0, 0.0, z]
+    return spec
 
 
 def set_scene(body: ClaBody) -> dict[str, np.ndarray]:
     """Raise the floor, put the object on it, move the desk's own object out of the way; the grasp point (the
     hand's centre on the object's top), the place spot (the hand's centre when the object rests there)."""
-    z = floor_height(body)
-    body.model.geom_pos[body.id("geom", "floor"), 2] = z
+    z = float(body.model.geom_pos[body.id("geom", "floor"), 2])
     body.place("floor_object", [*OBJECT_XY_M, z + CLA_OBJECT_HALF_M])
     body.place("desk_object", [CLA_DESK_NEAR_M + 0.33, 0.25, CLA_DESK_HEIGHT_M + CLA_OBJECT_HALF_M])
     top = z + 2 * CLA_OBJECT_HALF_M
@@ -91,13 +122,15 @@ def keys(ik: ArmIK, scene: dict, spine: bool, roll_deg: float = ROLL_DEG, yaw_de
 
 class Grip(Module):
     """Cla's right hand: closes on the object when the keys enter ``grip`` if its surface is within
-    :data:`GRIP_TOLERANCE_M` of the object's top, opens when they enter ``release``. It acts on the body
+    :data:`GRIP_TOLERANCE_M` of the object's top, opens when they enter ``release`` (where the hand is then is
+    kept, gripping or not). It acts on the body
     directly (a weld, :meth:`~shintai.spine.cla_body.ClaBody.grip`), as the hand's own servo would."""
 
     def __init__(self, body: ClaBody, player: WholeBodyKeys, obj: str = "floor_object", name: str = "grip"):
         super().__init__(name)
         self.body, self.player, self.obj = body, player, obj
         self.gripped, self.closed_at, self.gap_at_grip = False, None, math.nan
+        self.hand_at_release: np.ndarray | None = None
 
     def update(self, snapshot: Snapshot):
         label = self.player.label(snapshot["t"])
@@ -110,25 +143,28 @@ class Grip(Module):
             if self.gap_at_grip <= GRIP_TOLERANCE_M:
                 self.body.grip("r", self.obj, True)
                 self.gripped = True
-        elif label == "release" and self.gripped:
-            self.body.grip("r", self.obj, False)
-            self.gripped = False
+        elif label == "release" and self.hand_at_release is None:
+            self.hand_at_release = self.body.site_pos("hand_r").copy()
+            if self.gripped:
+                self.body.grip("r", self.obj, False)
+                self.gripped = False
         return None
 
 
 def com_margin(body: ClaBody) -> float:
-    """How far the whole robot's centre of mass projects inside the seat's rectangle [m] (negative: outside)."""
+    """How far the whole robot's centre of mass projects inside the seat's sides [m] (negative: beyond one):
+    the lateral margin, the one a sideways reach spends (Fig. 2.1). Front–back the CoM sits at the stool's front
+    edge from the start (the thighs lie forward over it; cla_body's stool), and the pelvis is fixed on it."""
     m, d = body.model, body.data
-    com = d.subtree_com[body.id("body", "link0")][:2]
+    com_y = d.subtree_com[body.id("body", "link0")][1]
     seat = body.id("geom", "seat")
-    centre, half = d.geom_xpos[seat][:2], m.geom_size[seat][:2]
-    return float(np.min(half - np.abs(com - centre)))
+    return float(m.geom_size[seat][1] - abs(com_y - d.geom_xpos[seat][1]))
 
 
 def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, control_period: float | None = None):
     """A seated Cla in the scene, calibrated, its spine locked unless ``spine``; the keys' player (first stage),
     the hand, the muscle controller (second stage), the scene and the solver's gaps."""
-    body = ClaBody("seated", control_period=control_period)
+    body = ClaBody("seated", control_period=control_period, spec=seated_spec())
     scene = set_scene(body)
     control, zero = spine_control(body)
     if not spine:
