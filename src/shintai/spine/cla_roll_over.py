@@ -11,9 +11,10 @@ the spine or with it locked.
 limbs made to touch the floor (cla_body lets only the hands and soles touch anything). It is calibrated upright
 (§4.6.4, as the robot would be), then laid on its back (:func:`lay`).
 
-**The behaviour** (:func:`keys`, hand-made as the thesis's were): the left arm and the left leg rise, the spine
-twists the shoulders toward the right ("半身を起こす") while the left arm reaches across, then the spine twists
-back the other way with the left hip flexed so that the pelvis follows, and the limbs return to their rest.
+**The behaviour** (:func:`keys`, hand-made as the thesis's were): the right arm goes overhead (out of the way of
+the roll), the left arm points up and the left knee rises; the spine twists the shoulders toward the right ("半身
+を起こす") while the left arm reaches across; then the spine twists back the other way with the left hip flexed
+further so that the pelvis follows; the limbs return to their rest.
 Locked, the same keys run with the spine held straight. The turn of a part is the angle between its front (x
 axis) and the world's up: 0° on the back, 90° on a side, 180° on the front.
 """
@@ -62,11 +63,11 @@ def keys(yaw_deg: float = YAW_DEG) -> list[Key]:
     """Supine → prone toward the right (module docstring); yaw + twists the shoulders to the left."""
     yaw = math.radians(yaw_deg)
     return [Key(REST_S, {}, "rest"),
-            Key(1.5, {"shoulder_pitch_l": 1.57, "hip_l": 0.8, "knee_l": 0.8}, "raise"),
-            Key(1.5, {"spine_yaw": -yaw, "shoulder_pitch_l": 2.2, "shoulder_roll_l": -0.3}, "twist"),
-            Key(1.5, {"spine_yaw": 2.0 * yaw / 3.0, "hip_l": 1.5}, "follow"),
-            Key(1.5, {"spine_yaw": 0.0, "shoulder_pitch_l": 0.0, "shoulder_roll_l": 0.0, "hip_l": 0.0, "knee_l": 0.0},
-                "lie"),
+            Key(1.5, {"shoulder_pitch_r": 2.8, "shoulder_pitch_l": 1.57, "hip_l": 1.0, "knee_l": 1.2}, "raise"),
+            Key(1.5, {"spine_yaw": -yaw, "shoulder_pitch_l": 2.0, "shoulder_roll_l": -0.3}, "twist"),
+            Key(1.5, {"spine_yaw": 2.0 * yaw / 3.0, "hip_l": 1.8}, "follow"),
+            Key(1.5, {"spine_yaw": 0.0, "shoulder_pitch_l": 0.0, "shoulder_roll_l": 0.0, "shoulder_pitch_r": 0.0,
+                      "hip_l": 0.0, "knee_l": 0.0}, "lie"),
             Key(1.0, {}, "hold")]
 
 

@@ -19,7 +19,8 @@ FALLEN_FORCE = 0.5  # fallen: the soles carry less than half the weight (chosen)
 def rig(params, variant):
     body, player, reflex, control, centre = CB.build(variant == "swing", params["cycles"], params["bend_deg"],
                                                      params["half_period_s"])
-    return Rig(body, stages=[[player, reflex], [control]], channels=SETPOINTS, duration=float(player.times[-1]),
+    return Rig(body, stages=[[player, reflex], [control]], channels=SETPOINTS,
+               duration=float(player.times[-1]) * params["fraction"],
                record={10: lambda snap: CB.signals(body, reflex, snap)},
                view={"track": "link0", "distance": 1.0, "azimuth": 150.0, "elevation": -10},
                state={"centre": centre})
@@ -72,7 +73,8 @@ experiment(
             "centre of pressure at the feet's front–back centre; the same bends without the arm swing",
     params=[Param("cycles", 2, "side-bend cycles (right, left)", lo=1, hi=20),
             Param("bend_deg", CB.BEND_DEG, "whole-spine roll to each side [deg]", lo=0.0, hi=90.0),
-            Param("half_period_s", CB.HALF_PERIOD_S, "time from one side to the other [s]", lo=0.5, hi=30.0)],
+            Param("half_period_s", CB.HALF_PERIOD_S, "time from one side to the other [s]", lo=0.5, hi=30.0),
+            Param("fraction", 1.0, "run this fraction of the sequence (tests)", lo=0.05, hi=1.0)],
     checks=(
         Check("cop_excursion_swing_m", "<", "cop_excursion_no_swing_m", Q_REFLEX + ": with the arm swing the CoP "
               "stays closer to the front–back centre", name="arm_swing_narrows_cop", kind="reproduction"),
