@@ -23,13 +23,13 @@ def rig(params, variant):
                duration=float(player.times[-1]) * params["fraction"],
                record={10: lambda snap: CB.signals(body, reflex, snap)},
                view={"track": "link0", "distance": 1.0, "azimuth": 150.0, "elevation": -10},
-               state={"centre": centre})
+               state={"centre": centre, "t0": body.t})  # the keys start after the calibration
 
 
 def _one(run) -> dict:
     log = run.log
     t = log.times("cop")
-    bending = t >= CB.SETTLE_S
+    bending = t >= run.state["t0"] + CB.SETTLE_S  # from the first bend on
     cop, centre = log.values("cop")[bending], log.values("sole_centre_x")[bending]
     err = cop[:, 0] - centre
     weight = run.body.model.body_subtreemass[run.body.id("body", "link0")] * 9.81
