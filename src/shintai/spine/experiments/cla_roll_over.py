@@ -31,7 +31,8 @@ def _one(run) -> dict:
     return {"max_shoulder_turn_deg": float(shoulders.max()), "max_pelvis_turn_deg": float(pelvis.max()),
             "final_shoulder_turn_deg": float(shoulders[-1]), "final_pelvis_turn_deg": float(pelvis[-1]),
             "rolled": int(min(pelvis[-1], shoulders[-1]) > RO.ROLLED_DEG),
-            "max_yaw_deg": float(np.abs(whole[:, 2]).max()), "max_spine_change_deg": float(np.abs(whole - whole[0]).max())}
+            "max_yaw_deg": float(np.abs(whole[:, 2]).max()),
+            "max_spine_change_deg": float(np.abs(whole - whole[0]).max())}
 
 
 def metrics(runs, params):
