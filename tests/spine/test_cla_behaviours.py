@@ -54,12 +54,18 @@ def test_the_spine_brings_the_hand_to_the_floor_object_and_the_place_spot_on_the
     assert gaps_locked["reach"] > 0.05  # the arm alone stays ≈ 9 cm above the object (§5.2.5)
 
 
+def _whole_deg(body):
+    return np.degrees(body.theta().reshape(CLA.n, 3).sum(axis=0))
+
+
 def _run(body, control, keys, seconds):
+    """Play ``keys`` for ``seconds``: the whole-spine (roll, pitch, yaw) change it made [deg]."""
     start = {**start_targets(body.posture), "spine_roll": 0.0, "spine_pitch": 0.0, "spine_yaw": 0.0}
     zero = CLA.model.lengths(np.zeros(3 * CLA.n))
     player = WholeBodyKeys(CLA.model, zero, LIMB_JOINTS, start, keys)
+    before = _whole_deg(body)
     Loop(body, stages=[[player], [control]], channels=SETPOINTS).run(seconds)
-    return np.degrees(body.theta().reshape(CLA.n, 3).sum(axis=0))
+    return _whole_deg(body) - before
 
 
 def test_pick_place_switch_locks_the_spine_and_the_free_spine_bends_sideways():
