@@ -14,10 +14,10 @@ from shintai.spine.scripted import Schedule
 BEND = np.radians([0.0, 30.0, 0.0])  # whole-spine pitch forward 30°
 
 
-def bend(body: ClaBody, seconds: float = 1.5) -> np.ndarray:
+def bend(body: ClaBody, seconds: float = 1.0) -> np.ndarray:
     """Calibrate, command BEND through the muscles, return the whole-spine (roll, pitch, yaw) reached."""
-    control, zero = spine_control(body)
-    Loop(body, stages=[[Schedule({0: {"goal": BEND}})], [PostureTargets(CLA.model, zero, 0.8)], [control]],
+    control, zero = spine_control(body, calibration_s=0.3)
+    Loop(body, stages=[[Schedule({0: {"goal": BEND}})], [PostureTargets(CLA.model, zero, 0.5)], [control]],
          channels=(*SETPOINTS, GOAL, WHOLE_REF)).run(seconds)
     return body.theta().reshape(CLA.n, 3).sum(axis=0)
 
@@ -43,7 +43,7 @@ def test_the_muscles_bend_the_free_spine_and_the_lock_holds_it():
 
 def test_standing_soles_carry_the_weight_and_the_cop_lies_between_the_feet():
     body = ClaBody("standing")
-    control, _ = spine_control(body)
+    control, _ = spine_control(body, calibration_s=0.3)
     settle(body, control, 0.3)
     snap = body.snapshot()
     weight = body.model.body_subtreemass[body.id("body", "link0")] * 9.81

@@ -40,14 +40,16 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from shintai.core.constants import KGF_N
 from shintai.core.runtime import Loop
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
-from shintai.spine.cla import calibrated, cla_gains
+from shintai.spine.cla import cla_gains
 from shintai.spine.cla_crawl import _pos_actuator
 from shintai.spine.control import SETPOINTS, Mode, MuscleControl
 from shintai.spine.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import (
+    CALIBRATION_KGF,
     CLA,
     CLA_ARM_KG,
     CLA_DESK_HALF_M,
@@ -82,6 +84,7 @@ from shintai.spine.robots import (
     CRAWL_LIMB_TORQUE_NM,
     PELVIS_HEIGHT_M,
 )
+from shintai.spine.teaching import zero_encoders
 
 POSTURES = ("seated", "standing")
 SIDES = ("r", "l")
@@ -388,14 +391,15 @@ class ClaBody(SpineBody):
         return snap
 
 
-def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0) -> tuple[MuscleControl, np.ndarray]:
+def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0,
+                  calibration_s: float = 1.0) -> tuple[MuscleControl, np.ndarray]:
     """Cla's muscle controller, calibrated (§4.6.4, :func:`~shintai.spine.cla.calibrated`) and in L mode:
     returns it and the model lengths at the basic posture (the zero of the encoder targets) for
     :class:`~shintai.spine.postures.PostureTargets`. The stages of a Loop are then
     ``[[your schedule writing "goal"], [PostureTargets(CLA.model, zero, move_s)], [control, ...]]`` with the
     channels ``(*control.SETPOINTS, postures.GOAL, postures.WHOLE_REF)``."""
     control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf))
-    calibrated(body, control)
+    zero_encoders(body, control, CALIBRATION_KGF * KGF_N, seconds=calibration_s)  # = cla.calibrated, timed
     control.set_modes(Mode.L)
     return control, CLA.model.lengths(np.zeros(3 * CLA.n))
 

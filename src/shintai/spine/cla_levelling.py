@@ -118,7 +118,7 @@ def run_levelling(p: dict, levelling: bool, inverse: NeuralInverse, camera=None)
     import contextlib
 
     body = ClaBody("seated", desk=False, seat_tilt=True)
-    control, zero = spine_control(body)
+    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
     seat = SeatTilt([(TILT1_S, np.radians(p["tilt1_roll_deg"]), 0.0),
                      (p["tilt2_s"], np.radians(p["tilt2_roll_deg"]), np.radians(p["tilt2_pitch_deg"]))], SEAT_MOVE_S)
     law = Levelling(inverse, zero, p["settle_s"], p["window_s"], p["move_s"], p["deadband_deg"])

@@ -7,8 +7,8 @@ Figs. 5.3–5.4), on the seated whole-body Cla (:mod:`~shintai.spine.cla_body`).
 
 :class:`ThrowPattern` (one Loop module, writing the muscles' length targets and the arm servos' targets):
 
-1. **wind-up** (``WINDUP_S``): the spine to the wind-up posture (leaning back, twisted right) and the right arm
-   cocked behind the head, minimum jerk; then a hold until ``THROW_AT_S``;
+1. **wind-up** (``windup_s``): the spine to the wind-up posture (leaning back, twisted right) and the right arm
+   cocked behind the head, minimum jerk; then a hold of ``HOLD_S`` until the throw starts (``throw_at``);
 2. **throw**: each part moves from its wind-up to its release posture by a minimum-jerk profile of its own
    duration (spine ``spine_s`` > shoulder ``shoulder_s`` > elbow ``elbow_s``), started so that the three
    profiles' velocity peaks coincide (a minimum-jerk move peaks at its middle): the spine starts first, then
@@ -16,7 +16,7 @@ Figs. 5.3–5.4), on the seated whole-body Cla (:mod:`~shintai.spine.cla_body`).
 
 The spine's postures are whole-spine uniform bends whose muscle lengths (eq. 4.25) become the L-mode targets each
 tick, as :class:`~shintai.spine.postures.PostureTargets` does. "Without the spine" (Fig. 5.4) is the same module
-and controller with the spine locked at the wind-up posture (:meth:`ClaBody.lock_spine` at ``THROW_AT_S``).
+and controller with the spine locked at the wind-up posture (:meth:`ClaBody.lock_spine` when the throw starts).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.robots import CLA
 
-WINDUP_S, THROW_AT_S, END_S = 1.5, 2.0, 3.0  # wind-up move, throw start, run end [s from the loop's start]
+HOLD_S, FOLLOW_S = 0.5, 1.0  # the hold after the wind-up, the run after the throw starts [s] (chosen)
 # Postures (chosen: the thesis shows photographs only). Spine whole (roll, pitch, yaw) [deg]: wind-up leaning
 # back 10° and twisted right 30° (the right shoulder back), release leaning forward 15° and twisted left 30°.
 SPINE_WINDUP_DEG = (0.0, -10.0, -30.0)
@@ -53,13 +53,14 @@ class ThrowPattern(Module):
     """The throw's timeline (module docstring); durations [s]; ``starts`` the three parts' throw starts."""
 
     def __init__(self, zero_lengths, spine_s: float, shoulder_s: float, elbow_s: float, sequenced: bool = True,
-                 name: str = "throw"):
+                 windup_s: float = 1.5, name: str = "throw"):
         super().__init__(name)
         self.zero = np.asarray(zero_lengths, dtype=float)
         self.durations = {"spine": spine_s, "shoulder": shoulder_s, "elbow": elbow_s}
-        peak = THROW_AT_S + spine_s / 2  # every part's velocity peak at the spine's
-        # not sequenced (the ablation): every part starts together at THROW_AT_S
-        self.starts = {part: peak - d / 2 if sequenced else THROW_AT_S for part, d in self.durations.items()}
+        self.windup_s, self.throw_at = windup_s, windup_s + HOLD_S
+        peak = self.throw_at + spine_s / 2  # every part's velocity peak at the spine's
+        # not sequenced (the ablation): every part starts together when the throw starts
+        self.starts = {part: peak - d / 2 if sequenced else self.throw_at for part, d in self.durations.items()}
         self.spine = (np.zeros(3), np.radians(SPINE_WINDUP_DEG), np.radians(SPINE_RELEASE_DEG))
         self.t0 = 0.0
 
@@ -71,16 +72,16 @@ class ThrowPattern(Module):
 
     def spine_whole(self, t: float) -> np.ndarray:
         rest, windup, release = self.spine
-        if t < THROW_AT_S:
-            return _blend(rest, windup, t / WINDUP_S)
+        if t < self.throw_at:
+            return _blend(rest, windup, t / self.windup_s)
         return _blend(windup, release, self.progress("spine", t))
 
     def arm(self, t: float) -> dict[str, float]:
         out = {}
         for joint, goal in ARM_WINDUP.items():
             part = "shoulder" if joint in SHOULDER_JOINTS else "elbow"
-            if t < THROW_AT_S:
-                out[joint] = _blend(START_ARM.get(joint, 0.0), goal, t / WINDUP_S)
+            if t < self.throw_at:
+                out[joint] = _blend(START_ARM.get(joint, 0.0), goal, t / self.windup_s)
             else:
                 out[joint] = _blend(goal, ARM_RELEASE[joint], self.progress(part, t))
         return out
@@ -96,12 +97,12 @@ START_ARM = {"shoulder_pitch_r": 0.0, "elbow_r": 0.3}  # the seated keyframe's a
 
 def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) -> dict:
     """One throw on the seated Cla (no desk): the spine free (``with_spine``) or locked at the wind-up posture
-    from ``THROW_AT_S``; ``sequenced`` False starts the three parts together (the ablation). Returns the time
+    when the throw starts; ``sequenced`` False starts the three parts together (the ablation). Returns the time
     series (every ms): the hand's speed [m/s], the spine's whole-body
     angles [deg] and the shoulder and elbow angles [rad], and the pattern."""
     body = ClaBody("seated", desk=False)
-    control, zero = spine_control(body)
-    pattern = ThrowPattern(zero, p["spine_s"], p["shoulder_s"], p["elbow_s"], sequenced)
+    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
+    pattern = ThrowPattern(zero, p["spine_s"], p["shoulder_s"], p["elbow_s"], sequenced, p.get("windup_s", 1.5))
     loop = Loop(body, stages=[[pattern], [control]], channels=SETPOINTS)
     rows, t0 = [], body.t
     hand = body.id("site", "hand_r")
@@ -113,10 +114,10 @@ def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) ->
                      body.joint_qpos("shoulder_pitch_r"), body.joint_qpos("elbow_r")])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
-        loop.run(THROW_AT_S, every={1: sample})
+        loop.run(pattern.throw_at, every={1: sample})
         if not with_spine:
             body.lock_spine(True)
-        loop.run(END_S - THROW_AT_S, every={1: sample})
+        loop.run(FOLLOW_S, every={1: sample})
     a = np.array(rows)
     keys = ("t", "hand_speed_mps", "spine_roll_deg", "spine_pitch_deg", "spine_yaw_deg", "shoulder_rad", "elbow_rad")
     return {**{k: a[:, i] for i, k in enumerate(keys)}, "pattern": pattern}
@@ -126,7 +127,7 @@ def throw_summary(s: dict) -> dict[str, float]:
     """The throw's peak hand speed [m/s] and when it happens [s], each part's peak speed and its time, the spine's
     yaw travel during the throw [deg]."""
     t = s["t"]
-    throw = t >= THROW_AT_S
+    throw = t >= s["pattern"].throw_at
     k = int(np.argmax(np.where(throw, s["hand_speed_mps"], -1.0)))
     dt = np.gradient(t)
     out = {"hand_speed_mps": float(s["hand_speed_mps"][k]), "hand_peak_t_s": float(t[k])}

@@ -58,6 +58,7 @@ def plot(ctx, runs: dict) -> None:
             "the spine posture from muscle lengths by the NN, the spine re-bent until the shoulders are level; "
             "vs no levelling",
     params=[
+        Param("calibration_s", 1.0, "§4.6.4 encoder zeroing before the run [s]", lo=0.1, hi=5.0),
         Param("tilt1_roll_deg", 10.0, "first seat tilt, roll (not in the text)", lo=-25.0, hi=25.0),
         Param("tilt2_roll_deg", -6.0, "second seat tilt, roll", lo=-25.0, hi=25.0),
         Param("tilt2_pitch_deg", 8.0, "second seat tilt, pitch (+: forward)", lo=-20.0, hi=20.0),
@@ -82,7 +83,7 @@ def plot(ctx, runs: dict) -> None:
     thesis={"levelled": ThesisValue("the shoulders are brought level (photographs only, no number)",
                                     "seed 003 " + QUOTE,
                                     "settled_tilt_1_with_deg")},
-    constraints=[(lambda p: p["duration_s"] >= p["tilt2_s"] + 1.0, "duration_s: at least tilt2_s + 1 s"),
+    constraints=[(lambda p: p["duration_s"] > p["tilt2_s"], "duration_s: longer than tilt2_s"),
                  (lambda p: p["tilt2_s"] >= TILT1_S + 1.5, f"tilt2_s: at least {TILT1_S + 1.5:g} s")],
     video=True,
 )

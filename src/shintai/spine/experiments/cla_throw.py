@@ -9,7 +9,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import film, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.cla_throw import THROW_AT_S, run_throw, throw_summary
+from shintai.spine.cla_throw import run_throw, throw_summary
 
 VIEW = {"fps": 60, "width": 480, "height": 360, "track": "link0", "distance": 1.0, "azimuth": 120.0,
         "elevation": -10}
@@ -25,8 +25,9 @@ def plot(ctx, runs: dict) -> None:
     with ctx.figure("hand_speed") as (fig, ax):
         for variant, s in runs.items():
             ax.plot(s["t"], s["hand_speed_mps"], label=LABELS[variant])
-        ax.axvline(THROW_AT_S, color="0.7", lw=0.6)
-        ax.set_xlim(THROW_AT_S - 0.2, s["t"][-1])
+        at = s["pattern"].throw_at
+        ax.axvline(at, color="0.7", lw=0.6)
+        ax.set_xlim(at - 0.2, s["t"][-1])
         ax.set_xlabel("time [s]")
         ax.set_ylabel("hand speed [m/s]")
         ax.set_title("Cla's throw (Figs. 5.3–5.4): hand speed with and without the spine", fontsize=9)
@@ -39,7 +40,7 @@ def plot(ctx, runs: dict) -> None:
             rate = np.gradient(s[key]) / dt
             ax.plot(s["t"], np.abs(np.radians(rate) if key.endswith("deg") else rate), label=label)
         ax.plot(s["t"], s["hand_speed_mps"], "k", lw=1.2, label="hand speed [m/s]")
-        ax.set_xlim(THROW_AT_S - 0.1, THROW_AT_S + 0.8)
+        ax.set_xlim(s["pattern"].throw_at - 0.1, s["pattern"].throw_at + 0.8)
         ax.set_xlabel("time [s]")
         ax.set_title("with the spine: spine, shoulder, elbow started in that order, their speed peaks together",
                      fontsize=9)
@@ -53,6 +54,8 @@ def plot(ctx, runs: dict) -> None:
     summary="Whole-body Cla (MuJoCo, muscle spine) throws overhand: spine, then shoulder, then elbow started so "
             "their speed peaks coincide; peak hand speed with the spine vs the same throw with the spine locked",
     params=[
+        Param("calibration_s", 1.0, "§4.6.4 encoder zeroing before the run [s]", lo=0.1, hi=5.0),
+        Param("windup_s", 1.5, "the wind-up move [s] (chosen; a 0.5-s hold follows)", lo=0.2, hi=5.0),
         Param("spine_s", 0.6, "the spine's throw move (minimum jerk) [s] (chosen)", lo=0.1, hi=2.0),
         Param("shoulder_s", 0.3, "the shoulder's throw move [s] (chosen)", lo=0.05, hi=2.0),
         Param("elbow_s", 0.2, "the elbow's and wrist's throw move [s] (chosen)", lo=0.05, hi=2.0),
