@@ -17,6 +17,8 @@ from shintai.spine.cla_reach import ArmIK
 from shintai.spine.control import SETPOINTS
 from shintai.spine.robots import CLA
 
+CAL_S = 0.3  # a short §4.6.4 zeroing for the tests (the scenarios take 1 s)
+
 
 def test_keys_change_only_what_they_name_and_are_reached_on_time():
     keys = [Key(1.0, {"a": 1.0}, "one"), Key(0.5, {"b": -2.0}, "two")]
@@ -71,8 +73,8 @@ def _run(body, control, keys, seconds):
 def test_pick_place_switch_locks_the_spine_and_the_free_spine_bends_sideways():
     """Both variants as the scenario builds them, the keys' sideways bend commanded for 1 s."""
     bend = [Key(0.8, {"spine_roll": math.radians(60.0)})]
-    free_body, _, _, free_control, _, _ = PP.build(True)
-    locked_body, _, _, locked_control, _, _ = PP.build(False)
+    free_body, _, _, free_control, _, _ = PP.build(True, calibration_s=CAL_S)
+    locked_body, _, _, locked_control, _, _ = PP.build(False, calibration_s=CAL_S)
     assert locked_body.spine_locked and not free_body.spine_locked
     assert _run(free_body, free_control, bend, 1.0)[0] > 30.0
     assert np.abs(_run(locked_body, locked_control, bend, 1.0)).max() < 1.5
@@ -82,7 +84,7 @@ def test_roll_over_switch_locks_the_spine_and_the_free_twist_turns_the_shoulders
     twist = [Key(0.5, {"spine_yaw": math.radians(-60.0)})]
     turned = {}
     for spine in (True, False):
-        body, _, control = RO.build(spine)
+        body, _, control = RO.build(spine, calibration_s=CAL_S)
         assert body.spine_locked != spine
         assert RO.turn_deg(body, "link0") < 5.0  # lying on its back
         whole = _run(body, control, twist, 0.8)
@@ -96,7 +98,7 @@ def test_cop_balance_reflex_answers_the_soles():
     """Standing, the reflex's arm offset moves against the sole CoP's front–back error (eq. 3.5); switched off,
     the arms hold."""
     for swing in (True, False):
-        body, player, reflex, control, centre = CB.build(swing, cycles=1)
+        body, player, reflex, control, centre = CB.build(swing, cycles=1, calibration_s=CAL_S)
         Loop(body, stages=[[player, reflex], [control]], channels=SETPOINTS).run(1.0)
         snap = body.snapshot()
         weight = body.model.body_subtreemass[body.id("body", "link0")] * 9.81

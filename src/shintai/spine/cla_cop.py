@@ -84,14 +84,15 @@ def sole_centre_x(body) -> float:
     return float(np.mean([body.site_pos(f"fsr_{s}{k}")[0] for s in ("r", "l") for k in range(1, 5)]))
 
 
-def build(swing: bool, cycles: int, bend_deg: float = BEND_DEG, half_period_s: float = HALF_PERIOD_S):
+def build(swing: bool, cycles: int, bend_deg: float = BEND_DEG, half_period_s: float = HALF_PERIOD_S,
+          calibration_s: float = 1.0):
     """A standing Cla, calibrated; the bends' player and the reflex (first stage), the muscle controller."""
     from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, spine_control, start_targets
     from shintai.spine.cla_keyframes import WholeBodyKeys
     from shintai.spine.robots import CLA
 
     body = ClaBody("standing")
-    control, zero = spine_control(body)
+    control, zero = spine_control(body, calibration_s=calibration_s)
     centre = sole_centre_x(body)
     start = {**start_targets("standing"), "spine_roll": 0.0, "spine_pitch": 0.0, "spine_yaw": 0.0}
     player = WholeBodyKeys(CLA.model, zero, LIMB_JOINTS, start, bend_keys(cycles, bend_deg, half_period_s))

@@ -161,12 +161,12 @@ def com_margin(body: ClaBody) -> float:
     return float(m.geom_size[seat][1] - abs(com_y - d.geom_xpos[seat][1]))
 
 
-def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, control_period: float | None = None):
-    """A seated Cla in the scene, calibrated, its spine locked unless ``spine``; the keys' player (first stage),
-    the hand, the muscle controller (second stage), the scene and the solver's gaps."""
-    body = ClaBody("seated", control_period=control_period, spec=seated_spec())
+def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, calibration_s: float = 1.0):
+    """A seated Cla in the scene, calibrated (§4.6.4, ``calibration_s``), its spine locked unless ``spine``; the
+    keys' player (first stage), the hand, the muscle controller (second stage), the scene and the solver's gaps."""
+    body = ClaBody("seated", spec=seated_spec())
     scene = set_scene(body)
-    control, zero = spine_control(body)
+    control, zero = spine_control(body, calibration_s=calibration_s)
     if not spine:
         body.lock_spine(True)
     ik = ArmIK(body.model, body.data, SPINE_JOINTS, CLA.n)

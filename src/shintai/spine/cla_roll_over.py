@@ -77,11 +77,11 @@ def turn_deg(body: ClaBody, part: str) -> float:
     return math.degrees(math.acos(float(np.clip(R[2, 0], -1.0, 1.0))))
 
 
-def build(spine: bool, yaw_deg: float = YAW_DEG):
+def build(spine: bool, yaw_deg: float = YAW_DEG, calibration_s: float = 1.0):
     """A lying Cla, calibrated upright then laid down, its spine locked unless ``spine``; the keys' player and
     the muscle controller."""
     body = ClaBody("standing", spec=lying_spec())
-    control, zero = spine_control(body)
+    control, zero = spine_control(body, calibration_s=calibration_s)
     lay(body)
     if not spine:
         body.lock_spine(True)
