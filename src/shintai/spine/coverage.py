@@ -379,7 +379,10 @@ ROWS = (
         what="Cla rolls over on the floor, yawing the spine together with shoulders and hips",
         result="§5.2.8: hip and shoulder power alone cannot raise half the body; with the spine's yaw "
                "'仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるようになった'",
-        difference="PENDING",
+        why_not="on the muscle-spine MuJoCo Cla lying on its back, hand-made keys: the spine's twist (54° reached of "
+                "60°) raises the shoulders 54° off the floor against 1.3° with the spine locked ('半身を起こす' "
+                "reproduces), but the heavier pelvis and legs never follow, so Cla does not roll over (supine → "
+                "prone only tried)",
     ),
     Row(
         key="003:fig5.10",
