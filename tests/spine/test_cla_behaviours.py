@@ -99,7 +99,7 @@ def test_cop_balance_reflex_answers_the_soles():
     the arms hold."""
     for swing in (True, False):
         body, player, reflex, control, centre = CB.build(swing, cycles=1, calibration_s=CAL_S)
-        Loop(body, stages=[[player, reflex], [control]], channels=SETPOINTS).run(1.0)
+        Loop(body, stages=[[player, reflex], [control]], channels=SETPOINTS).run(0.6)
         snap = body.snapshot()
         weight = body.model.body_subtreemass[body.id("body", "link0")] * 9.81
         assert snap["sole_force"].sum() == pytest.approx(weight, rel=0.15)

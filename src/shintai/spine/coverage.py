@@ -354,12 +354,12 @@ ROWS = (
                "a spine would have to roll its hip unnaturally and lose its balance (Fig. 2.1: the conventional "
                "humanoid does not reach the floor); §5.2.6: without moving the spine the object cannot be put on the "
                "desk. Photographs",
-        difference="on the muscle-spine MuJoCo Cla seated with the floor 1 cm under its soles: a 70° side bend brings "
-                   "the hand onto the object (the arm alone stays 9 cm short), the CoM stays ≥ 5 cm inside the seat's "
-                   "sides, a 56° twist puts it on the desk 4.5 cm from the chosen spot; but without the spine the arm "
-                   "still gets over cla_body's desk (its near edge 12 cm in front), so §5.2.6's 'cannot place' does "
-                   "not reproduce; the hand closes by a weld; Fig. 2.1's hip-roll comparison is not made (Cla has no "
-                   "hip roll)",
+        why_not="on the muscle-spine MuJoCo Cla seated with the floor 1 cm under its soles: a 70° side bend brings "
+                "the hand onto the object (the arm alone stays 9 cm short), the CoM stays ≥ 5 cm inside the seat's "
+                "sides, a 56° twist puts it on the desk 4.5 cm from the chosen spot; but without the spine the arm "
+                "still gets over cla_body's desk (near edge 12 cm in front), so §5.2.6's 'cannot place without the "
+                "spine' does not reproduce; the hand closes by a weld; Fig. 2.1's hip-roll comparison is not made "
+                "(Cla has no hip roll)",
     ),
     Row(
         key="003:fig5.8",
