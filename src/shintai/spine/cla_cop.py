@@ -16,6 +16,9 @@ import math
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, spine_control, start_targets
+from shintai.spine.cla_keyframes import Key, WholeBodyKeys
+from shintai.spine.robots import CLA
 
 # Chosen, because not in the text (§5.2.7 says only "中心付近", "少しずつ", "ゆっくりと"):
 COP_BAND_M = 0.003  # the reflex rests while the CoP is within ±3 mm of the sole's front–back centre
@@ -70,8 +73,6 @@ VARIANTS = ("swing", "no_swing")
 
 def bend_keys(cycles: int, bend_deg: float = BEND_DEG, half_period_s: float = HALF_PERIOD_S):
     """Rest, then ``cycles`` × (bend right, bend left), then upright: whole-spine roll keys, minimum jerk."""
-    from shintai.spine.cla_keyframes import Key
-
     roll = math.radians(bend_deg)
     keys = [Key(SETTLE_S, {}, "stand")]
     for _ in range(cycles):
@@ -87,10 +88,6 @@ def sole_centre_x(body) -> float:
 def build(swing: bool, cycles: int, bend_deg: float = BEND_DEG, half_period_s: float = HALF_PERIOD_S,
           calibration_s: float = 1.0):
     """A standing Cla, calibrated; the bends' player and the reflex (first stage), the muscle controller."""
-    from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, spine_control, start_targets
-    from shintai.spine.cla_keyframes import WholeBodyKeys
-    from shintai.spine.robots import CLA
-
     body = ClaBody("standing")
     control, zero = spine_control(body, calibration_s=calibration_s)
     centre = sole_centre_x(body)
@@ -101,8 +98,6 @@ def build(swing: bool, cycles: int, bend_deg: float = BEND_DEG, half_period_s: f
 
 
 def signals(body, reflex: ArmSwingReflex, snap) -> dict:
-    from shintai.spine.robots import CLA
-
     return {"cop": np.asarray(snap["cop"], dtype=float), "sole_centre_x": sole_centre_x(body),
             "force": float(np.sum(snap["sole_force"])), "arm_offset_deg": math.degrees(reflex.offset),
             "roll_deg": math.degrees(float(np.sum(body.theta().reshape(CLA.n, 3)[:, 0]))),

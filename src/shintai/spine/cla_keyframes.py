@@ -16,6 +16,8 @@ import numpy as np
 
 from shintai.core.interpolation import SequencePlayer
 from shintai.core.runtime import Snapshot
+from shintai.spine.control import encoder_targets
+from shintai.spine.geometry import uniform_posture
 
 
 @dataclass(frozen=True)
@@ -101,9 +103,6 @@ class WholeBodyKeys(KeyframePlayer):
         self.limbs = tuple(limbs)
 
     def update(self, snapshot: Snapshot):
-        from shintai.spine.control import encoder_targets
-        from shintai.spine.geometry import uniform_posture
-
         x = super().update(snapshot)["pose"]
         l_r = encoder_targets(self.spine_model.lengths(uniform_posture(x[:3], self.spine_model.n)), self.zero)
         return {"l_r": l_r, "l_0": l_r, **{j: float(v) for j, v in zip(self.limbs, x[3:])}}
