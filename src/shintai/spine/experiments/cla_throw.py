@@ -11,7 +11,7 @@ from shintai.scenarios.experiment import film, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine.cla_throw import run_throw, throw_summary
 
-VIEW = {"fps": 60, "width": 480, "height": 360, "track": "link0", "distance": 1.0, "azimuth": 120.0,
+VIEW = {"fps": 30, "width": 480, "height": 360, "track": "link0", "distance": 1.0, "azimuth": 120.0,
         "elevation": -10}
 LABELS = {"with_spine": "with the spine", "without_spine": "spine locked", "simultaneous": "spine, parts together"}
 QUOTE = ("§5.2.3: '脊椎を利用しない場合は肩から手先までの関節しか加速に利用できないため、脊椎を利用する場合に比べ"
