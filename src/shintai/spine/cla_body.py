@@ -306,9 +306,10 @@ class ClaBody(SpineBody):
     (``fsr_*``, ``hand_r_pos``, ``hand_l_pos``, ``gaze``, ``acc_chest``, ``acc_waist``) as MujocoBody does."""
 
     def __init__(self, posture: str = "seated", desk: bool = True, control_period: float | None = None,
-                 seat_tilt: bool = False):
+                 seat_tilt: bool = False, spec: mujoco.MjSpec | None = None):
+        # spec: a build_spec(posture, …) its user edited (e.g. the floor's height), instead of building one
         super().__init__(CLA, timestep=CLA_TIMESTEP_S, control_period=control_period,
-                         spec=build_spec(posture, desk, seat_tilt))
+                         spec=spec if spec is not None else build_spec(posture, desk, seat_tilt))
         self.posture = posture
         m = self.model
         self._locks = np.array([self.id("equality", f"lock_{j}") for j in SPINE_JOINTS])

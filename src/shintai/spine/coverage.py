@@ -354,7 +354,12 @@ ROWS = (
                "a spine would have to roll its hip unnaturally and lose its balance (Fig. 2.1: the conventional "
                "humanoid does not reach the floor); §5.2.6: without moving the spine the object cannot be put on the "
                "desk. Photographs",
-        not_built=ISSUE_17 + ": spine.cla-pick-place",
+        why_not="on the muscle-spine MuJoCo Cla seated with the floor 1 cm under its soles: a 70° side bend brings "
+                "the hand onto the object (the arm alone stays 9 cm short), the CoM stays ≥ 5 cm inside the seat's "
+                "sides, a 56° twist puts it on the desk 4.5 cm from the chosen spot; but without the spine the arm "
+                "still gets over cla_body's desk (near edge 12 cm in front), so §5.2.6's 'cannot place without the "
+                "spine' does not reproduce; the hand closes by a weld; Fig. 2.1's hip-roll comparison is not made "
+                "(Cla has no hip roll)",
     ),
     Row(
         key="003:fig5.8",
@@ -363,7 +368,10 @@ ROWS = (
              "forward/back to keep the sole centre of pressure near the foot centre",
         result="§5.2.7: with that reflex in parallel with the side bends '立った状態での運動ができるようになった'. "
                "No number",
-        not_built=ISSUE_17 + ": spine.cla-cop-balance",
+        difference="on the muscle-spine MuJoCo Cla (standing start, the stand-up from the chair not simulated): with "
+                   "the reflex the CoP's front–back excursion is 8.7 mm (RMS 3.5) against 11.0 mm (RMS 7.8) without "
+                   "it, through ±30° side bends; without the reflex our Cla does not fall either (no mechanical play "
+                   "in the model), so the reflex centres the CoP rather than saving the stance",
     ),
     Row(
         key="003:fig5.9",
@@ -371,7 +379,10 @@ ROWS = (
         what="Cla rolls over on the floor, yawing the spine together with shoulders and hips",
         result="§5.2.8: hip and shoulder power alone cannot raise half the body; with the spine's yaw "
                "'仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるようになった'",
-        not_built=ISSUE_17 + ": spine.cla-roll-over",
+        why_not="on the muscle-spine MuJoCo Cla lying on its back, hand-made keys: the spine's twist (54° reached of "
+                "60°) raises the shoulders 54° off the floor against 1.3° with the spine locked ('半身を起こす' "
+                "reproduces), but the heavier pelvis and legs never follow, so Cla does not roll over (supine → "
+                "prone only tried)",
     ),
     Row(
         key="003:fig5.10",

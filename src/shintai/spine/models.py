@@ -47,3 +47,11 @@ def cla_seated():
        "4 FSRs per sole for the centre of pressure (seed 003 §3.6.2, eq. 3.5, §5.2.7)")
 def cla_standing():
     return build_cla_body("standing")
+
+
+@model("spine.cla-lying", "Whole-body Cla for rolling over: the standing Cla with its trunk, head and limbs touching "
+       "the floor (placed on its back by spine.cla-roll-over; seed 003 §5.2.8)")
+def cla_lying():
+    from shintai.spine.cla_roll_over import lying_spec
+
+    return lying_spec()

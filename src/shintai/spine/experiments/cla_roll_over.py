@@ -1,0 +1,84 @@
+"""``spine.cla-roll-over``: Cla lying on its back tries to roll onto its front by yawing its spine together with
+its shoulder and hip, and the same keys with the spine locked (seed 003 §5.2.8, Fig. 5.9). Model, keys and the
+turn measure: :mod:`shintai.spine.cla_roll_over`."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.scenarios.experiment import Rig, per_variant
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine import cla_roll_over as RO
+from shintai.spine.control import SETPOINTS
+
+Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身を起こすことができない。脊椎を yaw 軸回りに回転させる動きと"
+          "肩・股関節の動きを同時に行うことで … 半身を起こすことができる'")
+Q_ROLL = "§5.2.8 'これにより、仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるようになった'"
+
+
+def rig(params, variant):
+    body, player, control = RO.build(variant == "spine", params["yaw_deg"])
+    return Rig(body, stages=[[player], [control]], channels=SETPOINTS,
+               duration=float(player.times[-1]) * params["fraction"],
+               record={10: lambda snap: RO.signals(body)},
+               view={"track": "link0", "distance": 0.9, "azimuth": 120.0, "elevation": -35})
+
+
+def _one(run) -> dict:
+    log = run.log
+    pelvis, shoulders = log.values("pelvis_turn_deg"), log.values("shoulder_turn_deg")
+    whole = log.values("whole_deg")
+    return {"max_shoulder_turn_deg": float(shoulders.max()), "max_pelvis_turn_deg": float(pelvis.max()),
+            "final_shoulder_turn_deg": float(shoulders[-1]), "final_pelvis_turn_deg": float(pelvis[-1]),
+            "rolled": int(min(pelvis[-1], shoulders[-1]) > RO.ROLLED_DEG),
+            "max_yaw_deg": float(np.abs(whole[:, 2]).max()),
+            "max_spine_change_deg": float(np.abs(whole - whole[0]).max())}
+
+
+def metrics(runs, params):
+    return per_variant({v: _one(r) for v, r in runs.items()})
+
+
+def plots(ctx, runs, params):
+    colours = {"spine": "tab:blue", "locked": "0.4"}
+    with ctx.figure("roll_over", nrows=2, ncols=1, figsize=(9, 6), sharex=True) as (_fig, (ax_turn, ax_yaw)):
+        for v, run in runs.items():
+            t = run.log.times("pelvis_turn_deg")
+            ax_turn.plot(t, run.log.values("shoulder_turn_deg"), color=colours[v], label=f"shoulders, {v}")
+            ax_turn.plot(t, run.log.values("pelvis_turn_deg"), "--", color=colours[v], label=f"pelvis, {v}")
+            ax_yaw.plot(t, run.log.values("whole_deg")[:, 2], color=colours[v], label=v)
+        ax_turn.axhline(90, color="k", lw=0.6, ls=":")
+        ax_turn.axhline(RO.ROLLED_DEG, color="tab:green", lw=0.6, ls="--")
+        ax_turn.set_ylabel("turn from lying on the back [deg]\n(90 = on a side, 180 = on the front)")
+        ax_turn.set_title("how far each half of Cla turned over; dashed green: 'rolled over'", fontsize=9)
+        ax_turn.legend(fontsize=7)
+        ax_yaw.set_ylabel("whole-spine yaw [deg]")
+        ax_yaw.set_xlabel("t [s]")
+        ax_yaw.legend(fontsize=7)
+
+
+experiment(
+    "spine.cla-roll-over",
+    source="seed 003 §5.2.8, Fig. 5.9",
+    summary="Cla on its back yaws its spine with the shoulder and hip to raise half its body and roll onto its "
+            "front; the same keys with the spine locked",
+    params=[Param("yaw_deg", RO.YAW_DEG, "whole-spine twist of the keys [deg]", lo=0.0, hi=90.0),
+            Param("fraction", 1.0, "run this fraction of the sequence (tests)", lo=0.05, hi=1.0)],
+    checks=(
+        Check("max_shoulder_turn_spine_deg", ">", "max_shoulder_turn_locked_deg", Q_HALF + ": the upper half turns "
+              "further up with the spine than with the shoulder and hip alone", name="spine_raises_half_the_body",
+              kind="reproduction"),
+        Check("rolled_spine", "==", 1, Q_ROLL + ": with the spine Cla ends on its front", name="rolls_over_with_spine",
+              kind="reproduction"),
+        Check("rolled_locked", "==", 0, Q_HALF + ": with the spine locked it does not roll over",
+              name="no_roll_without_spine", kind="reproduction"),
+        Check("max_spine_change_locked_deg", "<", 1.5, "the lock holds the spine (cla_body's equality constraints; "
+              "< 1.5° as cla_body's own test)", name="locked_spine_stays", kind="consistency"),
+    ),
+    thesis={"roll": ThesisValue("rolls over both ways with the spine's yaw (photographs, Fig. 5.9)",
+                                "seed 003 §5.2.8 '仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるよう"
+                                "になった'", "rolled_spine")},
+    covers=("003:fig5.9",),
+    video=True,
+    rig=rig, variants=RO.VARIANTS, metrics=metrics, plots=plots,
+)
