@@ -27,6 +27,7 @@ SLAM システム [64][190] から推定された Odometry', against the ground 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -50,6 +51,8 @@ class LocalisationSpec:
     vo_yaw_drift: float = 0.04  # rad of heading drift per metre travelled (one direction: a biased drift)
     vo_walk_m: float = 0.01  # m per √m: random walk of the translation
     vo_walk_rad: float = 0.01  # rad per √m: random walk of the heading
+    # the known map: obstacle outlines on a grid finer than the navigation costmap's 5 cm
+    map_resolution: float = 0.02  # m
     # particle filter (Thrun et al. 2005; AMCL's defaults where they exist)
     particles: int = 300
     alpha: tuple[float, float, float, float] = (0.05, 0.05, 0.1, 0.05)  # odometry motion noise, Table 5.6
@@ -81,19 +84,24 @@ def compose(a, d) -> np.ndarray:
 # --- the map --------------------------------------------------------------------------------------
 
 
-def box_map(obstacles, spec=NAVIGATION) -> Costmap:
-    """The known map: a :class:`Costmap` with every cell under the footprint of an obstacle box
-    (:class:`~shintai.humanoid.ch4_riding.Obstacle`) tall enough to be seen marked occupied."""
-    cmap = Costmap(spec)
+def box_map(obstacles, spec=NAVIGATION, resolution: float | None = None) -> Costmap:
+    """The known map: a :class:`Costmap` (``spec``'s extent, cells of ``resolution``, default
+    :attr:`LocalisationSpec.map_resolution`) with the outline of every obstacle box
+    (:class:`~shintai.humanoid.ch4_riding.Obstacle`) tall enough to be seen marked occupied — the
+    surfaces a range sensor meets, as a map built from range scans holds them (a filled footprint would
+    let a wall's thickness absorb a position error)."""
+    res = LOCALISATION.map_resolution if resolution is None else resolution
+    cmap = Costmap(dataclasses.replace(spec, resolution=res))
     for ob in obstacles:
         if ob.pos[2] + ob.half[2] < spec.min_obstacle_height:
             continue
-        step = spec.resolution / 2
-        u, v = np.meshgrid(np.arange(-ob.half[0], ob.half[0] + 1e-9, step),
-                           np.arange(-ob.half[1], ob.half[1] + 1e-9, step))
+        hx, hy = ob.half[0], ob.half[1]
+        u, v = np.arange(-hx, hx + 1e-9, res / 2), np.arange(-hy, hy + 1e-9, res / 2)
+        edge = np.concatenate([np.stack([u, np.full_like(u, s)], 1) for s in (-hy, hy)]
+                              + [np.stack([np.full_like(v, s), v], 1) for s in (-hx, hx)])
         c, s = math.cos(ob.yaw), math.sin(ob.yaw)
-        pts = np.stack([ob.pos[0] + c * u - s * v, ob.pos[1] + s * u + c * v], axis=-1).reshape(-1, 2)
-        cmap.mark(pts)
+        cmap.mark(np.stack([ob.pos[0] + c * edge[:, 0] - s * edge[:, 1], ob.pos[1] + s * edge[:, 0] + c * edge[:, 1]],
+                           axis=-1))
     return cmap
 
 
@@ -179,15 +187,19 @@ class ParticleFilter:
 
     def predict(self, d) -> None:
         """Table 5.6: the increment ``d`` (in the previous frame) as rot1, trans, rot2, each sampled with
-        variance α₁rot² + α₂trans² (rotations) or α₃trans² + α₄(rot1² + rot2²) (translation)."""
+        variance α₁rot² + α₂trans² (rotations) or α₃trans² + α₄(rot1² + rot2²) (translation). As in ROS
+        AMCL's odometry model: rot1 = 0 below 1 cm of travel (a jitter's direction is meaningless), and the
+        noise of a backward step is that of the same step forward."""
         trans = math.hypot(d[0], d[1])
-        rot1 = math.atan2(d[1], d[0]) if trans > 1e-4 else 0.0
+        rot1 = math.atan2(d[1], d[0]) if trans > 0.01 else 0.0
         rot2 = wrap_pi(d[2] - rot1)
+        n1 = min(abs(rot1), abs(wrap_pi(rot1 - math.pi)))
+        n2 = min(abs(rot2), abs(wrap_pi(rot2 - math.pi)))
         a1, a2, a3, a4 = self.spec.alpha
         n = len(self.p)
-        r1 = rot1 - self.rng.standard_normal(n) * math.sqrt(a1 * rot1 ** 2 + a2 * trans ** 2)
-        tr = trans - self.rng.standard_normal(n) * math.sqrt(a3 * trans ** 2 + a4 * (rot1 ** 2 + rot2 ** 2))
-        r2 = rot2 - self.rng.standard_normal(n) * math.sqrt(a1 * rot2 ** 2 + a2 * trans ** 2)
+        r1 = rot1 - self.rng.standard_normal(n) * math.sqrt(a1 * n1 ** 2 + a2 * trans ** 2)
+        tr = trans - self.rng.standard_normal(n) * math.sqrt(a3 * trans ** 2 + a4 * (n1 ** 2 + n2 ** 2))
+        r2 = rot2 - self.rng.standard_normal(n) * math.sqrt(a1 * n2 ** 2 + a2 * trans ** 2)
         th = self.p[:, 2]
         self.p[:, 0] += tr * np.cos(th + r1)
         self.p[:, 1] += tr * np.sin(th + r1)

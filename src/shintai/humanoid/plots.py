@@ -280,3 +280,43 @@ def small_obstacle(ctx, runs: dict, board) -> None:
         ax[1].set_ylabel("crank [deg]")
         ax[2].set_ylabel("ankle f_z [N]")
         ax[2].set_xlabel("time [s]")
+
+
+# --- ch. 7: self-localisation -------------------------------------------------------------------------
+
+
+def odometry(ctx, tracks: dict, obstacles, handle_deg: float) -> None:
+    """Fig. 7.4: the truth, wheel odometry, visual odometry and the localisation on the X–Y plane (the
+    room's obstacles, the map, drawn as boxes), and each estimate's position error over the run."""
+    styles = {"truth": ("k", "-", "ground truth (simulator)"), "wheel": ("C0", "--", "wheel odometry (Eq. 4.15, FK)"),
+              "visual": ("C1", "-.", "visual odometry (head camera, drift)"),
+              "localisation": ("C3", "-", "localisation (MCL on depth rays + map)")}
+    with ctx.figure("odometry_tracks", 1, 3, figsize=(16, 5.2)) as (fig, ax):
+        for ob in obstacles:
+            ax[0].add_patch(matplotlib.patches.Rectangle((ob.pos[0] - ob.half[0], ob.pos[1] - ob.half[1]),
+                                                         2 * ob.half[0], 2 * ob.half[1], angle=math.degrees(ob.yaw),
+                                                         rotation_point="center", fc="0.7", ec="0.4"))
+        for axis in ax[:2]:
+            for name, (color, ls, label) in styles.items():
+                xy = tracks[name]
+                axis.plot(xy[:, 0], xy[:, 1], color=color, ls=ls, lw=2 if name in ("truth", "localisation") else 1.5,
+                          label=label)
+                axis.plot(xy[-1, 0], xy[-1, 1], "o", color=color, ms=5)
+            axis.plot(1.3, -0.6, "x", color="m", ms=10, mew=2, label="thesis's end point ≈(1.3, −0.6) m")
+            axis.set_aspect("equal")
+            axis.set_xlabel("X [m]")
+            axis.set_ylabel("Y [m]")
+        ax[0].set_title(f"the room (the map) and the tracks, θ_h = {handle_deg:g}° (Fig. 7.4)", fontsize=9)
+        ax[0].legend(fontsize=7, loc="upper left")
+        end = tracks["truth"][-1]
+        ax[1].set_xlim(end[0] - 0.35, end[0] + 0.25)
+        ax[1].set_ylim(end[1] - 0.3, end[1] + 0.3)
+        ax[1].set_title("near the end point (dots: where each ends)", fontsize=9)
+        for name in ("wheel", "visual", "localisation"):
+            color, ls, label = styles[name]
+            err = np.hypot(*(tracks[name][:, :2] - tracks["truth"][:, :2]).T)
+            ax[2].plot(tracks["t"], err, color=color, ls=ls, label=label.split(" (")[0])
+        ax[2].set_xlabel("time [s]")
+        ax[2].set_ylabel("position error [m]")
+        ax[2].set_title("distance of each estimate from the truth", fontsize=9)
+        ax[2].legend(fontsize=8)
