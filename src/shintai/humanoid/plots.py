@@ -320,3 +320,55 @@ def odometry(ctx, tracks: dict, obstacles, handle_deg: float) -> None:
         ax[2].set_ylabel("position error [m]")
         ax[2].set_title("distance of each estimate from the truth", fontsize=9)
         ax[2].legend(fontsize=8)
+
+
+def navigation_estimated(ctx, runs: dict, wall) -> None:
+    """§7.3.2 / Fig. 7.5 with the self-localisation in the loop: the true path of the run on the estimated
+    pose, the pose the navigator believed, the true-pose run's path, and the estimate's error over time."""
+    est = runs["estimated"]
+    hist = est.state.loc.history
+    t = np.array([h[0] for h in hist])
+    truth, mcl = np.array([h[1] for h in hist]), np.array([h[4] for h in hist])
+    with ctx.figure("navigation_estimated", 2, 1, figsize=(9, 7.5), gridspec_kw={"height_ratios": [3, 1.4]}) \
+            as (fig, ax):
+        hx, hy = wall.half[0], wall.half[1]
+        ax[0].add_patch(matplotlib.patches.Rectangle((wall.pos[0] - hx, wall.pos[1] - hy), 2 * hx, 2 * hy,
+                                                     fc="0.6", ec="C3", lw=1.5, label="wall (the map)"))
+        if "run" in runs:
+            path = np.array(runs["run"].state.path)
+            ax[0].plot(path[:, 0], path[:, 1], color="0.5", lw=1.5, ls=":", label="true-pose run (truth)")
+        ax[0].plot(truth[:, 0], truth[:, 1], "k", lw=2, label="estimated-pose run: truth")
+        ax[0].plot(mcl[:, 0], mcl[:, 1], "C3--", lw=1.5, label="estimated-pose run: the navigator's pose (MCL)")
+        ax[0].plot(*est.state.goal, "g*", ms=14, label="goal")
+        ax[0].set_aspect("equal")
+        ax[0].set_xlabel("x [m]")
+        ax[0].set_ylabel("y [m]")
+        ax[0].set_title("navigation on the estimated pose (§7.3.2, Fig. 7.3's self-localisation loop)", fontsize=9)
+        ax[0].legend(fontsize=8, loc="lower right")
+        ax[1].plot(t, np.hypot(*(mcl[:, :2] - truth[:, :2]).T), "C3")
+        ax[1].set_xlabel("time [s]")
+        ax[1].set_ylabel("|estimate − truth| [m]")
+
+
+def load_monitor(ctx, rec, windows) -> None:
+    """Fig. 7.16 over time: force and joint-torque norms, the CoM's offset on the saddle, and model A
+    against model B (hands, waist), the recovery shaded and the before/after windows marked."""
+    t = rec.times("load.force_norm")
+    with ctx.figure("load_monitor", 4, 1, figsize=(10, 10), sharex=True) as (fig, ax):
+        series = [
+            (0, "load.force_norm", "‖f‖ hands and feet", "C0"), (0, "load.hand_force_norm", "‖f‖ hands", "C1"),
+            (1, "load.torque_norm", "‖τ‖ joint servos", "C2"),
+            (3, "load.hand_ab", "hands: |A − B| (mean)", "C4"), (3, "load.waist_ab", "waist: |A − B|", "C5")]
+        for k, key, label, color in series:
+            ax[k].plot(t, rec.values(key), color=color, lw=1, label=label)
+        ax[2].plot(t, rec.values("load.com_y") * 100, "C3", lw=1, label="CoM y − saddle top (vehicle frame)")
+        for axis, ylabel in zip(ax, ("force [N]", "torque [N m]", "CoM offset [cm]", "A vs B [m]")):
+            axis.fill_between(t, 0, 1, where=rec.values("recovering") > 0.5, color="k", alpha=0.08,
+                              transform=axis.get_xaxis_transform(), label="sitting recovery")
+            if windows:
+                for (a, b), color in zip(windows, ("C3", "C2")):
+                    axis.axvspan(a, b, color=color, alpha=0.12)
+            axis.set_ylabel(ylabel)
+            axis.legend(fontsize=7, loc="upper left")
+        ax[0].set_title("load monitor (Fig. 7.16): before (red band) and after (green band) the recovery", fontsize=9)
+        ax[-1].set_xlabel("time [s]")
