@@ -101,3 +101,16 @@ def test_odometry_scenario_short(tmp_path):
     assert m["localisation_max_error_m"] < 0.06
     assert m["localisation_end_error_m"] < m["wheel_end_error_m"]
     assert m["mcl_corrections"] == m["mcl_updates"]  # the room is always in view
+
+
+def test_navigation_on_estimated_pose_short(tmp_path):
+    """obstacle-navigation, pose=estimated, 5 s: the scan placed by the MCL pose puts the wall in the costmap,
+    the estimate stays within 5 cm while the wall is in view; only the estimated run's metrics are there."""
+    from shintai.scenarios.runner import run_scenario
+    out = run_scenario("humanoid.obstacle-navigation", out=tmp_path, overrides={"pose": "estimated", "max_s": "5"},
+                       quiet=True)
+    m = out["metrics"]
+    assert "error" not in out and "reached" not in m and m["reached_estimated"] == 0
+    assert m["wall_in_costmap_estimated"] == 1 and m["mcl_corrected_share_estimated"] == 1.0
+    assert m["min_clearance_estimated_m"] > 0.0 and m["path_length_estimated_m"] > 0.2
+    assert m["localisation_max_error_estimated_m"] < 0.05 and m["overturned_estimated"] == 0

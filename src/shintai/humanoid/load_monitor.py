@@ -35,6 +35,12 @@ import numpy as np
 from shintai.humanoid.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 
+# Fig. 7.16 compares the tilted state before the recovery with the state after it; the windows are ours,
+# chosen before the runs: the 2 s before the recovery starts (T1 of Table 7.6), and 2 s from 1 s after it
+# ends (T3, driving again; the first second is RESEAT's transient). The recovery starts at θ_c = kπ and holds
+# the crank, so both windows see the crank near the same phase.
+BEFORE_S, SETTLE_S, AFTER_S = 2.0, 1.0, 2.0
+
 
 class LoadMonitor:
     """Fig. 7.16's quantities of ``body`` with ``rider``'s reference model; :meth:`sample` returns them."""
@@ -104,3 +110,19 @@ def window_means(t: np.ndarray, values: dict, start: float, end: float) -> dict:
     """The mean of each recorded signal over ``start`` ≤ t < ``end`` (NaN when no sample is there)."""
     keep = (t >= start) & (t < end)
     return {k: float(np.mean(v[keep])) if keep.any() else float("nan") for k, v in values.items()}
+
+
+def recovery_windows(t: np.ndarray, recovering: np.ndarray, before: float = BEFORE_S, settle: float = SETTLE_S,
+                     after: float = AFTER_S):
+    """((start, end) before, (start, end) after) the first recovery in the samples ``recovering`` (bool) at
+    times ``t``: ``before`` seconds up to its start, ``after`` seconds from ``settle`` after its end; None
+    when no recovery started and ended."""
+    recovering = np.asarray(recovering, dtype=bool)
+    if not recovering.any():
+        return None
+    t1 = t[np.flatnonzero(recovering)[0]]
+    ended = np.flatnonzero(~recovering & (t > t1))
+    if not len(ended):
+        return None
+    t3 = t[ended[0]]
+    return (t1 - before, t1), (t3 + settle, t3 + settle + after)

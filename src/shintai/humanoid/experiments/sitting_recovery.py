@@ -16,7 +16,7 @@ from shintai.humanoid.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_
 from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_T, FOOT_FOLLOW_F_TRG, LEGS_FZ,
                                         RECOVERY_PEDAL_REVOLUTIONS, STEPS_SPEED)
 from shintai.humanoid.corrections import RecoveryTrigger, SittingRecovery
-from shintai.humanoid.load_monitor import LoadMonitor, window_means
+from shintai.humanoid.load_monitor import LoadMonitor, recovery_windows, window_means
 from shintai.humanoid.navigation import crank_rate
 from shintai.humanoid.switching import estimate_crank_angle
 from shintai.humanoid.tricycle_rig import legs_pedalling, pedal_axles
@@ -123,27 +123,11 @@ def metrics(runs, params):
     return m
 
 
-LOAD_BEFORE_S, LOAD_SETTLE_S, LOAD_AFTER_S = 2.0, 1.0, 2.0  # Fig. 7.16's windows (ours, chosen before the runs)
-
-
-def load_windows(t, rec_flag):
-    """(before, after) windows: the ``LOAD_BEFORE_S`` before the first recovery starts (T1, the tilted state)
-    and ``LOAD_AFTER_S`` from ``LOAD_SETTLE_S`` after it ends (T3, driving again); None without a recovery."""
-    if not rec_flag.any():
-        return None
-    t1 = t[np.flatnonzero(rec_flag)[0]]
-    ended = np.flatnonzero(~rec_flag & (t > t1))
-    if not len(ended):
-        return None
-    t3 = t[ended[0]]
-    return (t1 - LOAD_BEFORE_S, t1), (t3 + LOAD_SETTLE_S, t3 + LOAD_SETTLE_S + LOAD_AFTER_S)
-
-
 def load_metrics(rec, rec_flag) -> dict:
-    """Fig. 7.16 (I) and (II) before and after the first recovery, means over :func:`load_windows`."""
+    """Fig. 7.16 (I) and (II) before and after the first recovery, means over :func:`~shintai.humanoid.load_monitor.recovery_windows`."""
     t = rec.times("load.force_norm")
     values = {k: rec.values(f"load.{k}") for k in LOAD_KEYS}
-    windows = load_windows(t, rec_flag)
+    windows = recovery_windows(t, rec_flag)
     m = {}
     for label, k in zip(("before", "after"), range(2)):
         w = window_means(t, values, *windows[k]) if windows else {key: float("nan") for key in LOAD_KEYS}
@@ -161,7 +145,7 @@ LOAD_KEYS = {"force_norm": ("force_norm", "n", 1.0), "hand_force_norm": ("hand_f
 def draw(ctx, runs, params):
     plots.recovery(ctx, runs)
     rec = runs["with"].log
-    plots.load_monitor(ctx, rec, load_windows(rec.times("load.force_norm"), rec.values("recovering") > 0.5))
+    plots.load_monitor(ctx, rec, recovery_windows(rec.times("load.force_norm"), rec.values("recovering") > 0.5))
 
 
 experiment(
