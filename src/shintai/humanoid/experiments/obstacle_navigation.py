@@ -125,8 +125,9 @@ def draw(ctx, runs, params):
 experiment(
     "humanoid.obstacle-navigation",
     covers=("000:fig4.19", "000:fig7.5"),
-    source="seed 000 §4.4.2, §7.3.2, Eqs. 4.15–4.22, Figs. 4.14–4.19",
-    summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall",
+    source="seed 000 §4.4.2, §7.3.2, Eqs. 4.15–4.22, Figs. 4.14–4.19, 7.3, 7.5",
+    summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall, on "
+            "the true pose and on the self-localisation's estimate",
     params=[
         Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
               choices=DRIVES),

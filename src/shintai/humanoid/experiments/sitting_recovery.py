@@ -151,7 +151,7 @@ def draw(ctx, runs, params):
 experiment(
     "humanoid.sitting-recovery",
     covers=("000:fig7.14", "000:fig7.15", "000:fig7.16"),
-    source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.15",
+    source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.16",
     summary="A seat slip accumulating with driving: driving ⇄ interrupt-type sitting recovery (Switcher) vs driving alone",
     params=[
         Param("drive", "legs", "who turns the crank: legs (ch. 3 pedalling, the thesis) or motor (stand-in)",
