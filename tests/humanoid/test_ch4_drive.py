@@ -54,7 +54,8 @@ def test_lead_pedal_follows_commanded_crank_rate():
 
 def test_obstacle_navigation_with_legs_stops_at_goal(tmp_path):
     """The default drive (legs, Eq. 4.22 from the navigator's ω_c^ref) goes round the wall and stops."""
-    out = run_scenario("humanoid.obstacle-navigation", out=tmp_path, overrides={"max_s": "30"}, quiet=True)
+    out = run_scenario("humanoid.obstacle-navigation", out=tmp_path, overrides={"max_s": "30", "pose": "true"},
+                       quiet=True)
     m = out["metrics"]
     assert "error" not in out and out["params"]["drive"] == "legs"
     assert m["reached"] == 1 and m["final_speed_mps"] <= 0.05

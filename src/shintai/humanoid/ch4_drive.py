@@ -124,12 +124,19 @@ class BackPedal(Module):
 
 class Navigator(Module):
     """§4.4.2 / Fig. 4.17 steps 1–4 at the planner period: scan (depth sensor) → costmap → global path
-    (every ``replan_s``) → DWA (ẋ^ref, θ̇^ref) → θ_h^ref (Eq. 4.21) and ω_c^ref (Eq. 4.18)."""
+    (every ``replan_s``) → DWA (ẋ^ref, θ̇^ref) → θ_h^ref (Eq. 4.21) and ω_c^ref (Eq. 4.18).
 
-    def __init__(self, body, goal, spec=NAVIGATION, replan_s: float = 1.0):
+    The vehicle pose: the simulator's (``localiser=None``, a stand-in), or §7.3.2's closed loop of
+    self-localisation (Fig. 7.3): a :class:`~shintai.humanoid.localisation.Localiser` updated with the
+    same scan, whose estimate both places the scan in the costmap and is the pose the planner starts from."""
+
+    def __init__(self, body, goal, spec=NAVIGATION, replan_s: float = 1.0, localiser=None):
         super().__init__("navigator", spec.period)
         self.body, self.goal, self.spec = body, np.asarray(goal, dtype=float), spec
         self.sensor, self.costmap = DepthSensor(spec), Costmap(spec)
+        self.localiser = localiser
+        if localiser is not None:
+            localiser.sensor = self.sensor
         self.dwa = DynamicWindow(spec)
         self.replan_every = max(1, int(round(replan_s / spec.period)))
         self.calls = 0
@@ -138,8 +145,16 @@ class Navigator(Module):
         self.trace: list[tuple] = []
 
     def update(self, snapshot):
-        pose = vehicle_pose2d(self.body)  # self-localisation stand-in (the thesis: SLAM odometry)
-        new = self.costmap.mark(self.sensor.scan(self.body.model, self.body.data))
+        if self.localiser is None:
+            pose = vehicle_pose2d(self.body)  # self-localisation stand-in (the thesis: SLAM odometry)
+            points = self.sensor.scan(self.body.model, self.body.data)
+        else:  # the scan in the vehicle frame, placed in the world by the estimated pose
+            local = self.localiser.scan_vehicle()
+            pose = self.localiser.update(snapshot, local)
+            c, s = np.cos(pose[2]), np.sin(pose[2])
+            points = np.stack([pose[0] + c * local[:, 0] - s * local[:, 1],
+                               pose[1] + s * local[:, 0] + c * local[:, 1]], axis=-1)
+        new = self.costmap.mark(points)
         if new or self.path is None or self.calls % self.replan_every == 0:
             path = global_path(self.costmap, pose[:2], self.goal, self.spec.footprint_r, self.spec.path_margin)
             self.path = path if path is not None else self.path

@@ -280,3 +280,95 @@ def small_obstacle(ctx, runs: dict, board) -> None:
         ax[1].set_ylabel("crank [deg]")
         ax[2].set_ylabel("ankle f_z [N]")
         ax[2].set_xlabel("time [s]")
+
+
+# --- ch. 7: self-localisation -------------------------------------------------------------------------
+
+
+def odometry(ctx, tracks: dict, obstacles, handle_deg: float) -> None:
+    """Fig. 7.4: the truth, wheel odometry, visual odometry and the localisation on the X–Y plane (the
+    room's obstacles, the map, drawn as boxes), and each estimate's position error over the run."""
+    styles = {"truth": ("k", "-", "ground truth (simulator)"), "wheel": ("C0", "--", "wheel odometry (Eq. 4.15, FK)"),
+              "visual": ("C1", "-.", "visual odometry (head camera, drift)"),
+              "localisation": ("C3", "-", "localisation (MCL on depth rays + map)")}
+    with ctx.figure("odometry_tracks", 1, 3, figsize=(16, 5.2)) as (fig, ax):
+        for ob in obstacles:
+            ax[0].add_patch(matplotlib.patches.Rectangle((ob.pos[0] - ob.half[0], ob.pos[1] - ob.half[1]),
+                                                         2 * ob.half[0], 2 * ob.half[1], angle=math.degrees(ob.yaw),
+                                                         rotation_point="center", fc="0.7", ec="0.4"))
+        for axis in ax[:2]:
+            for name, (color, ls, label) in styles.items():
+                xy = tracks[name]
+                axis.plot(xy[:, 0], xy[:, 1], color=color, ls=ls, lw=2 if name in ("truth", "localisation") else 1.5,
+                          label=label)
+                axis.plot(xy[-1, 0], xy[-1, 1], "o", color=color, ms=5)
+            axis.plot(1.3, -0.6, "x", color="m", ms=10, mew=2, label="thesis's end point ≈(1.3, −0.6) m")
+            axis.set_aspect("equal")
+            axis.set_xlabel("X [m]")
+            axis.set_ylabel("Y [m]")
+        ax[0].set_title(f"the room (the map) and the tracks, θ_h = {handle_deg:g}° (Fig. 7.4)", fontsize=9)
+        ax[0].legend(fontsize=7, loc="upper left")
+        end = tracks["truth"][-1]
+        ax[1].set_xlim(end[0] - 0.35, end[0] + 0.25)
+        ax[1].set_ylim(end[1] - 0.3, end[1] + 0.3)
+        ax[1].set_title("near the end point (dots: where each ends)", fontsize=9)
+        for name in ("wheel", "visual", "localisation"):
+            color, ls, label = styles[name]
+            err = np.hypot(*(tracks[name][:, :2] - tracks["truth"][:, :2]).T)
+            ax[2].plot(tracks["t"], err, color=color, ls=ls, label=label.split(" (")[0])
+        ax[2].set_xlabel("time [s]")
+        ax[2].set_ylabel("position error [m]")
+        ax[2].set_title("distance of each estimate from the truth", fontsize=9)
+        ax[2].legend(fontsize=8)
+
+
+def navigation_estimated(ctx, runs: dict, wall) -> None:
+    """§7.3.2 / Fig. 7.5 with the self-localisation in the loop: the true path of the run on the estimated
+    pose, the pose the navigator believed, the true-pose run's path, and the estimate's error over time."""
+    est = runs["estimated"]
+    hist = est.state.loc.history
+    t = np.array([h[0] for h in hist])
+    truth, mcl = np.array([h[1] for h in hist]), np.array([h[4] for h in hist])
+    with ctx.figure("navigation_estimated", 2, 1, figsize=(9, 7.5), gridspec_kw={"height_ratios": [3, 1.4]}) \
+            as (fig, ax):
+        hx, hy = wall.half[0], wall.half[1]
+        ax[0].add_patch(matplotlib.patches.Rectangle((wall.pos[0] - hx, wall.pos[1] - hy), 2 * hx, 2 * hy,
+                                                     fc="0.6", ec="C3", lw=1.5, label="wall (the map)"))
+        if "run" in runs:
+            path = np.array(runs["run"].state.path)
+            ax[0].plot(path[:, 0], path[:, 1], color="0.5", lw=1.5, ls=":", label="true-pose run (truth)")
+        ax[0].plot(truth[:, 0], truth[:, 1], "k", lw=2, label="estimated-pose run: truth")
+        ax[0].plot(mcl[:, 0], mcl[:, 1], "C3--", lw=1.5, label="estimated-pose run: the navigator's pose (MCL)")
+        ax[0].plot(*est.state.goal, "g*", ms=14, label="goal")
+        ax[0].set_aspect("equal")
+        ax[0].set_xlabel("x [m]")
+        ax[0].set_ylabel("y [m]")
+        ax[0].set_title("navigation on the estimated pose (§7.3.2, Fig. 7.3's self-localisation loop)", fontsize=9)
+        ax[0].legend(fontsize=8, loc="lower right")
+        ax[1].plot(t, np.hypot(*(mcl[:, :2] - truth[:, :2]).T), "C3")
+        ax[1].set_xlabel("time [s]")
+        ax[1].set_ylabel("|estimate − truth| [m]")
+
+
+def load_monitor(ctx, rec, windows) -> None:
+    """Fig. 7.16 over time: force and joint-torque norms, the CoM's offset on the saddle, and model A
+    against model B (hands, waist), the recovery shaded and the before/after windows marked."""
+    t = rec.times("load.force_norm")
+    with ctx.figure("load_monitor", 4, 1, figsize=(10, 10), sharex=True) as (fig, ax):
+        series = [
+            (0, "load.force_norm", "‖f‖ hands and feet", "C0"), (0, "load.hand_force_norm", "‖f‖ hands", "C1"),
+            (1, "load.torque_norm", "‖τ‖ joint servos", "C2"),
+            (3, "load.hand_ab", "hands: |A − B| (mean)", "C4"), (3, "load.waist_ab", "waist: |A − B|", "C5")]
+        for k, key, label, color in series:
+            ax[k].plot(t, rec.values(key), color=color, lw=1, label=label)
+        ax[2].plot(t, rec.values("load.com_y") * 100, "C3", lw=1, label="CoM y − saddle top (vehicle frame)")
+        for axis, ylabel in zip(ax, ("force [N]", "torque [N m]", "CoM offset [cm]", "A vs B [m]")):
+            axis.fill_between(t, 0, 1, where=rec.values("recovering") > 0.5, color="k", alpha=0.08,
+                              transform=axis.get_xaxis_transform(), label="sitting recovery")
+            if windows:
+                for (a, b), color in zip(windows, ("C3", "C2")):
+                    axis.axvspan(a, b, color=color, alpha=0.12)
+            axis.set_ylabel(ylabel)
+            axis.legend(fontsize=7, loc="upper left")
+        ax[0].set_title("load monitor (Fig. 7.16): before (red band) and after (green band) the recovery", fontsize=9)
+        ax[-1].set_xlabel("time [s]")

@@ -14,12 +14,15 @@ from shintai.humanoid.ch4_drive import (CH4_VIEW, DRIVES, LEAD_NOTE, MOTOR_NOTE,
                                         foot_off_pedal, min_distance, overturned, vehicle_geoms)
 from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
 from shintai.humanoid.constants import DEG, NAVIGATION
-from shintai.scenarios.experiment import Rig
+from shintai.humanoid.localisation import Localiser, box_map
+from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 WALL = Obstacle("partition", (0.05, 0.65, 0.6), (4.0, -0.35, 0.6), (0.8, 0.8, 0.75, 1.0))
 NAV_GOAL = (8.0, 0.0)
 EVERY = 25  # control ticks between the recorded samples (0.1 s)
+POSES = ("both", "true", "estimated")
+VARIANTS = {"both": ("run", "estimated"), "true": ("run",), "estimated": ("estimated",)}
 
 
 def rig(params, variant):
@@ -28,12 +31,14 @@ def rig(params, variant):
     t_wall = time.perf_counter()
     body = build_ch4([WALL], hip="contact", crank_motor=params["drive"] == "motor")
     goal = (params["goal_x_m"], 0.0)
-    nav = Navigator(body, goal)
+    # "estimated": §7.3.2's self-localisation in the loop (Fig. 7.3), MCL on the known wall (seed 0)
+    loc = Localiser(body, box_map([WALL]), vehicle_pose2d(body)) if variant == "estimated" else None
+    nav = Navigator(body, goal, localiser=loc)
     rider, movers = drive_modules(body, params["drive"])
     wall_geom, others = body.id("geom", WALL.name), vehicle_geoms(body.model)
     dof = body.model.joint("tricycle_root").dofadr[0]
     state = SimpleNamespace(body=body, nav=nav, rider=rider, goal=goal, dof=dof, t_wall=t_wall, ticks=0,
-                            clearance=[np.inf], path=[vehicle_pose2d(body)])
+                            clearance=[np.inf], path=[vehicle_pose2d(body)], loc=loc)
 
     def signals(snap):  # sampled after control ticks 25, 50, … (the path and clearance the metrics use)
         state.ticks += 1
@@ -46,11 +51,13 @@ def rig(params, variant):
                 "handle": snap["q:handle"], "clearance": state.clearance[-1], "trunk_roll": trunk_roll(snap),
                 "crank": snap["q:crank"], "crank_target": snap["ref:crank_target"], "foot_off": foot_off_pedal(body),
                 "hip_z": body.contact_force("waist")[2], "xdot_ref": nav.command[0],
-                "speed": float(np.hypot(*body.data.qvel[dof:dof + 2]))}
+                "speed": float(np.hypot(*body.data.qvel[dof:dof + 2])),
+                **({"loc_error": float(np.hypot(*(loc.pose[:2] - pose[:2])))} if loc is not None else {})}
 
-    def done(snap):
+    def done(snap):  # near the goal by the pose the navigator has: the truth, or its estimate
+        believed = vehicle_pose2d(body) if loc is None else loc.pose
         return overturned(body) or (nav.command == (0.0, 0.0) and nav.calls > 20
-                                    and np.hypot(*(vehicle_pose2d(body)[:2] - goal)) < 0.6
+                                    and np.hypot(*(believed[:2] - goal)) < 0.6
                                     and abs(body.data.qvel[dof]) < 0.01)
 
     return Rig(body, [nav, *movers], channels=REF_CHANNELS, duration=params["max_s"], until=done,
@@ -58,7 +65,22 @@ def rig(params, variant):
 
 
 def metrics(runs, params):
-    run = runs["run"]
+    m = summary(runs["run"], params) if "run" in runs else {}
+    if "estimated" in runs:
+        est = summary(runs["estimated"], params)
+        loc = runs["estimated"].state.loc
+        truth, mcl = np.array([h[1] for h in loc.history]), np.array([h[4] for h in loc.history])
+        err = np.hypot(*(mcl[:, :2] - truth[:, :2]).T)
+        est.update({"localisation_max_error_m": float(err.max()), "localisation_end_error_m": float(err[-1]),
+                    "mcl_corrected_share": loc.corrections / max(len(loc.history), 1)})
+        m.update(per_variant({"estimated": {k: v for k, v in est.items() if k not in ESTIMATED_SKIP}}))
+    return m
+
+
+ESTIMATED_SKIP = ("note", "straight_line_m", "planner_wall_time_s", "run_wall_time_s", "costmap_cells")
+
+
+def summary(run, params):
     s, rec = run.state, run.log
     body, nav, dof = s.body, s.nav, s.dof
     path = np.array(s.path)
@@ -94,20 +116,25 @@ def metrics(runs, params):
 
 
 def draw(ctx, runs, params):
-    run = runs["run"]
+    run = runs["run"] if "run" in runs else runs["estimated"]
     plots.navigation(ctx, run.log, run.state.nav, np.array(run.state.path), run.state.goal, WALL)
+    if "estimated" in runs:
+        plots.navigation_estimated(ctx, runs, WALL)
 
 
 experiment(
     "humanoid.obstacle-navigation",
     covers=("000:fig4.19", "000:fig7.5"),
-    source="seed 000 §4.4.2, §7.3.2, Eqs. 4.15–4.22, Figs. 4.14–4.19",
-    summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall",
+    source="seed 000 §4.4.2, §7.3.2, Eqs. 4.15–4.22, Figs. 4.14–4.19, 7.3, 7.5",
+    summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall, on "
+            "the true pose and on the self-localisation's estimate",
     params=[
         Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
               choices=DRIVES),
         Param("max_s", 60.0, "give up after this much driving [s]", lo=5.0, hi=200.0),
         Param("goal_x_m", NAV_GOAL[0], "goal x [m] (start at the origin, heading +x)", lo=5.5, hi=8.5),
+        Param("pose", "both", "the navigator's vehicle pose: true (simulator), estimated (self-localisation, "
+              "§7.3.2; the true-pose metrics are then absent) or both runs", choices=POSES),
     ],
     checks=[
         Check("reached", "==", 1,
@@ -125,8 +152,17 @@ experiment(
         Check("wall_in_costmap", "==", 1,
               "steps 1–2 of §4.4.2's algorithm as implemented ('… 点群データの取得', 'コストマップを形成'), with our "
               "head depth sensor instead of the stereo camera", kind="consistency"),
+        Check("reached_estimated", "==", 1,
+              "thesis §7.3.2 (Fig. 7.5, SLAM odometry in the loop): 'ゴール地点に向かってナビゲーション情報が収束して"
+              "いく様子が確認できる'; ours: the true crank origin within goal_tolerance + 0.2 m of the goal when the "
+              "navigator, on its estimated pose, has stopped", kind="reproduction", row="000:fig7.5"),
+        Check("min_clearance_estimated_m", ">", 0.0,
+              "thesis §7.3.2: 'SLAM Odometry に基づく搭乗型機器への操作量逐次修正による障害物回避行動' (Fig. 7.5: the "
+              "wall avoided with the self-localisation in the loop)", kind="reproduction", row="000:fig7.5"),
     ],
-    thesis={"reached": ThesisValue(1, "seed 000 §4.4.2 experiment 4-d (qualitative)", "reached")},
-    rig=rig, metrics=metrics, plots=draw,
+    thesis={"reached": ThesisValue(1, "seed 000 §4.4.2 experiment 4-d (qualitative)", "reached"),
+            "reached_estimated": ThesisValue(1, "seed 000 §7.3.2, Fig. 7.5 (qualitative)", "reached_estimated")},
+    rig=rig, metrics=metrics, plots=draw, variants=lambda p: VARIANTS[p["pose"]],
+    filmed=lambda p: VARIANTS[p["pose"]][:1],
     video=True,
 )

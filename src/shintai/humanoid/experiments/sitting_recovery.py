@@ -16,6 +16,7 @@ from shintai.humanoid.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_
 from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_T, FOOT_FOLLOW_F_TRG, LEGS_FZ,
                                         RECOVERY_PEDAL_REVOLUTIONS, STEPS_SPEED)
 from shintai.humanoid.corrections import RecoveryTrigger, SittingRecovery
+from shintai.humanoid.load_monitor import LoadMonitor, recovery_windows, window_means
 from shintai.humanoid.navigation import crank_rate
 from shintai.humanoid.switching import estimate_crank_angle
 from shintai.humanoid.tricycle_rig import legs_pedalling, pedal_axles
@@ -63,6 +64,7 @@ def rig(params, variant):
     else:
         modules.append(driving)
     start = vehicle_pose2d(body)
+    monitor = LoadMonitor(body, rider)
 
     def signals(snap):
         rel = body.data.body("tricycle").xmat.reshape(3, 3).T @ (body.body_pos("waist") - body.site_pos("saddle_top"))
@@ -71,7 +73,8 @@ def rig(params, variant):
                 "recovering": float(active == "recover"),
                 "fz_feet": sum(rider.forces(snap, s)[2] for s in ("l_ankle", "r_ankle")),
                 "saddle_fz": body.contact_force("waist")[2],
-                "travel": float(np.hypot(*(vehicle_pose2d(body)[:2] - start[:2])))}
+                "travel": float(np.hypot(*(vehicle_pose2d(body)[:2] - start[:2]))),
+                **{f"load.{k}": v for k, v in monitor.sample(snap).items()}}
 
     return Rig(body, modules, channels=REF_CHANNELS, duration=params["max_s"], until=lambda s: overturned(body),
                record={5: signals}, view={**CH4_VIEW, "azimuth": 180.0, "elevation": -10.0, "distance": 2.8},
@@ -116,13 +119,39 @@ def metrics(runs, params):
         upright = np.abs(rec.values("vehicle_roll")) < 45 * DEG
         moving = np.diff(travel, prepend=travel[0])
         m["drove_on_m"] = float(np.sum(moving[after & ~rec_flag & upright]))
+    m.update(load_metrics(rec, rec_flag))
     return m
+
+
+def load_metrics(rec, rec_flag) -> dict:
+    """Fig. 7.16 (I) and (II) before and after the first recovery, means over :func:`~shintai.humanoid.load_monitor.recovery_windows`."""
+    t = rec.times("load.force_norm")
+    values = {k: rec.values(f"load.{k}") for k in LOAD_KEYS}
+    windows = recovery_windows(t, rec_flag)
+    m = {}
+    for label, k in zip(("before", "after"), range(2)):
+        w = window_means(t, values, *windows[k]) if windows else {key: float("nan") for key in LOAD_KEYS}
+        for key, (name, unit, scale) in LOAD_KEYS.items():
+            m[f"{name}_{label}_{unit}"] = abs(w[key]) * scale
+    return m
+
+
+LOAD_KEYS = {"force_norm": ("force_norm", "n", 1.0), "hand_force_norm": ("hand_force_norm", "n", 1.0),
+             "foot_force_norm": ("foot_force_norm", "n", 1.0), "torque_norm": ("joint_torque_norm", "nm", 1.0),
+             "com_y": ("com_offset", "m", 1.0), "hand_ab": ("hand_ab", "m", 1.0), "waist_ab": ("waist_ab", "m", 1.0),
+             "waist_ab_rad": ("waist_ab", "deg", 1 / DEG)}
+
+
+def draw(ctx, runs, params):
+    plots.recovery(ctx, runs)
+    rec = runs["with"].log
+    plots.load_monitor(ctx, rec, recovery_windows(rec.times("load.force_norm"), rec.values("recovering") > 0.5))
 
 
 experiment(
     "humanoid.sitting-recovery",
-    covers=("000:fig7.14", "000:fig7.15"),
-    source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.15",
+    covers=("000:fig7.14", "000:fig7.15", "000:fig7.16"),
+    source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.16",
     summary="A seat slip accumulating with driving: driving ⇄ interrupt-type sitting recovery (Switcher) vs driving alone",
     params=[
         Param("drive", "legs", "who turns the crank: legs (ch. 3 pedalling, the thesis) or motor (stand-in)",
@@ -151,10 +180,29 @@ experiment(
         Check("drove_on_m", ">=", 1.0,
               "thesis §7.4.1: '図 7.14 -(success-4) に示すように継続的に運転の再開を行っている'; Table 7.6 'Drive again "
               "based on active and passive pedaling' (≥ 1 m after the recovery: ours)", kind="reproduction"),
+        Check("force_norm_after_n", "<", "force_norm_before_n",
+              "thesis §7.4.1 (Fig. 7.16-(I)): '座り直し動作後の図 7.16-(I) の右図では,… 力・関節トルクの大きさ(ノルム)"
+              "も低減され,負荷が解消されていることが分かる' (hand and foot 6-axis forces; windows ours)",
+              kind="reproduction", row="000:fig7.16"),
+        Check("joint_torque_norm_after_nm", "<", "joint_torque_norm_before_nm",
+              "thesis §7.4.1 (Fig. 7.16-(I)): '… 力・関節トルクの大きさ(ノルム)も低減され' (our servo torques)",
+              kind="reproduction", row="000:fig7.16"),
+        Check("com_offset_after_m", "<", "com_offset_before_m",
+              "thesis §7.4.1 (Fig. 7.16-(I)): '重心位置が中央に寄り' (|CoM y − saddle| in the vehicle frame)",
+              kind="reproduction", row="000:fig7.16"),
+        Check("hand_ab_after_m", "<", "hand_ab_before_m",
+              "thesis §7.4.1 (Fig. 7.16-(II)): '補正前 … モデルAの手先の把持箇所・腰部位置姿勢と,"
+              "実環境ロボットモデルBの手先・腰部のズレが顕著' → '図 7.16 -(II) の右図のようにAとBが"
+              "十分近くなった' (hands)",
+              kind="reproduction", row="000:fig7.16"),
+        Check("waist_ab_after_m", "<", "waist_ab_before_m",
+              "thesis §7.4.1 (Fig. 7.16-(II)): '制御の難しい Base フレーム(腰部の骨盤リンク系)の"
+              "搭乗位置・姿勢に関しても修正が可能となり' (waist position, feet midpoints aligned)",
+              kind="reproduction", row="000:fig7.16"),
     ],
     thesis={"overturned_without_recovery": ThesisValue(1, "seed 000 §7.4.1, Fig. 7.14 fail-4", "overturned_without_recovery"),
             "overturned_with_recovery": ThesisValue(0, "seed 000 §7.4.1, Fig. 7.14 success", "overturned_with_recovery")},
     rig=rig, variants=("with", "without"), filmed=("with",), metrics=metrics,
-    plots=lambda ctx, runs, params: plots.recovery(ctx, runs),
+    plots=draw,
     video=True,
 )
