@@ -29,6 +29,12 @@ def yaw_after(seconds: float, foot_frame: bool) -> float:
     return math.degrees(math.atan2(m[3], m[0]))
 
 
+def test_the_ride_reads_in_the_feet_frame_and_the_floor_stack_in_world_axes():
+    from shintai.humanoid.stabilizer import StabilizerModule
+    assert StabilizerModule.__init__.__defaults__[-1] is False
+    assert VboardRide(level=2, noise=False).standing.stabilizer.foot_frame
+
+
 def test_the_foot_frame_halves_the_level2_yaw_runaway():
     """Measured: at 9 s the scooter has turned 28° with the torques read in world axes (the pitch/roll mix
     ∝ sin ψ feeds the differential board pitch) and 12° in the feet's frame."""

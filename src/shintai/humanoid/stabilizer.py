@@ -25,7 +25,7 @@ tracking", IROS 2010). One control period (4 ms) here:
    displacement of the foot frame's attitude R_R, R_L: δ turns the sole about the reference frame's x/y
    axes (the plans of :mod:`~shintai.humanoid.standing` give the soles no yaw), and τ is read about the
    *actual* foot's roll/pitch axes (the world reading turned by the sole's yaw, :func:`into_yawed`), so that
-   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter. In world axes a
+   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter (``foot_frame``). In world axes a
    foot's pitch torque leaked into roll by sin ψ and the roll torque into pitch; measured on level 2 of
    :mod:`~shintai.humanoid.vboard_ride` this was half of the yaw divergence (ω doubling every ≈1.5 s, a fall
    at 12 s; with the foot frame ≈3 s, standing at 14 s).
@@ -49,8 +49,11 @@ flat this is what the IMU + FK estimate gives. Its velocity is the world finite 
 period, low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt). Like hrpsys (its "foot_origin" frame), the
 CoM and the measured ZMP are compared with their references *relative to the stance feet*: moved by
 (mean reference stance sole point − mean actual one) and turned by −ψ, ψ the stance soles' mean yaw (the
-references have none); the CoM velocity is turned by −ψ too (``foot_frame=False``: no turn, the old
-world-axes reading, kept for comparison). In world coordinates a foot that lands 13 mm
+references have none); the CoM velocity is turned by −ψ too. That turn is ``foot_frame=True`` (on in
+:mod:`~shintai.humanoid.vboard_ride`); the default ``False`` keeps the world-axes reading for the floor and
+the self-boarding, whose feet yaw little on the floor — but up to 70° with the scooter during the boarding's
+right swing, where the turn changes the outcome (measured: SLC's run no longer falls, the right landing
+3.22 s instead of 2.90 s; its pad switch 92 ms before the force guard) and awaits a decision. In world coordinates a foot that lands 13 mm
 off its reference left a 23 mm CoM offset the LIP feedback kept fighting (measured, three steps).
 """
 
@@ -220,7 +223,7 @@ class StabilizerModule(Module):
     ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
-                 name: str = "stabilizer", period: float = CONTROL_PERIOD, foot_frame: bool = True):
+                 name: str = "stabilizer", period: float = CONTROL_PERIOD, foot_frame: bool = False):
         super().__init__(name, period)
         self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
         self.foot_frame = bool(foot_frame)

@@ -292,6 +292,7 @@ class VboardRide:
             self.lift.hold()
         stack = {} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
         self.standing = Standing(body=body, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
+        self.standing.stabilizer.foot_frame = True  # τ, CoM, ZMP in the feet's frame as they yaw with the scooter
         self.body = body
         if self.lift is not None:
             self.lift.lowering = True
