@@ -70,7 +70,7 @@ def _pictures(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float) -
     summary="Cla crawls on hands and knees: the spine's roll amounts and timings evolved by seed 003's GA "
             "(fitness = distance − torque integral − peak torque), against the spine locked straight and the "
             "hand-made roll",
-    params=[*ga_run.ga_params(generations=60, population=20),
+    params=[*ga_run.ga_params(generations=15, population=20),
             Param("eval_s", CRAWL_EVAL_S, "simulated time of one crawl [s]", lo=1.0, hi=120.0)],
     checks=(
         Check("evolved.distance_m", ">", "hand_made.distance_m", Q_HAND + ": the GA's crawl goes faster than the "
