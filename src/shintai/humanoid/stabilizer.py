@@ -25,10 +25,10 @@ tracking", IROS 2010). One control period (4 ms) here:
    displacement of the foot frame's attitude R_R, R_L: δ turns the sole about the reference frame's x/y
    axes (the plans of :mod:`~shintai.humanoid.standing` give the soles no yaw), and τ is read about the
    *actual* foot's roll/pitch axes (the world reading turned by the sole's yaw, :func:`into_yawed`), so that
-   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter (``foot_frame``). In world axes a
-   foot's pitch torque leaked into roll by sin ψ and the roll torque into pitch; measured on level 2 of
-   :mod:`~shintai.humanoid.vboard_ride` this was half of the yaw divergence (ω doubling every ≈1.5 s, a fall
-   at 12 s; with the foot frame ≈3 s, standing at 14 s).
+   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter. In world axes a foot's
+   pitch torque leaks into roll by sin ψ and its roll torque into pitch (tested); measured on level 2 of
+   :mod:`~shintai.humanoid.vboard_ride` that leak was half of the yaw divergence (ω doubling every ≈1.5 s, a
+   fall at 12 s; read in the foot frame ≈3 s).
 4. **Foot force difference control** ([55] Eq. 18): :class:`~shintai.humanoid.foot_damping.ForceDifferenceControl`
    turns Δfᵈ − Δf into sole heights ∓z_ctrl/2, in double support.
 5. The corrected sole poses and the waist placed under the CoM reference → :func:`~shintai.humanoid.leg_ik.legs_ik`
@@ -49,12 +49,12 @@ flat this is what the IMU + FK estimate gives. Its velocity is the world finite 
 period, low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt). Like hrpsys (its "foot_origin" frame), the
 CoM and the measured ZMP are compared with their references *relative to the stance feet*: moved by
 (mean reference stance sole point − mean actual one) and turned by −ψ, ψ the stance soles' mean yaw (the
-references have none); the CoM velocity is turned by −ψ too. That turn is ``foot_frame=True`` (on in
-:mod:`~shintai.humanoid.vboard_ride`); the default ``False`` keeps the world-axes reading for the floor and
-the self-boarding, whose feet yaw little on the floor — but up to 70° with the scooter during the boarding's
-right swing, where the turn changes the outcome (measured: SLC's run no longer falls, the right landing
-3.22 s instead of 2.90 s; its pad switch 92 ms before the force guard) and awaits a decision. In world coordinates a foot that lands 13 mm
-off its reference left a 23 mm CoM offset the LIP feedback kept fighting (measured, three steps).
+references have none); the CoM velocity is turned by −ψ too. This is the only reading (hrpsys's
+foot-origin frame; §5.2.2's δ and τ are the foot frame's): on a flat floor the feet keep their yaw and it
+changes little; on the V-BOARD the feet yaw with the scooter — on level 2, and up to 70° during the
+self-boarding's right swing, where the world-axes reading let SLC's run fall (vboard-boarding's notes). In world
+coordinates a foot that lands 13 mm off its reference left a 23 mm CoM offset the LIP feedback kept fighting
+(measured, three steps).
 """
 
 from __future__ import annotations
@@ -223,10 +223,9 @@ class StabilizerModule(Module):
     ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
-                 name: str = "stabilizer", period: float = CONTROL_PERIOD, foot_frame: bool = False):
+                 name: str = "stabilizer", period: float = CONTROL_PERIOD):
         super().__init__(name, period)
         self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
-        self.foot_frame = bool(foot_frame)
         if len(self.k) != 3 or not all(math.isfinite(v) for v in self.k):
             raise ValueError(f"stabilizer: k is three finite gains (k1, k2, k3), got {k!r}")
         self.weight = float(body.model.body_subtreemass[body.id("body", "waist")] * GRAVITY)
@@ -264,7 +263,7 @@ class StabilizerModule(Module):
         stance = [i for i, side in enumerate(SIDES) if side in support]
         n = len(stance)
         yaw = {s: self.sensors.yaw(s) for s in SIDES}
-        psi = sum(yaw[SIDES[i]] for i in stance) / n if self.foot_frame else 0.0
+        psi = sum(yaw[SIDES[i]] for i in stance) / n
         ax = sum(w[SIDES[i]].point[0] for i in stance) / n
         ay = sum(w[SIDES[i]].point[1] for i in stance) / n
         rx = sum(soles[i][0] for i in stance) / n
@@ -295,10 +294,8 @@ class StabilizerModule(Module):
         for s in SIDES:
             on = s in support
             out[f"tau_d_{FOOT[s]}"] = dist.tau_d[s] if on else self._zero
-            tau = w[s].tau
-            if self.foot_frame:  # about the foot's own roll and pitch axes, the axes δ turns it about
-                tau = np.array(into_yawed(float(tau[0]), float(tau[1]), yaw[s]))
-            out[f"tau_{FOOT[s]}"] = tau if on else self._zero
+            # τ about the foot's own roll and pitch axes, the axes δ turns it about
+            out[f"tau_{FOOT[s]}"] = np.array(into_yawed(*w[s].tau.tolist(), yaw[s])) if on else self._zero
             out[f"f_{FOOT[s]}z"] = np.array(w[s].fz)
         dz = (0.0, 0.0)
         if self.use_force_difference:

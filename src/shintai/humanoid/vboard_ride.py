@@ -158,7 +158,8 @@ class ScooterSensors(Module):
         h = self.heading(snapshot)
         acc = rot @ np.asarray(snapshot["imu_acc"], float) - np.array([0.0, 0.0, GRAVITY])  # a_IMU − g_o, world
         a_x = float(acc @ h) + self.noise * ACC_NOISE * self.rng.standard_normal()
-        omega = float((rot @ np.asarray(snapshot["imu_gyro"], float))[2]) + self.noise * GYRO_NOISE * self.rng.standard_normal()
+        omega = float((rot @ np.asarray(snapshot["imu_gyro"], float))[2])
+        omega += self.noise * GYRO_NOISE * self.rng.standard_normal()
         if self.k % self.vo_every == 0:  # a camera frame: position now, delivered VO_LATENCY later
             x = float(self.body.site_pos("head_camera") @ h) + self.noise * VO_NOISE * self.rng.standard_normal()
             self._vo_queue.append((t + VO_LATENCY - 1e-9, t, x))
@@ -197,8 +198,8 @@ class FootPitch(Module):
             self.u = self.u + ue
         self.theta += inc
         n = self.name
-        self.log(float(snapshot["t"]), **{f"{n}.u_v": self.u[0], f"{n}.u_omega": self.u[1], f"{n}.theta_R": self.theta[0],
-                                          f"{n}.theta_L": self.theta[1]})
+        self.log(float(snapshot["t"]), **{f"{n}.u_v": self.u[0], f"{n}.u_omega": self.u[1],
+                                          f"{n}.theta_R": self.theta[0], f"{n}.theta_L": self.theta[1]})
         return {"foot_damping": np.array([0.0, self.theta[1], 0.0, self.theta[0]])}
 
 
@@ -292,7 +293,6 @@ class VboardRide:
             self.lift.hold()
         stack = {} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
         self.standing = Standing(body=body, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
-        self.standing.stabilizer.foot_frame = True  # τ, CoM, ZMP in the feet's frame as they yaw with the scooter
         self.body = body
         if self.lift is not None:
             self.lift.lowering = True
