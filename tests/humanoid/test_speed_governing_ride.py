@@ -82,7 +82,8 @@ def test_speed_governing_runs_short(tmp_path):
     """One mini-batch after the lift lets go: the learn variant updates the gains once (the 'off' baseline is
     skipped here to keep the test short)."""
     out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "start_delay_s": "0"})
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "boarding": "false",
+                                  "start_delay_s": "0"})
     assert "error" not in out, out.get("error")
     m = out["metrics"]
     assert m["v_batches_learn"] == 1 and m["omega_batches_learn"] == 1 and "v_batches_off" not in m
@@ -91,6 +92,23 @@ def test_speed_governing_runs_short(tmp_path):
     assert m["v_unstable_learn_s"] > 1.99  # gains from 0: outside Eq. 6.41 for the whole first batch
     assert m["v_last_unstable_start_learn_s"] == pytest.approx(0.0, abs=0.01)
     assert (tmp_path / "fig6_15_learn.png").exists()
+
+
+def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
+    """Fig. 6.16's start (§6.4.1): the robot boards from the floor (ch. 5's SLC boarding); the governor stays off
+    (level 2) until the right foot's sole-force guard (f_Rz > 25 N, SLC's stop), then runs with the learned D."""
+    ride = governed_ride(TABLE, boarding=True, noise=False)
+    st, sched = ride.boarding
+    assert ride.lift is None and ride.body is st.body
+    loop = Loop(ride.body, stages=ride.stages, channels=ride.channels)
+    loop.run(3.0)
+    assert sched.state == "learning" and ride.governor.t_start is None  # the right foot is still in the air
+    assert ride.foot_pitch.theta.tolist() == [0.0, 0.0]
+    loop.run(0.4)
+    assert sched.t_stop is not None and 3.1 < sched.t_stop < 3.35
+    assert ride.governor.t_start == pytest.approx(sched.t_stop + 0.004)  # the next tick (the governor runs first)
+    learned = st.damping.feet["L"].D[1]
+    assert learned > 22.0 and st.damping.feet["R"].D[1] == learned and not ride.fallen()
 
 
 def test_integrator_comparison_runs_short(tmp_path):
