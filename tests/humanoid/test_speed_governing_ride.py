@@ -113,7 +113,7 @@ def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
 
 def test_integrator_comparison_runs_short(tmp_path):
     out = run_scenario("humanoid.integrator-comparison", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "start_delay_s": "0"})
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "start_delay_s": "0", "start": "lift"})
     assert "error" not in out, out.get("error")
     m = out["metrics"]
     for k in ("max_ui_jump_corrected", "max_ui_jump_saturated", "max_ui_jump_saturated_replay", "eq643_residual"):
