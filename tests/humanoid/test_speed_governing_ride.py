@@ -72,6 +72,8 @@ def test_bad_values_raise_one_line():
         governed_ride(TABLE, mode="x", lift=False)
     for sid, key, text in (("humanoid.speed-governing", "plant", "thesis"),
                            ("humanoid.speed-governing", "eta_scale", "0"),
+                           ("humanoid.speed-governing", "boarding", "maybe"),
+                           ("humanoid.integrator-comparison", "start", "floor"),
                            ("humanoid.integrator-comparison", "learn_s", "nan")):
         with pytest.raises(ParameterError) as info:
             run_scenario(sid, overrides={key: text}, quiet=True)
