@@ -342,13 +342,13 @@ ROWS = (
                "v, ω follow v^d = ω^d = 0 near 35 s; the integrator correction keeps u_I smooth at 5–8 s",
         difference="humanoid.speed-governing (learn; off = the same start with the governor off): lift-placed start "
                    "(ours, 5 cm/s), learning 0.5 s after the lift lets go; MLC's plant K, T from "
-                   "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, T_v 0.05 s; its fit from u has "
-                   "K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
-        why_not="the robot falls 12.2 s after the learning start, the governor-off baseline at 12.3 s: our level 2 "
-                "diverges in yaw (ω 0.001 → 0.45 rad/s in 12 s); at Table 6.6's rates the gains are still O(10⁻⁵) "
-                "then (thesis O(10⁻³)), and the foot damping cancels the governor's foot pitch "
-                "(humanoid.vboard-plant-id): no convergence (thesis ≈38 s); with rates ×10³ the gains reach O(10⁻³), "
-                "P and I dominant, but the foot pitch runs to 32° and it falls at 9.9 s",
+                   "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, K_ω 1.95×10⁴, T 0.05 s; its fit "
+                   "from u has K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
+        why_not="the robot falls 45.4 s after the learning start (the governor-off baseline at 53.1 s) without meeting "
+                "Eq. 6.32: level 2 at D = 40 oscillates in yaw with a growing amplitude (±1 rad/s by 42 s: the "
+                "ω̇ → τ_L − τ_R → foot damping → Eq. A.1 loop, the notes), v drifts back and MLC's K_I^v integrates "
+                "the foot pitch to 28° against the damping; gains O(10⁻⁴) (thesis O(10⁻³)), P^v below D^v. Before "
+                "the stabilizer read its torques in the feet's yawed frame both runs fell at ≈12 s",
     ),
     Row(
         key="000:fig6.16",
@@ -356,9 +356,13 @@ ROWS = (
         what="the same learning after the robot boarded by itself (ch. 5 damping gains applied)",
         result="§6.4.1: converged at '約 54[s]'; 'v は 4[s]-8[s] で ω は 0[s]-2[s] において不安定な状態となり,この期間では"
                "評価関数 J_v, J_ω も各々高まって'; the targets are followed near 50 s",
-        not_built="not runnable: learning starts when both feet have landed (§6.4.1), and humanoid.vboard-boarding "
-                  "falls both ways (with SLC at 4.22 s, 1.32 s after the right foot's landing — less than one 2 s "
-                  "mini-batch); humanoid.speed-governing runs the lift-placed start (Fig. 6.15) and falls at 12 s",
+        why_not="humanoid.speed-governing (boarding): HRP2 boards by SLC (window 1.25 s, D 22 → 81.9), learning starts "
+                "at the right foot's f_Rz > 25 N guard (3.228 s) and it rides the 60 s without falling. The boards end "
+                "the boarding at θ_L −4.7°, θ_R +0.4° and the scooter spins (ω 2.9 rad/s at 1 s); the ω governor "
+                "stops it by 8 s and meets Eq. 6.32 at 20 s (gains ≈3–4×10⁻⁴), flagged unstable for 0–2 s only (the "
+                "thesis's 'ω は 0[s]-2[s]'); final |v| 0.048 m/s, |ω| 0.031 rad/s. v does not converge: K_I^v is "
+                "clipped back to 0 at 4 s and 8 s and stays 0 (Eq. 6.41 fails for 56 s, P^v 2.9×10⁻⁴ > D^v but I = 0) "
+                "— the governor's pitch barely reaches v through the foot damping (humanoid.vboard-plant-id)",
     ),
     Row(
         key="000:fig6.17",
@@ -367,11 +371,12 @@ ROWS = (
              "data (0–6 s)",
         result="§6.4.2: '飽和制約を設けた場合(緑線)は瞬間的な変化を伴い制御入力が増加している' at 4 s, while the "
                "proposed integrator gives a smooth u_I; the extra slope is (r_sat − 1)u_I/Δt (Eq. 6.43 vs 6.44)",
-        difference="humanoid.integrator-comparison: on the lift-placed run (Fig. 6.16's boarding does not stay up), "
-                   "10 s; the corrected run's e_v and K_I^v(n) replayed through Eq. 6.42 (the thesis's method) and one "
-                   "closed-loop run per integrator. The saturated u_I^v jumps by up to ≈390× the corrected one's "
-                   "largest step, at the 8 s switching (thesis: 4 s); Eq. 6.43's extra (r_sat − 1)u_I holds to rounding. "
-                   "u_I^v stays below 10⁻⁶ rad per tick (the gains are O(10⁻⁵)), too small to move the robot",
+        why_not="humanoid.integrator-comparison on Fig. 6.16's data (our self-boarded run, the thesis's source): "
+                "K_I^v rises only from 0 there (at 2 s and 6 s, MLC clipping it back to 0 each time), where u_I was 0 "
+                "and Eq. 6.42's ratio is unbounded: the saturated and corrected u_I are the same trapezoid step "
+                "(3.99×10⁻⁹), no jump to compare (the thesis's 0–6 s has a marked I-gain amplification). With "
+                "--set start=lift (Fig. 6.15's start) K_I^v rises from non-zero values and the saturated u_I^v jumps "
+                "≈250× the corrected step (7.48×10⁻⁷ vs 2.94×10⁻⁹, at 10 s; thesis 4 s); Eq. 6.43 holds to rounding",
     ),
     # --- chapter 7 -------------------------------------------------------------------------------------------
     Row(
