@@ -122,3 +122,17 @@ def test_integrator_comparison_runs_short(tmp_path):
         assert np.isfinite(m[k]), k
     assert m["corrected_replay_error"] < 1e-12 and m["eq643_residual"] < 1e-12
     assert (tmp_path / "fig6_17.png").exists()
+
+
+def test_a_fall_ends_the_run_and_keeps_what_was_computed(tmp_path, monkeypatch):
+    """Issue 13's 'a fall ends the run with what was computed kept', on the ride's stop rule: a fall (here declared
+    at 0.6 s, before the learning starts) stops the run there; metrics, pictures and the log are still written."""
+    from shintai.humanoid.standing import Standing
+
+    monkeypatch.setattr(Standing, "fallen", lambda self: self.body.t >= 0.6)
+    out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "boarding": "false"})
+    assert "error" not in out, out.get("error")
+    m = out["metrics"]
+    assert m["fallen_learn"] == 1 and m["v_batches_learn"] == 0 and out["sim_time_s"] == pytest.approx(0.6, abs=0.01)
+    assert (tmp_path / "fig6_15_learn.png").exists() and (tmp_path / "log.npz").exists()
