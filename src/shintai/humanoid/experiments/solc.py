@@ -101,7 +101,7 @@ experiment(
             "speed governor's PID gains from 0 — one switcher INIT → SLC → MLC → DONE at the sole-force landings",
     params=[
         Param("max_s", 90.0, "simulated time limit from the initial state [s] (thesis: DONE at 79.5 s)",
-              lo=5.0, hi=300.0),
+              lo=1.0, hi=300.0),
         Param("after_done_s", 2.0, "keep riding this long after DONE [s]", lo=0.0, hi=30.0),
         Param("plant", "board", "K, T for MLC's sensitivity (as humanoid.speed-governing)", choices=PLANTS),
         Param("eta_scale", 1.0, "factor on Table 6.6's learning rates (1 = the thesis's)", lo=1e-3, hi=1e6),
