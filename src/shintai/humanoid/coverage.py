@@ -8,9 +8,6 @@ with its section. Chapters 1 and 8 hold no experiments; App. A.1.1 (tricycle), A
 
 from shintai.scenarios.coverage import Row
 
-_UNICYCLE = ("issue 14: no Ninebot One S2 model (App. A.1.3: wheel speed ∝ pitch moment of the ZMP, Eq. A.9) and no "
-             "balance on it; MLC and the preview-control pattern generator exist (issue 13's modules)")
-
 ROWS = (
     # --- chapter 2 -------------------------------------------------------------------------------------------
     Row(
@@ -413,7 +410,12 @@ ROWS = (
         what="HRP2-JSK on the Ninebot One S2 with training wheels, AutoBalancer + LIP tracking only",
         result="§7.3.3: '… 速度の制御が達成されておらず,図 7.7 -(1) のように人手のサポートを外すと … 速度をゼロとする"
                "ようなその場での定位が困難な課題をもつ' (Fig. 7.7 (4) 'Divergence of Speed')",
-        not_built=_UNICYCLE,
+        difference="humanoid.unicycle-no-learning: our Ninebot is Eqs. A.5–A.9 made physical (ideal pitch "
+                   "controller, wheel speed-servoed to k M_y⁰ of the footboards' loads; r 0.178 m, K₀ 5 s⁻¹ and "
+                   "p⁰ 10 mm ahead of the rider's mass centre chosen); a lift lowers the robot and lets go",
+        why_not="the speed does not diverge: the robot rolls back at ≈1.5 cm/s (0.31 m in 20 s, never |v| > 0.3 "
+                "m/s) — with v ∝ ZMP offset (Eq. A.9) a rider whose stabilizer holds its ZMP still rides at a "
+                "constant speed",
     ),
     Row(
         key="000:fig7.9",
@@ -423,7 +425,12 @@ ROWS = (
         result="§7.3.3: '並進速度 v は発散なく目標値 v^d = 0 へと漸近'; the cost '0 へと収束に成功'; diverging at "
                "0–2 s before any learning; the Ninebot's K_P^v, K_D^v (sic) learnt values are '平行二輪電動スクーター"
                "での学習値の 10 分の 1 未満' while K_P^traj grows large — trajectory correction dominates",
-        not_built=_UNICYCLE,
+        difference="humanoid.unicycle-learning: η for K^traj (2×10⁻⁵) and T_traj (0.05 s) chosen; variant "
+                   "'reference' (ours) shifts the LIP tracking's references by the correction instead of p^{d*}",
+        why_not="as written (Eq. 7.2 after the LIP tracking) the correction runs away: hrpsys's LIP gains make its "
+                "static gain negative (x = c/(1 + k1 + k3) = −2.3 c), |v| > 0.3 m/s at 13.8 s, falls at 14.9 s; "
+                "the 'reference' variant keeps |v| < 1 cm/s from 9.2 s (4 mm/s at 30 s) with K_I^traj, not K_P^traj, "
+                "dominant, K^v 6×10⁻⁵ of the V-BOARD's",
     ),
     Row(
         key="000:fig7.10",
@@ -431,7 +438,10 @@ ROWS = (
         what="final reference ZMP_x (p^d**) against the measured ZMP_x during the speed governing",
         result="§7.3.3: LIP tracking alone (0–2 s) leaves an error; '軌道修正の適用後(18[s]付近)にはエラーを小さく抑える"
                "ことに成功している'",
-        not_built=_UNICYCLE,
+        difference="humanoid.unicycle-learning (fig7_9_7_10.png, bottom row): the stabilizer's p_d (= p^{d**}) "
+                   "against the F/T sensors' ZMP",
+        why_not="LIP tracking alone already leaves ≈1 mm rms (1.06 mm in the first 2 s, 0.92 mm in the last 2 s of "
+                "the reference variant); as written the error grows to 85 mm as it runs away",
     ),
     Row(
         key="000:fig7.12",
@@ -441,7 +451,13 @@ ROWS = (
              "the joystick (Eq. 7.6), a human hand assisting",
         result="§7.3.3: '手動により目標値を整形する操縦インターフェース(式 7.6)や図 7.12 -(a6) のように人手による介助を"
                "割り込むことで走行行動を可能とした'; '目標を満たす速度制御を実現していることが確認できる' (Fig. 7.13)",
-        not_built=_UNICYCLE + "; no roll-unstable unicycle",
+        difference="humanoid.unicycle-free: the learned gains are humanoid.unicycle-learning's 'reference' variant's "
+                   "(its as-written run falls); the joystick is an operator model of ours (stick ∝ the unicycle's "
+                   "roll, full at 0.05 rad; α 0.5 rad/s at full stick); no hand assist; a 10 N, 0.1 s sideways tap "
+                   "on the chest 1 s after the release breaks the simulation's symmetry",
+        why_not="the robot falls sideways 1.7 s after the tap (2.7 s after the release; roll 18.5° with the Eq. 7.6 "
+                "shaping, 39° without, same time) while v has reached 0.03 m/s of the 0.3 m/s step (rms error "
+                "0.30 m/s); the thesis also needed a human hand (Fig. 7.12 (a6))",
     ),
     Row(
         key="000:fig7.14",

@@ -1,13 +1,17 @@
 """The humanoid's MuJoCo models for export (``shintai model``, :mod:`shintai.sim.export`): HRP2-JSK standing
 (App. A.2.1), the tricycle (App. A.1.1), HRP2-JSK seated on it with both hands on the handle (ch. 3),
 Kenshiro's planar legs on the crank (§3.5.5), the V-BOARD scooter (App. A.1.2) and HRP2-JSK standing on it
-(§6.2.1). The exported V-BOARD has its actuators but not its firmware (Python, run before every physics step):
-in MuJoCo's own viewer its wheels take torques from ``wheel_s_motor``."""
+(§6.2.1), the Ninebot One S2 unicycle (App. A.1.3) and HRP2-JSK standing on it (§7.3.3). The exported V-BOARD
+has its actuators but not its firmware (Python, run before every physics step): in MuJoCo's own viewer its
+wheels take torques from ``wheel_s_motor``. Likewise the Ninebot's firmware (Eqs. A.5–A.6) is Python: exported,
+its ``ninebot_motor`` is a bare velocity servo."""
 
+from shintai.humanoid.ninebot_ride import build_ninebot_stand
 from shintai.humanoid.riding import build_riding
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.kenshiro import build_kenshiro
 from shintai.humanoid.vboard_stand import build_vboard_stand
+from shintai.humanoid.vehicles.ninebot import build_ninebot
 from shintai.humanoid.vehicles.tricycle import build_tricycle
 from shintai.humanoid.vehicles.vboard import build_vboard
 from shintai.sim.export import model
@@ -44,3 +48,15 @@ def vboard():
                                "the axle (§6.2.1, Fig. 6.1)")
 def hrp2_vboard():
     return build_vboard_stand()
+
+
+@model("humanoid.ninebot", "the Ninebot One S2 of seed 000 App. A.1.3 with its training wheels: one wheel "
+                           "speed-servoed to k times the footboards' pitch moment (Eqs. A.5–A.9)")
+def ninebot():
+    return build_ninebot()
+
+
+@model("humanoid.hrp2-ninebot", "HRP2-JSK standing on the Ninebot One S2's footboards (training wheels on), mass "
+                                "centre over the axle (§7.3.3, Fig. 7.6)")
+def hrp2_ninebot():
+    return build_ninebot_stand()

@@ -135,8 +135,9 @@ class ScooterSensors(Module):
     """v and ω from the robot's simulated sensors (Table 6.1, Eq. 6.3; module docstring). Writes ``v``
     (24 ms, 24 ms late) and ``omega`` (4 ms); keeps the truth (``true_v``, ``true_omega``) for evaluation."""
 
-    def __init__(self, body, seed: int = 0, noise: bool = True, name: str = "sensors"):
+    def __init__(self, body, seed: int = 0, noise: bool = True, name: str = "sensors", truth=scooter_velocity):
         super().__init__(name, CONTROL_PERIOD)
+        self.truth = truth  # snapshot → the true (v, ω) of the vehicle (the Ninebot's rig passes its own)
         self.body, self.rng, self.noise = body, np.random.default_rng(seed), float(noise)
         self.filter = LinearVelocityFilter()
         self.k = 0
@@ -172,7 +173,7 @@ class ScooterSensors(Module):
         while self._v_queue and self._v_queue[0][0] <= t:
             self.v = self._v_queue.popleft()[1]
         self.k += 1
-        self.true_v, self.true_omega = scooter_velocity(snapshot)
+        self.true_v, self.true_omega = self.truth(snapshot)
         self.log(t, **{f"{self.name}.v": self.v, f"{self.name}.omega": omega, f"{self.name}.true_v": self.true_v,
                        f"{self.name}.true_omega": self.true_omega})
         return {"v": self.v, "omega": omega}
@@ -227,15 +228,19 @@ class ChestPitchControl(ChestPostureControl):
 class ChestPitchIK(LegIKModule):
     """The leg IK with Eq. 4.9's target correction R_C^{d*} = R_C^d R^{centre}(0, Δφ_C, 0): the upper body (waist
     target, position and attitude) turned by Δφ_C = ``ref:chest_pitch`` about the midpoint of the two soles —
-    on the V-BOARD the scooter's centre, the rotation centre §4.3.3 names for Fig. 4.10 (B)."""
+    on the V-BOARD the scooter's centre, the rotation centre §4.3.3 names for Fig. 4.10 (B). ``channel`` and
+    ``rotation`` name the component (a subclass turns the roll: ``ref:chest_roll``, ``rot_x``)."""
+
+    channel = "ref:chest_pitch"
+    rotation = staticmethod(rot_y)
 
     def update(self, snapshot):
-        d = float(snapshot.get("ref:chest_pitch", 0.0))
+        d = float(snapshot.get(self.channel, 0.0))
         if d == 0.0:
             return super().update(snapshot)
         soles = np.asarray(snapshot["sole_ref"], float)
         centre = soles.mean(axis=0)
-        rot = rot_y(d)
+        rot = self.rotation(d)
         waist = centre + rot @ (np.asarray(snapshot["com_ref"], float) - self.com_offset - centre)
         delta = snapshot.get("foot_damping")
         dz = snapshot.get("sole_dz")

@@ -1,0 +1,54 @@
+"""``humanoid.unicycle-no-learning``: HRP2 on the Ninebot One S2 with training wheels, the balance stack only, the
+lift (the thesis's supporting hand) letting go — does the speed run away? (seed 000 §7.3.3, Figs. 7.6–7.7)."""
+
+from __future__ import annotations
+
+from shintai.humanoid.unicycle import P0_PARAM, V_DIVERGED, summary, unicycle_rig
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+
+
+def rig(params, variant):
+    return unicycle_rig(params, control="stabilizer", training_wheels=True)
+
+
+def metrics(runs, params):
+    return summary(runs["run"])
+
+
+def plots(ctx, runs, params):
+    run = runs["run"]
+    ride, log = run.state, run.log
+    t = log.times("true_v") - ride.t0
+    with ctx.figure("speed", 3, 1, figsize=(9, 9), sharex=True) as (_fig, ax):
+        ax[0].plot(t, log.values("true_v"), "g", label="v (truth)")
+        for s in (1, -1):
+            ax[0].axhline(s * V_DIVERGED, color="0.6", ls=":")
+        ax[0].set_ylabel("v [m/s]")
+        ax[0].set_title("Fig. 7.7: stabilizer only, training wheels; t = 0 at the release")
+        ax[1].plot(t, log.values("zmp_act_x") * 1e3, "b", label="rider's ZMP x from p⁰ (M_y⁰/W, Eq. A.5)")
+        ax[1].set_ylabel("ZMP x [mm]")
+        ax[2].plot(t, log.values("x"), "k", label="unicycle x")
+        ax[2].set_ylabel("travel [m]")
+        ax[2].set_xlabel("t [s] from the release")
+        for a in ax:
+            a.legend(fontsize=7)
+
+
+experiment(
+    "humanoid.unicycle-no-learning",
+    covers=("000:fig7.7",),
+    source="seed 000 §7.3.3, Figs. 7.6–7.7, App. A.1.3 (Eqs. A.5–A.9)",
+    summary="HRP2 on the Ninebot One S2 with training wheels, AutoBalancer-like reference + LIP tracking only, "
+            "released from the lift: does the speed diverge?",
+    params=[Param("duration_s", 20.0, "simulated time after the release [s]", lo=0.5, hi=120.0), P0_PARAM],
+    checks=[
+        Check("speed_diverged", "==", 1, "thesis §7.3.3, Fig. 7.7: '人手のサポートを外すと … 速度をゼロとするような"
+              "その場での定位が困難' (Fig. 7.7 (4) 'Divergence of Speed'); |v| > 0.3 m/s is our threshold",
+              kind="reproduction"),
+        Check("fallen", "==", 0, "thesis §7.3.3, Fig. 7.6: with the training wheels the vehicle stands by itself "
+              "('補助輪によるハードウェアでの支持'); the robot stays on it", kind="reproduction"),
+    ],
+    thesis={"speed_diverged": ThesisValue(1, "seed 000 §7.3.3, Fig. 7.7 (4): 'Divergence of Speed'",
+                                          "speed_diverged")},
+    rig=rig, metrics=metrics, plots=plots, video=True,
+)
