@@ -309,7 +309,8 @@ ROWS = (
         difference="humanoid.vboard-levels (level2, D = 40 from §5.4.2, true θ_O 0.3° above the intercept: ours): "
                    "the ZMP tracks the centre (6.8 mm rms against 56 mm at level 1), θ_R settles 0.26° above θ_RO "
                    "while both wheels roll back: drift −0.12 m in 6 s (−2 cm/s), 1.2 % of level 1's. With the true "
-                   "θ_O equal to the intercept it still drifts back (−0.14 m in 6 s, θ_R 0.04° below θ_RO): not only θ_O's error",
+                   "θ_O equal to the intercept it still drifts back (−0.14 m in 6 s, θ_R 0.04° below θ_RO): not only "
+                   "θ_O's error",
     ),
     Row(
         key="000:tab6.2",
