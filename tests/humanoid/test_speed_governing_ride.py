@@ -72,6 +72,8 @@ def test_bad_values_raise_one_line():
         governed_ride(TABLE, mode="x", lift=False)
     for sid, key, text in (("humanoid.speed-governing", "plant", "thesis"),
                            ("humanoid.speed-governing", "eta_scale", "0"),
+                           ("humanoid.speed-governing", "boarding", "maybe"),
+                           ("humanoid.integrator-comparison", "start", "floor"),
                            ("humanoid.integrator-comparison", "learn_s", "nan")):
         with pytest.raises(ParameterError) as info:
             run_scenario(sid, overrides={key: text}, quiet=True)
@@ -82,7 +84,8 @@ def test_speed_governing_runs_short(tmp_path):
     """One mini-batch after the lift lets go: the learn variant updates the gains once (the 'off' baseline is
     skipped here to keep the test short)."""
     out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "start_delay_s": "0"})
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "boarding": "false",
+                                  "start_delay_s": "0"})
     assert "error" not in out, out.get("error")
     m = out["metrics"]
     assert m["v_batches_learn"] == 1 and m["omega_batches_learn"] == 1 and "v_batches_off" not in m
@@ -93,12 +96,43 @@ def test_speed_governing_runs_short(tmp_path):
     assert (tmp_path / "fig6_15_learn.png").exists()
 
 
+def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
+    """Fig. 6.16's start (§6.4.1): the robot boards from the floor (ch. 5's SLC boarding); the governor stays off
+    (level 2) until the right foot's sole-force guard (f_Rz > 25 N, SLC's stop), then runs with the learned D."""
+    ride = governed_ride(TABLE, boarding=True, noise=False)
+    st, sched = ride.boarding
+    assert ride.lift is None and ride.body is st.body
+    loop = Loop(ride.body, stages=ride.stages, channels=ride.channels)
+    loop.run(3.0)
+    assert sched.state == "learning" and ride.governor.t_start is None  # the right foot is still in the air
+    assert ride.foot_pitch.theta.tolist() == [0.0, 0.0]
+    loop.run(0.4)
+    assert sched.t_stop is not None and 3.1 < sched.t_stop < 3.35
+    assert ride.governor.t_start == pytest.approx(sched.t_stop + 0.004)  # the next tick (the governor runs first)
+    learned = st.damping.feet["L"].D[1]
+    assert learned > 22.0 and st.damping.feet["R"].D[1] == learned and not ride.fallen()
+
+
 def test_integrator_comparison_runs_short(tmp_path):
     out = run_scenario("humanoid.integrator-comparison", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "start_delay_s": "0"})
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "start_delay_s": "0", "start": "lift"})
     assert "error" not in out, out.get("error")
     m = out["metrics"]
     for k in ("max_ui_jump_corrected", "max_ui_jump_saturated", "max_ui_jump_saturated_replay", "eq643_residual"):
         assert np.isfinite(m[k]), k
     assert m["corrected_replay_error"] < 1e-12 and m["eq643_residual"] < 1e-12
     assert (tmp_path / "fig6_17.png").exists()
+
+
+def test_a_fall_ends_the_run_and_keeps_what_was_computed(tmp_path, monkeypatch):
+    """Issue 13's 'a fall ends the run with what was computed kept', on the ride's stop rule: a fall (here declared
+    at 0.6 s, before the learning starts) stops the run there; metrics, pictures and the log are still written."""
+    from shintai.humanoid.standing import Standing
+
+    monkeypatch.setattr(Standing, "fallen", lambda self: self.body.t >= 0.6)
+    out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,
+                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "boarding": "false"})
+    assert "error" not in out, out.get("error")
+    m = out["metrics"]
+    assert m["fallen_learn"] == 1 and m["v_batches_learn"] == 0 and out["sim_time_s"] == pytest.approx(0.6, abs=0.01)
+    assert (tmp_path / "fig6_15_learn.png").exists() and (tmp_path / "log.npz").exists()

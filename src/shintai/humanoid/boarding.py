@@ -38,9 +38,18 @@ from shintai.humanoid.constants import (
     VBOARD,
     VboardSpec,
 )
-from shintai.humanoid.foot_damping import DELTA_LIMIT
+from shintai.humanoid.foot_damping import DAMPING_T, DELTA_LIMIT
 from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
-from shintai.humanoid.standing import BOARDING_STEP_X, SoleStep, platform_steps
+from shintai.humanoid.slc import SLC, SLCParams, SLCSchedule
+from shintai.humanoid.standing import (
+    BOARDING_CROUCH,
+    BOARDING_STEP_X,
+    SoleStep,
+    Standing,
+    platform_steps,
+    settle_on_floor,
+    stand_geometry,
+)
 from shintai.humanoid.vehicles.vboard import BOARD, SIDES, add_vboard, install_firmware
 from shintai.sim.body import MujocoBody
 
@@ -77,6 +86,25 @@ def boarding_steps(soles: dict, x: float = BOARD_X, v: VboardSpec = VBOARD) -> l
     """§5.4.1's two footsteps: the left sole point onto the left pad's centre, then the right onto the
     right pad's (x ahead, on the deck's top, y = ±pad_y)."""
     return platform_steps(soles, x=x, height=v.deck_height, y=v.pad_y)
+
+
+def boarding_stack(p: SLCParams, T: float = DAMPING_T, learn: bool = True, v: VboardSpec = VBOARD,
+                   schedule: bool = True) -> tuple[Standing, SLCSchedule | None]:
+    """The boarding of §5.4.1 ready to run: :func:`boarding_body` settled on the floor, the
+    :class:`~shintai.humanoid.standing.Standing` stack on :func:`boarding_steps` (crouched by
+    :data:`~shintai.humanoid.standing.BOARDING_CROUCH`), D₀ = ``p.D0`` and T on every axis of both feet (Table
+    5.2; §5.4.1: the roll stays at D₀), and the SLC schedule inside the foot damping — learning (``learn``) or only
+    marking the same window (D = D₀ throughout: Fig. 5.6's run). ``humanoid.vboard-boarding`` runs it, and
+    ``humanoid.speed-governing`` rides on after it (Fig. 6.16). ``schedule=False``: no SLC inside the damping (the
+    schedule is None) — :mod:`~shintai.humanoid.solc` switches SLC in and out itself (§7.4.2)."""
+    body = boarding_body(v=v)
+    settle_on_floor(body)
+    soles, _ = stand_geometry(body)
+    sched = SLCSchedule(SLC(p), learn=learn) if schedule else None
+    st = Standing(steps=boarding_steps(soles, v=v), body=body, crouch=BOARDING_CROUCH, slc=sched)
+    for foot in st.damping.feet.values():
+        foot.D[:], foot.T = p.D0, T
+    return st, sched
 
 
 def j_tau_peaks(t, J):

@@ -8,11 +8,6 @@ with its section. Chapters 1 and 8 hold no experiments; App. A.1.1 (tricycle), A
 
 from shintai.scenarios.coverage import Row
 
-_SCOOTER = ("issue 13: the V-BOARD model (vehicles/vboard.py), leg IK, preview control, foot torque damping and "
-            "SLC exist as tested modules; the standing stack on the board and the boarding scenario do not yet")
-_GOVERNOR = ("issue 13: the V-BOARD model, the velocity filter, plant identification, MLC, the prior-value-correcting "
-             "integrator and Routh–Hurwitz exist as tested modules (speed_governing.py, mlc.py, "
-             "prior_value_integrator.py); the robot balancing on the board and the scenarios do not yet")
 ROWS = (
     # --- chapter 2 -------------------------------------------------------------------------------------------
     Row(
@@ -257,11 +252,11 @@ ROWS = (
         result="§5.4.2: '平坦な床面で適応的にバランスを維持していたパラメータ D = 22.0 をそのまま用いて乗り込み動作を"
                "生成した場合,平行二輪電動スクーター上では適応的にバランスを安定化できずに図 5.6 -(7),(8) に示すように"
                "転倒した.'",
-        difference="humanoid.vboard-boarding (fixed_d): our HRP2 falls too, 4.60 s into the run (2.62 s after the left "
-                   "landing, 1.70 s after the right one), δ at its 10° limit from 0.58 s after the left landing; but "
-                   "it falls with SLC as well (4.22 s), so the fall is not D = 22.0's alone: the left board, level "
-                   "and unloaded, drives forward when loaded (θ_L ≈ −1.5° > θ_LO = −1.9972°, Eq. A.1) and the foot "
-                   "damping, turning a foot whose board pivots under its ankle, tips the board to −19°",
+        difference="humanoid.vboard-boarding (fixed_d): our HRP2 falls too, 4.44 s into the run (2.47 s after the left "
+                   "landing, 1.32 s after the right one), δ at its 10° limit from 0.58 s after the left landing, the "
+                   "left board tipped to −29°; the loaded left board drives forward while the right foot is still on "
+                   "the floor (θ_L ≈ −1.6° > θ_LO = −1.9972°, Eq. A.1) — with SLC the same happens but D grows and "
+                   "the robot boards (000:fig5.7)",
     ),
     Row(
         key="000:fig5.7",
@@ -271,12 +266,11 @@ ROWS = (
         result="§5.4.2: 'SLC を用いてオンラインでダンピングゲインの学習を行うことで,適応的に平行二輪電動スクーター上"
                "への搭乗行動が実現された'; 'SLC の実行の総時間は約 1.2[s] の結果となった'; 'ダンピングゲイン D は初期値 "
                "D = 22.0 より学習を開始して,増加しながら SLC の終了時点では約 D = 40.0 の値を獲得した'",
-        why_not="humanoid.vboard-boarding (slc): SLC runs 0.92 s (left landing 1.976 s → right landing 2.900 s; "
-                "thesis ≈1.2 s) and D rises 22.0 → 67.6 (thesis ≈40), the right pitch takes it, but the robot falls "
-                "(4.22 s): D stays ≈22 until δ grows (R′δ²/D, δ ≈ 0.05 rad after 0.5 s) and is only 29 when δ "
-                "saturates 0.59 s after the landing, as in the fixed-D run (0.58 s); the board tipped to −19° by "
-                "then (the loaded left board drives forward under the foot, θ_L > θ_LO, and δ turns the board "
-                "with the foot: e_τ cannot close)",
+        difference="humanoid.vboard-boarding (slc): the robot boards and stands to the run's end (6.2 s); SLC runs "
+                   "1.24 s (left landing 1.976 s → right landing 3.220 s, the f_Rz > 25 N guard; thesis ≈1.2 s) and D "
+                   "rises 22.0 → 83.4 (thesis ≈40: D keeps growing while δ sits at its limit, 000:fig5.8), the right "
+                   "pitch takes it. The stance torques are read in the feet's yawed frame (§5.2.2); with world axes "
+                   "this run fell at 4.22 s",
     ),
     Row(
         key="000:fig5.8",
@@ -285,10 +279,11 @@ ROWS = (
         result="§5.4.2: without SLC 'これに対する制御入力 δ は図 5.8-(c1) のように発散が観察された', saturating at "
                "the input limit before the fall; with SLC '制御入力 δ についても図 5.8 -(c2) のように発散を防ぐことに"
                "成功している' and '1つめのピーク(0.6[s]付近)に比べて2つめのピーク(1.0[s]付近)が小さくなっており'",
-        why_not="humanoid.vboard-boarding: D rises (22.0 → 67.6) and δ hits its 10° limit without SLC (0.58 s after "
-                "the left landing), as the thesis shows, but δ hits it with SLC too (0.59 s: D is 29 by then) and "
-                "J_τ's second peak (0.64 s, 2131) is larger than its first (0.43 s, 154): the learning comes too late "
-                "in our boarding (see 000:fig5.7)",
+        why_not="humanoid.vboard-boarding: D rises (22.0 → 83.4) and δ hits its 10° limit without SLC (0.58 s after "
+                "the left landing), as the thesis shows, but δ hits it with SLC too (0.60 s: D is 29.6 by then; it "
+                "leaves the limit at 2.94 s, before the right landing) and J_τ's second peak (0.64 s, 2066) is larger "
+                "than its first (0.43 s, 166): D moves only once δ is large (R′δ²/D), and the loaded left board "
+                "drives forward under the foot (θ_L > θ_LO) while the right foot is on the floor",
     ),
     # --- chapter 6: MLC, speed governing on the V-BOARD ------------------------------------------------------
     Row(
@@ -314,9 +309,10 @@ ROWS = (
                "yet the robot '加速的ではないにしろ後方に徐々に移動している'; '実際は両輪とも後退している結果となった' "
                "(the offsets are only regression intercepts)",
         difference="humanoid.vboard-levels (level2, D = 40 from §5.4.2, true θ_O 0.3° above the intercept: ours): "
-                   "the ZMP tracks the centre (6.8 mm rms against 56 mm at level 1), θ_R settles 0.28° above θ_RO "
+                   "the ZMP tracks the centre (6.8 mm rms against 56 mm at level 1), θ_R settles 0.26° above θ_RO "
                    "while both wheels roll back: drift −0.12 m in 6 s (−2 cm/s), 1.2 % of level 1's. With the true "
-                   "θ_O equal to the intercept it still drifts back (≈−0.06 m in 3 s): not only θ_O's error",
+                   "θ_O equal to the intercept it still drifts back (−0.14 m in 6 s, θ_R 0.04° below θ_RO): not only "
+                   "θ_O's error",
     ),
     Row(
         key="000:tab6.2",
@@ -326,10 +322,10 @@ ROWS = (
         difference="humanoid.vboard-plant-id: level 2, square-wave u (ours, the thesis does not name its input), v "
                    "from the simulated Eq. 6.3 filter, ω from the gyro. From the boards' pitch increments "
                    "Eqs. 6.6–6.10 hold (R² 0.98, K within 3 % of (r/Δt)(K_R + K_L)/2)",
-        why_not="from the commanded u the fit fails (R² 0.003 for v, 0.07 for ω; K_v < 0): the foot torque damping "
+        why_not="from the commanded u the fit fails (R² 0.003 for v, 0.04 for ω; K_v < 0): the foot torque damping "
                 "(D = 40) turns the soles back within ≈0.2 s, so the commanded pitch does not reach the boards "
-                "(d ≈ −M u, not a disturbance independent of u as Eq. 6.10 assumes); the ω run spins out (falls at "
-                "8.5 s)",
+                "(d ≈ −M u, not a disturbance independent of u as Eq. 6.10 assumes); from the boards' own pitch "
+                "K_v 5.27×10³ (R² 0.98), K_ω 1.95×10⁴ (R² 0.99), both runs ride their 10 s",
     ),
     Row(
         key="000:fig6.15",
@@ -341,13 +337,13 @@ ROWS = (
                "v, ω follow v^d = ω^d = 0 near 35 s; the integrator correction keeps u_I smooth at 5–8 s",
         difference="humanoid.speed-governing (learn; off = the same start with the governor off): lift-placed start "
                    "(ours, 5 cm/s), learning 0.5 s after the lift lets go; MLC's plant K, T from "
-                   "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, T_v 0.05 s; its fit from u has "
-                   "K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
-        why_not="the robot falls 12.2 s after the learning start, the governor-off baseline at 12.3 s: our level 2 "
-                "diverges in yaw (ω 0.001 → 0.45 rad/s in 12 s); at Table 6.6's rates the gains are still O(10⁻⁵) "
-                "then (thesis O(10⁻³)), and the foot damping cancels the governor's foot pitch "
-                "(humanoid.vboard-plant-id): no convergence (thesis ≈38 s); with rates ×10³ the gains reach O(10⁻³), "
-                "P and I dominant, but the foot pitch runs to 32° and it falls at 9.9 s",
+                   "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, K_ω 1.95×10⁴, T 0.05 s; its fit "
+                   "from u has K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
+        why_not="the robot falls 45.4 s after the learning start (the governor-off baseline at 53.1 s) without meeting "
+                "Eq. 6.32: level 2 at D = 40 oscillates in yaw with a growing amplitude (±1 rad/s by 42 s: the "
+                "ω̇ → τ_L − τ_R → foot damping → Eq. A.1 loop, the notes), v drifts back and MLC's K_I^v integrates "
+                "the foot pitch to 28° against the damping; gains O(10⁻⁴) (thesis O(10⁻³)), P^v below D^v. Before "
+                "the stabilizer read its torques in the feet's yawed frame both runs fell at ≈12 s",
     ),
     Row(
         key="000:fig6.16",
@@ -355,9 +351,13 @@ ROWS = (
         what="the same learning after the robot boarded by itself (ch. 5 damping gains applied)",
         result="§6.4.1: converged at '約 54[s]'; 'v は 4[s]-8[s] で ω は 0[s]-2[s] において不安定な状態となり,この期間では"
                "評価関数 J_v, J_ω も各々高まって'; the targets are followed near 50 s",
-        not_built="not runnable: learning starts when both feet have landed (§6.4.1), and humanoid.vboard-boarding "
-                  "falls both ways (with SLC at 4.22 s, 1.32 s after the right foot's landing — less than one 2 s "
-                  "mini-batch); humanoid.speed-governing runs the lift-placed start (Fig. 6.15) and falls at 12 s",
+        why_not="humanoid.speed-governing (boarding): HRP2 boards by SLC (window 1.25 s, D 22 → 81.9), learning starts "
+                "at the right foot's f_Rz > 25 N guard (3.228 s) and it rides the 60 s without falling. The boards end "
+                "the boarding at θ_L −4.7°, θ_R +0.4° and the scooter spins (ω 2.9 rad/s at 1 s); the ω governor "
+                "stops it by 8 s and meets Eq. 6.32 at 20 s (gains ≈3–4×10⁻⁴), flagged unstable for 0–2 s only (the "
+                "thesis's 'ω は 0[s]-2[s]'); final |v| 0.048 m/s, |ω| 0.031 rad/s. v does not converge: K_I^v is "
+                "clipped back to 0 at 4 s and 8 s and stays 0 (Eq. 6.41 fails for 56 s, P^v 2.9×10⁻⁴ > D^v but I = 0) "
+                "— the governor's pitch barely reaches v through the foot damping (humanoid.vboard-plant-id)",
     ),
     Row(
         key="000:fig6.17",
@@ -366,11 +366,12 @@ ROWS = (
              "data (0–6 s)",
         result="§6.4.2: '飽和制約を設けた場合(緑線)は瞬間的な変化を伴い制御入力が増加している' at 4 s, while the "
                "proposed integrator gives a smooth u_I; the extra slope is (r_sat − 1)u_I/Δt (Eq. 6.43 vs 6.44)",
-        difference="humanoid.integrator-comparison: on the lift-placed run (Fig. 6.16's boarding does not stay up), "
-                   "10 s; the corrected run's e_v and K_I^v(n) replayed through Eq. 6.42 (the thesis's method) and one "
-                   "closed-loop run per integrator. The saturated u_I^v jumps by up to ≈390× the corrected one's "
-                   "largest step, at the 8 s switching (thesis: 4 s); Eq. 6.43's extra (r_sat − 1)u_I holds to rounding. "
-                   "u_I^v stays below 10⁻⁶ rad per tick (the gains are O(10⁻⁵)), too small to move the robot",
+        why_not="humanoid.integrator-comparison on Fig. 6.16's data (our self-boarded run, the thesis's source): "
+                "K_I^v rises only from 0 there (at 2 s and 6 s, MLC clipping it back to 0 each time), where u_I was 0 "
+                "and Eq. 6.42's ratio is unbounded: the saturated and corrected u_I are the same trapezoid step "
+                "(3.99×10⁻⁹), no jump to compare (the thesis's 0–6 s has a marked I-gain amplification). With "
+                "--set start=lift (Fig. 6.15's start) K_I^v rises from non-zero values and the saturated u_I^v jumps "
+                "≈250× the corrected step (7.48×10⁻⁷ vs 2.94×10⁻⁹, at 10 s; thesis 4 s); Eq. 6.43 holds to rounding",
     ),
     # --- chapter 7 -------------------------------------------------------------------------------------------
     Row(
@@ -464,7 +465,7 @@ ROWS = (
                    "(its as-written run falls); the joystick is an operator model of ours (stick ∝ the unicycle's "
                    "roll, full at 0.05 rad; α 0.5 rad/s at full stick); no hand assist; a 10 N, 0.1 s sideways tap "
                    "on the chest 1 s after the release breaks the simulation's symmetry",
-        why_not="the robot falls sideways 1.7 s after the tap (2.7 s after the release; roll 18.5° with the Eq. 7.6 "
+        why_not="the robot falls sideways 1.7 s after the tap (2.7 s after the release; roll 18.7° with the Eq. 7.6 "
                 "shaping, 39° without, same time) while v has reached 0.03 m/s of the 0.3 m/s step (rms error "
                 "0.30 m/s); the thesis also needed a human hand (Fig. 7.12 (a6))",
     ),
@@ -519,7 +520,11 @@ ROWS = (
         result="§7.4.2: '… 調速行動による停止操作が完了するまでは全体で 79.5[s] かかり, t = 79.5[s] で式 6.32 の終了条件"
                "を満たした'; 'Riding Phase by SLC: 4 ≤ t ≤ 5.5, Speed Governing Phase by MLC: 5.5 ≤ t ≤ 79.5'; D grows "
                "as in Fig. 5.8; P and I dominate D; v, ω converge to 0 (Fig. 7.21)",
-        not_built=_SCOOTER + "; " + _GOVERNOR,
+        why_not="humanoid.solc: one Switcher INIT → SLC → MLC → DONE on the sole-force landings; SLC 1.976 → 3.224 s "
+                "(riding phase 1.25 s; thesis 4 → 5.5 s), D 22 → 81.9, then MLC: ω's gains settle and meet Eq. 6.32, "
+                "but v's I gain is clipped to 0 and its P gain keeps growing while the scooter drifts back ever faster "
+                "(the foot damping cancels the governor's pitch, humanoid.vboard-plant-id): the robot falls at 77.5 s "
+                "without DONE (thesis: DONE at 79.5 s)",
     ),
     # --- appendix --------------------------------------------------------------------------------------------
     Row(

@@ -6,7 +6,8 @@
 * **Start** (§6.4.1, Fig. 6.15): "図 6.15,図 6.16 はともに学習の開始までは行動レベル2であり、調速行動制御系を OFF
   にした状態から開始する" — the governor is off (zero foot pitch, no learning) until the lift lets go
   ("開始と同時に人間は手を離し") plus ``START_DELAY`` (chosen); t = 0 of the figures is that instant
-  (:class:`GatedGovernor`).
+  (:class:`GatedGovernor`). Fig. 6.16's start (``boarding``): the robot boards from the floor by itself (ch. 5's
+  SLC boarding) and learning starts when both feet have landed (the right foot's sole-force guard of Fig. 5.5).
 * **Learning** (Eqs. 6.17–6.30, Table 6.6): mini-batches of T_L = 2 s (500 samples), η = 1e-7 (v) / 1e-9 (ω),
   gains from 0, negative gains clipped to 0 and re-learned, termination Eq. 6.32 with k = 3 — all
   :mod:`shintai.humanoid.mlc`'s. The I action uses the prior-value-correcting integrator (Eqs. 6.33–6.39) or,
@@ -30,12 +31,14 @@ from dataclasses import replace
 import numpy as np
 
 from shintai.core.recorder import Recorder
+from shintai.humanoid.boarding import boarding_stack
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.mlc import MLC_OMEGA, MLC_V, MLCParams, SpeedGovernor
 from shintai.humanoid.plant_id import identified_plant
 from shintai.humanoid.prior_value_integrator import R_SAT_V, PriorValueIntegrator
+from shintai.humanoid.slc import SLCParams
 from shintai.humanoid.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
-from shintai.humanoid.vboard_ride import VboardRide
+from shintai.humanoid.vboard_ride import VboardRide, scooter_spec
 from shintai.scenarios.experiment import Rig
 
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
@@ -80,18 +83,34 @@ def mlc_params(plant: dict, eta_scale: float = 1.0) -> tuple[MLCParams, MLCParam
 
 
 def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gains=((0.0,) * 3,) * 2,
-                  start_delay: float = START_DELAY, eta_scale: float = 1.0, **ride_kw) -> VboardRide:
+                  start_delay: float = START_DELAY, eta_scale: float = 1.0, boarding: bool = False,
+                  **ride_kw) -> VboardRide:
     """A lift-placed :class:`VboardRide` at level 3 whose governor is a :class:`GatedGovernor` with MLC on the
     given plant and integrator ``mode``; learning starts ``start_delay`` after the lift lets go (or at
-    ``start_delay`` without a lift)."""
+    ``start_delay`` without a lift). ``boarding``: Fig. 6.16's start instead — the robot boards by itself from
+    the floor (:func:`~shintai.humanoid.boarding.boarding_stack`: SLC on Table 5.2 from D₀ = 22, ch. 5's gains and
+    parameters, §6.4.1 '第5章で獲得した足部トルクダンピング制御系まわりのゲイン/パラメータを事前に適用'), and
+    learning starts when both feet have landed on the boards by Fig. 5.5's sole-force guard, i.e. on SLC's stop
+    (f_Rz > 25 N; §6.4.1 '両足がボード上に着地したタイミング … 図 5.5 で示したような足裏反力の閾値判定'),
+    ``start_delay`` unused; ``ride.boarding`` is the (stack, SLC schedule)."""
     if mode not in MODES:
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
     if not start_delay >= 0.0:
         raise ValueError(f"start_delay must be >= 0, got {start_delay!r}")
-    ride = VboardRide(level=3, **ride_kw)
+    sched = None
+    if boarding:
+        st, sched = boarding_stack(SLCParams(), v=scooter_spec(ride_kw.get("theta_o_error_deg", 0.0)))
+        ride_kw = {k: v for k, v in ride_kw.items() if k != "D"}  # the boarding's own (learned) gains
+        ride = VboardRide(level=3, standing=st, **ride_kw)
+        ride.boarding = (st, sched)
+    else:
+        ride = VboardRide(level=3, **ride_kw)
+        ride.boarding = None
     lift = ride.lift
 
     def start(snapshot) -> bool:
+        if sched is not None:
+            return sched.t_stop is not None
         if lift is None:
             return float(snapshot["t"]) >= start_delay
         return lift.released and float(snapshot["t"]) >= lift.t_release + start_delay
@@ -105,21 +124,22 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
 VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
 
 
-def governed_rig(params: dict, mode: str, learn: bool = True) -> Rig:
+def governed_rig(params: dict, mode: str, learn: bool = True, boarding: bool = False) -> Rig:
     """One run of the scenarios: :func:`governed_ride` from their parameters (``plant``, ``learn_s``,
     ``start_delay_s``, ``eta_scale``, ``theta_o_error_deg``, ``damping_d``), stopping at a fall or ``learn_s`` after
-    the learning start; records the ride's signals every 5 ticks."""
+    the learning start; records the ride's signals every 5 ticks. ``boarding``: Fig. 6.16's self-boarding start."""
     pv = plant_values(params["plant"])
     ride = governed_ride(pv, mode=mode, learn=learn, start_delay=params.get("start_delay_s", START_DELAY),
                          theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                         eta_scale=params.get("eta_scale", 1.0), seed=params.get("seed", 0))
+                         eta_scale=params.get("eta_scale", 1.0), seed=params.get("seed", 0), boarding=boarding)
     ride.plant = pv
+    before = ride.boarding[0].duration if boarding else 0.0  # the boarding plan's length: a bound on the start
 
     def until(snapshot) -> bool:
         t0 = ride.governor.t_start
         return ride.fallen() or (t0 is not None and float(snapshot["t"]) >= t0 + params["learn_s"])
-    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["learn_s"] + 10.0, until=until,
-               record={5: ride.signals}, view=VIEW, state=ride)
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=before + params["learn_s"] + 10.0,
+               until=until, record={5: ride.signals}, view=VIEW, state=ride)
 
 
 # --- analysis -------------------------------------------------------------------------------------------
@@ -131,7 +151,8 @@ def governor_series(log: Recorder, axis: str, name: str = GOVERNOR) -> dict:
     if key not in log.names():
         empty = np.zeros(0)
         return {"t": empty, "e": empty, "u": empty, "gains": np.zeros((0, 3)), "E": empty, "uI": empty, "stable": empty}
-    g = lambda k: log.values(f"{name}.{k}_{axis}")
+    def g(k):
+        return log.values(f"{name}.{k}_{axis}")
     return {"t": log.times(key), "e": g("e"), "u": g("u"), "gains": g("gains").reshape(-1, 3), "E": g("E"),
             "uI": g("uI"), "stable": g("stable")}
 

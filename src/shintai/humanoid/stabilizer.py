@@ -22,8 +22,13 @@ tracking", IROS 2010). One control period (4 ms) here:
 3. **Foot torque damping** (Eqs. 5.1–5.3): :class:`~shintai.humanoid.foot_damping.FootDampingModule` turns
    τᵈ − τ into the sole attitude corrections δ (roll, pitch) per foot — as §5.2.2 defines its terms: τ
    measured by the soles' 6-axis force sensors, τᵈ "from the ZMP distributor of [55]", δ the roll/pitch
-   displacement of the foot frame's attitude R_R, R_L (here applied about the world x/y axes, which are
-   the foot frame's while the soles have no yaw, as in every plan of :mod:`~shintai.humanoid.standing`).
+   displacement of the foot frame's attitude R_R, R_L: δ turns the sole about the reference frame's x/y
+   axes (the plans of :mod:`~shintai.humanoid.standing` give the soles no yaw), and τ is read about the
+   *actual* foot's roll/pitch axes (the world reading turned by the sole's yaw, :func:`into_yawed`), so that
+   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter. In world axes a foot's
+   pitch torque leaks into roll by sin ψ and its roll torque into pitch (tested); measured on level 2 of
+   :mod:`~shintai.humanoid.vboard_ride` that leak was half of the yaw divergence (ω doubling every ≈1.5 s, a
+   fall at 12 s; read in the foot frame ≈3 s).
 4. **Foot force difference control** ([55] Eq. 18): :class:`~shintai.humanoid.foot_damping.ForceDifferenceControl`
    turns Δfᵈ − Δf into sole heights ∓z_ctrl/2, in double support.
 5. The corrected sole poses and the waist placed under the CoM reference → :func:`~shintai.humanoid.leg_ik.legs_ik`
@@ -42,9 +47,14 @@ the overloaded foot (with Δf of the magnitudes it pushes it down: measured, it 
 whole-body CoM of the last physics step (``subtree_com`` of the root); on a flat floor with the feet
 flat this is what the IMU + FK estimate gives. Its velocity is the world finite difference over the
 period, low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt). Like hrpsys (its "foot_origin" frame), the
-CoM and the measured ZMP are compared with their references *relative to the stance feet*: shifted by
-(mean reference stance sole point − mean actual one). In world coordinates a foot that lands 13 mm
-off its reference left a 23 mm CoM offset the LIP feedback kept fighting (measured, three steps).
+CoM and the measured ZMP are compared with their references *relative to the stance feet*: moved by
+(mean reference stance sole point − mean actual one) and turned by −ψ, ψ the stance soles' mean yaw (the
+references have none); the CoM velocity is turned by −ψ too. This is the only reading (hrpsys's
+foot-origin frame; §5.2.2's δ and τ are the foot frame's): on a flat floor the feet keep their yaw and it
+changes little; on the V-BOARD the feet yaw with the scooter — on level 2, and up to 70° during the
+self-boarding's right swing, where the world-axes reading let SLC's run fall (vboard-boarding's notes). In world
+coordinates a foot that lands 13 mm off its reference left a 23 mm CoM offset the LIP feedback kept fighting
+(measured, three steps).
 """
 
 from __future__ import annotations
@@ -83,6 +93,13 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
     k1, k2, k3 = k
     zr, cr, vr, c, v, z = (np.asarray(a, float)[:2] for a in (zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp))
     return zr + k1 * (cr - c) + k2 * (vr - v) + k3 * (zr - z)
+
+
+def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
+    """A horizontal vector (x, y) of the world in a frame yawed by ψ: Rz(−ψ) (x, y). The stabilizer's
+    foot-origin frame (module docstring): world readings into the frame of feet that have turned by ψ."""
+    c, s = math.cos(psi), math.sin(psi)
+    return c * x + s * y, -s * x + c * y
 
 
 def closed_loop_poles(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> np.ndarray:
@@ -157,6 +174,11 @@ class FootSensors:
             f_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_force")])
             t_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_torque")])
             self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
+
+    def yaw(self, side: str) -> float:
+        """The sole's yaw in the world (rad): the angle of its x axis projected on the floor."""
+        r = self.body.data.site_xmat[self.rows[side][1]]
+        return math.atan2(float(r[3]), float(r[0]))
 
     def read(self) -> dict[str, FootWrench]:
         d = self.body.data
@@ -236,12 +258,21 @@ class StabilizerModule(Module):
         support = SUPPORT_NAME[float(snapshot["support"])]
         w = self.sensors.read()
         soles = snapshot["sole_ref"].tolist()
-        # the foot-origin frame: actual CoM and ZMP relative to the actual stance feet, re-expressed on
-        # the reference stance feet (module docstring)
+        # the foot-origin frame: actual CoM, ZMP and torques relative to the actual stance feet (their mean
+        # point and mean yaw), re-expressed on the reference stance feet, which have no yaw (module docstring)
         stance = [i for i, side in enumerate(SIDES) if side in support]
         n = len(stance)
-        shift_x = sum(soles[i][0] - w[SIDES[i]].point[0] for i in stance) / n
-        shift_y = sum(soles[i][1] - w[SIDES[i]].point[1] for i in stance) / n
+        yaw = {s: self.sensors.yaw(s) for s in SIDES}
+        psi = sum(yaw[SIDES[i]] for i in stance) / n
+        ax = sum(w[SIDES[i]].point[0] for i in stance) / n
+        ay = sum(w[SIDES[i]].point[1] for i in stance) / n
+        rx = sum(soles[i][0] for i in stance) / n
+        ry = sum(soles[i][1] for i in stance) / n
+
+        def to_ref(x, y):  # a world point into the reference stance frame: Rz(−ψ)(p − a) + r
+            x, y = into_yawed(x - ax, y - ay, psi)
+            return x + rx, y + ry
+
         # measured ZMP of the feet in contact (the sole points on the floor plane): Σ(a f + (τ_y, −τ_x)) / Σ f
         num_x = num_y = total = 0.0
         for x in w.values():
@@ -249,12 +280,13 @@ class StabilizerModule(Module):
                 num_x += x.point[0] * x.fz + x.tau[1]
                 num_y += x.point[1] * x.fz - x.tau[0]
                 total += x.fz
-        act = np.array([num_x / total + shift_x, num_y / total + shift_y]) if total > 0 else np.full(2, np.nan)
+        act = np.array(to_ref(num_x / total, num_y / total)) if total > 0 else np.full(2, np.nan)
         k1, k2, k3 = self.k
         if self.lip and total > 0:
-            cx, cy = com[0] + shift_x, com[1] + shift_y
-            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - self.com_vel[0]) + k3 * (zr[0] - act[0]),
-                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - self.com_vel[1]) + k3 * (zr[1] - act[1])])
+            cx, cy = to_ref(com[0], com[1])
+            vx, vy = into_yawed(self.com_vel[0], self.com_vel[1], psi)
+            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act[0]),
+                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act[1])])
         else:
             zmp_d = np.array(zr[:2])
         dist = distribute(zmp_d, {"l": soles[0], "r": soles[1]}, support, self.weight)
@@ -262,7 +294,8 @@ class StabilizerModule(Module):
         for s in SIDES:
             on = s in support
             out[f"tau_d_{FOOT[s]}"] = dist.tau_d[s] if on else self._zero
-            out[f"tau_{FOOT[s]}"] = w[s].tau if on else self._zero
+            # τ about the foot's own roll and pitch axes, the axes δ turns it about
+            out[f"tau_{FOOT[s]}"] = np.array(into_yawed(*w[s].tau.tolist(), yaw[s])) if on else self._zero
             out[f"f_{FOOT[s]}z"] = np.array(w[s].fz)
         dz = (0.0, 0.0)
         if self.use_force_difference:

@@ -159,7 +159,8 @@ class ScooterSensors(Module):
         h = self.heading(snapshot)
         acc = rot @ np.asarray(snapshot["imu_acc"], float) - np.array([0.0, 0.0, GRAVITY])  # a_IMU − g_o, world
         a_x = float(acc @ h) + self.noise * ACC_NOISE * self.rng.standard_normal()
-        omega = float((rot @ np.asarray(snapshot["imu_gyro"], float))[2]) + self.noise * GYRO_NOISE * self.rng.standard_normal()
+        omega = float((rot @ np.asarray(snapshot["imu_gyro"], float))[2])
+        omega += self.noise * GYRO_NOISE * self.rng.standard_normal()
         if self.k % self.vo_every == 0:  # a camera frame: position now, delivered VO_LATENCY later
             x = float(self.body.site_pos("head_camera") @ h) + self.noise * VO_NOISE * self.rng.standard_normal()
             self._vo_queue.append((t + VO_LATENCY - 1e-9, t, x))
@@ -198,8 +199,8 @@ class FootPitch(Module):
             self.u = self.u + ue
         self.theta += inc
         n = self.name
-        self.log(float(snapshot["t"]), **{f"{n}.u_v": self.u[0], f"{n}.u_omega": self.u[1], f"{n}.theta_R": self.theta[0],
-                                          f"{n}.theta_L": self.theta[1]})
+        self.log(float(snapshot["t"]), **{f"{n}.u_v": self.u[0], f"{n}.u_omega": self.u[1],
+                                          f"{n}.theta_R": self.theta[0], f"{n}.theta_L": self.theta[1]})
         return {"foot_damping": np.array([0.0, self.theta[1], 0.0, self.theta[0]])}
 
 
@@ -266,6 +267,12 @@ def square_wave(amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERI
     return u
 
 
+def scooter_spec(theta_o_error_deg: float = 0.0):
+    """The V-BOARD whose true θ_O is the regression intercept (Eq. A.1) plus ``theta_o_error_deg`` on both sides."""
+    err = check_real("theta_o_error_deg", theta_o_error_deg, -3.0, 3.0)
+    return dataclasses.replace(VBOARD, theta_o_deg=tuple((s, d + err) for s, d in VBOARD.theta_o_deg))
+
+
 class VboardRide:
     """HRP2 lowered onto the V-BOARD and riding standing still at behaviour ``level`` 1, 2 or 3.
 
@@ -273,35 +280,41 @@ class VboardRide:
     controllers keep the nominal values (§6.2.1); ``D`` the damping gain (levels 2–3); ``gains`` the PID gains
     ((K_P, K_I, K_D) for v, for ω) and ``learn`` MLC on them (level 3); ``excite`` → (u_v, u_ω) a known input
     added at levels 2–3; ``lift=False`` starts standing on the pads (no lowering); ``seed`` the sensors' noise.
+    ``standing``: instead of the lift-placed start, a :class:`~shintai.humanoid.standing.Standing` stack that gets
+    onto the scooter by itself (the self-boarding of :func:`~shintai.humanoid.boarding.boarding_stack`, Fig. 6.16),
+    kept as it is — its body (built with its own scooter), its damping gains (no ``D``), no lift; levels 2–3.
     ``stages`` and ``channels`` make the Loop.
     """
 
     def __init__(self, level: int = 2, theta_o_error_deg: float = 0.0, D: float = D_VBOARD, gains=((0.0,) * 3,) * 2,
                  learn: bool = False, excite=None, lift: bool = True, gap: float = LIFT_GAP, speed: float = LIFT_SPEED,
-                 seed: int = 0, noise: bool = True, posture: bool = False):
+                 seed: int = 0, noise: bool = True, posture: bool = False, standing: Standing | None = None):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
-        err = check_real("theta_o_error_deg", theta_o_error_deg, -3.0, 3.0)
         check_real("D", D, 0.0, low_open=True)
         self.level = level
-        v = dataclasses.replace(VBOARD, theta_o_deg=tuple((s, d + err) for s, d in VBOARD.theta_o_deg))
-        body = build_vboard_stand(v)
-        self.scooter = v
+        self.scooter = scooter_spec(theta_o_error_deg)
         self.lift = None
-        if lift:
-            root = body.model.joint("root").qposadr[0]
-            body.model.key("stand").qpos[root + 2] += check_real("lift gap", gap, 0.0, 0.2)
-            self.lift = Lift(body, gap, speed)
-            body.before_physics.insert(0, self.lift)
-            body.reset("stand")
-            self.lift.hold()
-        stack = {} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
-        self.standing = Standing(body=body, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
+        if standing is None:
+            body = build_vboard_stand(self.scooter)
+            if lift:
+                root = body.model.joint("root").qposadr[0]
+                body.model.key("stand").qpos[root + 2] += check_real("lift gap", gap, 0.0, 0.2)
+                self.lift = Lift(body, gap, speed)
+                body.before_physics.insert(0, self.lift)
+                body.reset("stand")
+                self.lift.hold()
+            stack = {} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
+            self.standing = Standing(body=body, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
+            if self.lift is not None:
+                self.lift.lowering = True
+            if level >= 2:
+                self.standing.damping.feet = {"L": FootDamping(D=D), "R": FootDamping(D=D)}
+        else:
+            if level < 2 or standing.damping is None:
+                raise ValueError("a self-boarding stack rides at level 2 or 3, with its foot damping")
+            self.standing, body = standing, standing.body
         self.body = body
-        if self.lift is not None:
-            self.lift.lowering = True
-        if level >= 2:
-            self.standing.damping.feet = {"L": FootDamping(D=D), "R": FootDamping(D=D)}
         st = self.standing
         stages = [list(s) for s in st.loop.stages]
         self.sensors = ScooterSensors(body, seed=seed, noise=noise)

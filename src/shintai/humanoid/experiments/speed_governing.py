@@ -1,8 +1,8 @@
 """``humanoid.speed-governing``: MLC learns the v and ω PID gains from 0 while HRP2 rides the V-BOARD after a lift
 put it on (seed 000 §6.4.1, Figs. 6.13, 6.15; Eqs. 6.17–6.32, 6.33–6.39, 6.40–6.41; Table 6.6). Variant ``learn``
 is the thesis's run; ``off`` is the same start with the governor at zero gains and no learning (behaviour
-level 2), the baseline that tells what the governor changed. The self-boarding start of Fig. 6.16 is not run:
-our boarding falls (notes)."""
+level 2), the baseline that tells what the governor changed; ``boarding`` is Fig. 6.16's: the robot boards from the
+floor by itself (ch. 5's SLC boarding, ``humanoid.vboard-boarding``) and MLC starts when both feet have landed."""
 
 from __future__ import annotations
 
@@ -23,12 +23,17 @@ from shintai.humanoid.vboard_ride import D_VBOARD
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
+R, F15, F16 = "reproduction", "000:fig6.15", "000:fig6.16"
 TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch)
 AXES = ("v", "omega")
 
 
 def rig(params, variant):
-    return governed_rig(params, "corrected", learn=variant == "learn")
+    return governed_rig(params, "corrected", learn=variant != "off", boarding=variant == "boarding")
+
+
+def variants(params) -> tuple[str, ...]:
+    return ("learn",) + (("off",) if params["baseline"] else ()) + (("boarding",) if params["boarding"] else ())
 
 
 def summary(run) -> dict:
@@ -76,6 +81,10 @@ def summary(run) -> dict:
             out[f"{a}_ui_jump_excess"] = float(np.max(excess) / max(float(np.max(step)), 1e-300))
         else:
             out[f"{a}_ui_jump_excess"] = 0.0
+    if ride.boarding is not None:  # Fig. 6.16's start: the boarding (ch. 5) before the learning
+        st, sched = ride.boarding
+        out.update({"slc_window_s": sched.duration if sched.duration is not None else math.nan,
+                    "damping_learned": float(st.damping.feet["L"].D[1]), "plan_end_s": st.duration - t0})
     conv = [out[f"{a}_t_converged_s"] for a in AXES]
     out["converged"] = int(all(out[f"{a}_converged"] for a in AXES))
     out["t_converged_s"] = max(conv) if out["converged"] else math.nan
@@ -140,54 +149,92 @@ def draw_run(ax, run, label: str):
         x.set_xlabel("t [s] from the learning start")
 
 
+def draw_boarding(ax, run):
+    """Fig. 6.16-(a0)'s phase: the boarding before the learning — D of both foot pitches (SLC), the boards' pitch,
+    the scooter's travel; t from the learning start (both feet landed)."""
+    log, t0 = run.log, run.state.governor.t_start or 0.0
+    for side in ("L", "R"):
+        ax[0].plot(log.times(f"foot_damping.D_{side}") - t0, log.values(f"foot_damping.D_{side}")[:, 1],
+                   label=f"D ({side} pitch)")
+        ax[1].plot(log.times("theta_L") - t0, log.values(f"theta_{side}") / DEG, label=f"θ_{side}")
+    ax[2].plot(log.times("x") - t0, log.values("x"), "k", label="scooter x")
+    for a, label in zip(ax, ("D [N·m·s/rad]", "board pitch [deg]", "x [m]"), strict=True):
+        a.set_ylabel(label)
+        a.axvline(0.0, color="r", lw=0.6, ls=":")
+        a.legend(fontsize=7)
+    ax[2].set_xlabel("t [s] from the learning start (both feet landed)")
+
+
 def plots(ctx, runs, params):
     for name, run in runs.items():
-        with ctx.figure(f"fig6_15_{name}", 5, 2, figsize=(13, 15), sharex=True) as (_fig, ax):
-            draw_run(ax, run, f"{name} (Fig. 6.15 layout)")
+        fig = "fig6_16" if name == "boarding" else f"fig6_15_{name}"
+        with ctx.figure(fig, 5, 2, figsize=(13, 15), sharex=True) as (_fig, ax):
+            draw_run(ax, run, f"{name} (Fig. {'6.16' if name == 'boarding' else '6.15'} layout)")
+    if "boarding" in runs:
+        with ctx.figure("fig6_16_boarding", 3, 1, figsize=(8, 7), sharex=True) as (_fig, ax):
+            draw_boarding(ax, runs["boarding"])
 
 
 experiment(
     "humanoid.speed-governing",
-    covers=("000:fig6.15",),
-    source="seed 000 §6.4.1, Figs. 6.13, 6.15, Eqs. 6.17–6.41, Table 6.6",
-    summary="MLC learns the v and ω PID gains online from 0 on HRP2 riding the V-BOARD after a lift placed it "
-            "(prior-value-correcting integrator, Routh–Hurwitz monitor); against the governor off",
+    covers=("000:fig6.15", "000:fig6.16"),
+    source="seed 000 §6.4.1, Figs. 6.13, 6.15, 6.16, Eqs. 6.17–6.41, Table 6.6",
+    summary="MLC learns the v and ω PID gains online from 0 on HRP2 riding the V-BOARD after a lift placed it and "
+            "after it boarded by itself (prior-value-correcting integrator, Routh–Hurwitz monitor); against the "
+            "governor off",
     params=[
         Param("learn_s", 60.0, "simulated time from the learning start [s] (thesis: converged ≈38 s, Fig. 6.16 ≈54 s)",
               lo=1.0, hi=300.0),
         Param("baseline", True, "also run the 'off' variant (governor at zero gains, no learning: level 2)"),
+        Param("boarding", True, "also run Fig. 6.16's start: the robot boards from the floor (SLC), MLC from both "
+              "feet landed"),
         Param("plant", "board", "K, T for MLC's sensitivity (Eqs. 6.20–6.29): 'board' = humanoid.vboard-plant-id's "
               "fit to the boards' pitch (its fit from u has K_v < 0), 'table6.2' = the thesis's numbers",
               choices=PLANTS),
         Param("eta_scale", 1.0, "factor on Table 6.6's learning rates (1 = the thesis's)", lo=1e-3, hi=1e6),
-        Param("start_delay_s", START_DELAY, "learning starts this long after the lift lets go [s] (ours)", lo=0.0, hi=5.0),
-        Param("theta_o_error_deg", 0.3, "true θ_O minus the regression intercept [deg] (ours, as humanoid.vboard-levels)",
-              lo=-3.0, hi=3.0),
+        Param("start_delay_s", START_DELAY, "learning starts this long after the lift lets go [s] (ours)",
+              lo=0.0, hi=5.0),
+        Param("theta_o_error_deg", 0.3, "true θ_O minus the regression intercept [deg] (ours, as "
+              "humanoid.vboard-levels)", lo=-3.0, hi=3.0),
         Param("damping_d", D_VBOARD, "foot damping gain D [N m s/rad] (§5.4.2)", lo=1.0, hi=1000.0),
     ],
     checks=[
         Check("fallen_learn", "==", 0, "thesis §6.4.1, Fig. 6.15: the robot rides on while learning, '調速行動が達成"
-              "されていることが確認できる'", kind="reproduction"),
-        Check("converged_learn", "==", 1, "thesis §6.4.1: '図 6.15 は約 38[s] … で式 6.32 の学習制御の終了条件を満たして"
-              "収束した'", kind="reproduction"),
+              "されていることが確認できる'", kind=R, row=F15),
+        Check("converged_learn", "==", 1, "thesis §6.4.1: '図 6.15 は約 38[s] … で式 6.32 の学習制御の終了条件を"
+              "満たして収束した'", kind=R, row=F15),
         Check("t_converged_learn_s", "<=", 60.0, "thesis §6.4.1: converged at '約 38[s]' (Fig. 6.15; ≈54 s after "
-              "boarding, Fig. 6.16): within the default run", kind="reproduction"),
+              "boarding, Fig. 6.16): within the default run", kind=R, row=F15),
         Check("final_abs_v_learn_mps", "<", 0.05, "thesis §6.4.1: v follows v^d = 0 near 35 s, Fig. 6.15 (c1) "
-              "('目標値追従より調速行動が達成'; 5 cm/s is our reading of the plot's scale)", kind="reproduction"),
+              "('目標値追従より調速行動が達成'; 5 cm/s is our reading of the plot's scale)", kind=R, row=F15),
         Check("final_abs_omega_learn_rad_s", "<", 0.05, "thesis §6.4.1: ω follows ω^d = 0, Fig. 6.15 (c2) "
-              "(0.05 rad/s ours)", kind="reproduction"),
+              "(0.05 rad/s ours)", kind=R, row=F15),
         Check("v_pi_dominant_learn", "==", 1, "thesis §6.4.1: 'Dゲインに比べて Pゲイン,Iゲインが制御系として支配的'",
-              kind="reproduction"),
+              kind=R, row=F15),
         Check("v_stable_at_end_learn", "==", 1, "thesis §6.4.1: '学習が収束するにつれて安定な状態が継続して' "
-              "(Fig. 6.15 (e), Eq. 6.41)", kind="reproduction"),
+              "(Fig. 6.15 (e), Eq. 6.41)", kind=R, row=F15),
+        Check("fallen_boarding", "==", 0, "thesis §6.4.1, Fig. 6.16: after boarding by itself the robot rides on "
+              "while learning ('図 6.16 - (c1),(c2) の 50[s] 付近' the targets are followed)", kind=R, row=F16),
+        Check("converged_boarding", "==", 1, "thesis §6.4.1: '図 6.16 は約 54[s] で式 6.32 の学習制御の終了条件を"
+              "満たして収束した'", kind=R, row=F16),
+        Check("t_converged_boarding_s", "<=", 60.0, "thesis §6.4.1: converged at '約 54[s]' from both feet landed: "
+              "within the default run", kind=R, row=F16),
+        Check("final_abs_v_boarding_mps", "<", 0.05, "thesis §6.4.1: v follows v^d = 0 near 50 s, Fig. 6.16 (c1) "
+              "(0.05 m/s ours)", kind=R, row=F16),
+        Check("final_abs_omega_boarding_rad_s", "<", 0.05, "thesis §6.4.1: ω follows ω^d = 0, Fig. 6.16 (c2) "
+              "(0.05 rad/s ours)", kind=R, row=F16),
+        Check("v_pi_dominant_boarding", "==", 1, "thesis §6.4.1: 'Dゲインに比べて Pゲイン,Iゲインが制御系として支配的'",
+              kind=R, row=F16),
+        Check("v_ui_jump_excess_boarding", "<", 1e-9, "follows from Eq. 6.38 (our integrator), as for 'learn'",
+              kind="consistency"),
         Check("v_ui_jump_excess_learn", "<", 1e-9, "follows from Eq. 6.38 (our integrator): at an I-gain increase u_I "
               "moves by Δt/2 (e(t+Δt)+e(t)) K_I(n+1) only (relative excess over that step)", kind="consistency"),
     ],
     thesis={"t_converged_learn_s": ThesisValue(38.0, "seed 000 §6.4.1: '図 6.15 は約 38[s] … 収束した'",
                                                "t_converged_learn_s"),
-            "t_converged_boarding_s": ThesisValue(54.0, "seed 000 §6.4.1: '図 6.16 は約 54[s]' (after self-boarding; "
-                                                  "not run here)", None),
+            "t_converged_boarding_s": ThesisValue(54.0, "seed 000 §6.4.1: '図 6.16 は約 54[s]' (after self-boarding)",
+                                                  "t_converged_boarding_s"),
             "eta_v": ThesisValue(1e-7, "seed 000 Table 6.6: diag(10⁻⁷, 10⁻⁷, 10⁻⁷) for v", None),
             "eta_omega": ThesisValue(1e-9, "seed 000 Table 6.6: diag(10⁻⁹, 10⁻⁹, 10⁻⁹) for ω", None)},
-    rig=rig, variants=lambda p: ("learn", "off") if p["baseline"] else ("learn",), filmed=("learn",), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=variants, filmed=("learn", "boarding"), metrics=metrics, plots=plots, video=True,
 )

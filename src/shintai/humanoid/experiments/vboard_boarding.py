@@ -9,25 +9,10 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.boarding import boarding_body, boarding_steps, run_summary
+from shintai.humanoid.boarding import boarding_stack, run_summary
 from shintai.humanoid.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
-from shintai.humanoid.slc import (
-    SLC,
-    SLC_D0,
-    SLC_ETA,
-    SLC_Q,
-    SLC_R,
-    SLCParams,
-    SLCSchedule,
-    slc_cost,
-)
-from shintai.humanoid.standing import (
-    BOARDING_CROUCH,
-    CHANNELS,
-    Standing,
-    settle_on_floor,
-    stand_geometry,
-)
+from shintai.humanoid.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
+from shintai.humanoid.standing import CHANNELS
 from shintai.humanoid.vehicles.vboard import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
@@ -41,13 +26,8 @@ def rig(params, variant):
     (:mod:`shintai.humanoid.boarding`); the SLC schedule runs inside the foot damping, learning (``slc``) or
     only marking the same window (``fixed_d``: D = D₀ throughout)."""
     p = SLCParams(D0=params["D0"], Q=params["Q"], R=params["R"], eta=params["eta"])
-    body = boarding_body()
-    settle_on_floor(body)
-    soles, _ = stand_geometry(body)
-    sched = SLCSchedule(SLC(p), learn=variant == "slc")
-    st = Standing(steps=boarding_steps(soles), body=body, crouch=BOARDING_CROUCH, slc=sched)
-    for foot in st.damping.feet.values():  # Table 5.2's T; D₀ on every axis (§5.4.1: the roll stays at D₀)
-        foot.D[:], foot.T = p.D0, params["T"]
+    st, sched = boarding_stack(p, params["T"], learn=variant == "slc")
+    body = st.body
     left: FootDamping = st.damping.feet["L"]
     right: FootDamping = st.damping.feet["R"]
     qx = body.model.joint("vboard_x").qposadr[0]
@@ -70,7 +50,8 @@ def rig(params, variant):
     def ended(snap):
         return st.fallen() or not np.all(np.isfinite(body.data.qpos))  # a fall or a diverging simulation
 
-    return Rig(body, stages=stages, channels=CHANNELS.values(), duration=min(st.duration + params["after_s"], params["max_s"]),
+    duration = min(st.duration + params["after_s"], params["max_s"])
+    return Rig(body, stages=stages, channels=CHANNELS.values(), duration=duration,
                until=ended, record={1: signals},
                view={"track": "waist", "distance": 2.6, "azimuth": 215.0, "elevation": -12.0},
                state=SimpleNamespace(st=st, sched=sched, params=p))
@@ -216,8 +197,8 @@ experiment(
         "j_tau_first_peak_s": ThesisValue(0.6, f"{SEC}: '1つめのピーク(0.6[s]付近)'", "j_tau_peaks_with_slc"),
         "j_tau_second_peak_s": ThesisValue(1.0, f"{SEC}: '2つめのピーク(1.0[s]付近)が小さくなっており'",
                                            "j_tau_peaks_with_slc"),
-        "delta_hit_limit_without_slc": ThesisValue(1, f"{SEC}: 'Fig. 5.8-(c1) の終端時刻においては設定した入力制限に飽和し'",
-                                                   "delta_hit_limit_without_slc"),
+        "delta_hit_limit_without_slc": ThesisValue(
+            1, f"{SEC}: 'Fig. 5.8-(c1) の終端時刻においては設定した入力制限に飽和し'", "delta_hit_limit_without_slc"),
         "table_5_2": ThesisValue({"T": 1.5, "Q": 0.1, "R": 1.0e5, "eta": 0.01}, "seed 000 §5.4.2, Table 5.2"),
         "F_thre_n": ThesisValue(25.0, "seed 000 §5.4.1: '本稿では,F_thre = 25[N] として設定する'"),
     },

@@ -1,0 +1,134 @@
+"""``humanoid.solc``: SOLC — HRP2 boards the V-BOARD from the floor with SLC on its left-foot pitch damping gain,
+then governs the scooter's speed with MLC, one switcher INIT → SLC → MLC → DONE (seed 000 §7.4.2, Table 7.7,
+Figs. 7.17–7.21)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shintai.humanoid.solc import PHASES, solc_ride, switch_times
+from shintai.humanoid.speed_governing_ride import PLANTS, VIEW, governor_series, plant_values
+from shintai.scenarios.experiment import Rig
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+
+TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch), as speed-governing
+AXES = ("v", "omega")
+SEC, ROW = "thesis §7.4.2", "000:fig7.19"
+
+
+def rig(params, variant):
+    pv = plant_values(params["plant"])
+    ride = solc_ride(pv, params["theta_o_error_deg"], params["eta_scale"])
+    ride.plant = pv
+    sw, feet = ride.switcher, ride.standing.damping.feet
+
+    def until(snapshot) -> bool:
+        done = switch_times(sw)["done"]
+        return ride.fallen() or float(snapshot["t"]) >= done + params["after_done_s"]
+
+    def signals(snapshot):
+        return {**ride.signals(snapshot), "D_L": feet["L"].D[1], "D_R": feet["R"].D[1],
+                "phase": float(PHASES.index(sw.active))}
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["max_s"], until=until,
+               record={5: signals}, view=VIEW, state=ride)
+
+
+def metrics(runs, params):
+    run = runs["solc"]
+    ride, log = run.state, run.log
+    times = switch_times(ride.switcher)
+    t_end = float(ride.body.t)
+    t = log.times("true_v")
+    tail = t >= t_end - TAIL_S
+    D = log.values("D_L")
+    m = {"fallen": int(ride.fallen()), "end_s": t_end, "t_slc_start_s": times["slc"], "t_mlc_start_s": times["mlc"],
+         "t_done_s": times["done"], "riding_phase_s": times["mlc"] - times["slc"],
+         "converged": int(math.isfinite(times["done"])), "damping_initial": float(D[0]),
+         "damping_final": float(ride.standing.damping.feet["L"].D[1]),
+         "right_took_learned_d": int(ride.standing.damping.feet["R"].D[1] == ride.standing.damping.feet["L"].D[1]),
+         "final_abs_v_mps": float(np.mean(np.abs(log.values("true_v")[tail]))),
+         "final_abs_omega_rad_s": float(np.mean(np.abs(log.values("true_omega")[tail])))}
+    for a in AXES:
+        s, mlc = governor_series(log, a, "mlc"), ride.governor.mlc[a]
+        gains = s["gains"][-1] if s["gains"].size else np.zeros(3)
+        m.update({f"{a}_{n}": float(g) for n, g in zip(("K_P", "K_I", "K_D"), gains, strict=True)})
+        m[f"{a}_pi_dominant"] = int(gains[2] < gains[0] and gains[2] < gains[1])
+        m[f"{a}_converged"] = int(mlc.converged)
+        m[f"{a}_J_last"] = mlc.batches[-1].J if mlc.batches else math.nan
+    return m
+
+
+def plots(ctx, runs, params):
+    """Fig. 7.20: (a) D in the riding phase, (b) v's and (c) ω's PID gains, (d) J_v, J_ω per batch; Fig. 7.21: v, ω
+    against v^d = ω^d = 0. Phases shaded: SLC grey, MLC none, DONE green."""
+    run = runs["solc"]
+    ride, log = run.state, run.log
+    times = switch_times(ride.switcher)
+    with ctx.figure("fig7_20", 4, 1, sharex=True, figsize=(9, 11)) as (_, ax):
+        ax[0].plot(log.times("D_L"), log.values("D_L"), label="D (left pitch)")
+        ax[0].plot(log.times("D_R"), log.values("D_R"), "--", label="D (right pitch)")
+        ax[0].set_ylabel("(a) D [N·m·s/rad]")
+        for j, a in enumerate(AXES):
+            s = governor_series(log, a, "mlc")
+            for i, (n, c) in enumerate(zip(("K_P", "K_I", "K_D"), "rgb", strict=True)):
+                ax[1 + j].plot(s["t"], s["gains"][:, i] * 1e3, c, label=f"{n}^{a}")
+            ax[1 + j].set_ylabel(f"({'bc'[j]}) {a} gains ×10⁻³")
+            b = ride.governor.mlc[a].batches
+            ax[3].semilogy([x.t_end for x in b], [max(x.J, 1e-12) for x in b], "o-", label=f"J_{a}")
+        ax[3].set_ylabel("(d) J per batch")
+        ax[3].set_xlabel("t [s] from the initial state on the floor")
+    with ctx.figure("fig7_21", 2, 1, sharex=True, figsize=(9, 6)) as (_, ax2):
+        for k, (a, key) in enumerate((("v [m/s]", "true_v"), ("ω [rad/s]", "true_omega"))):
+            ax2[k].plot(log.times(key), log.values(key), "g", label="measured (truth)")
+            ax2[k].axhline(0.0, color="r", label="target 0")
+            ax2[k].set_ylabel(a)
+        ax2[1].set_xlabel("t [s]")
+    for a in list(ax) + list(ax2):
+        a.axvspan(times["slc"], times["mlc"] if math.isfinite(times["mlc"]) else times["slc"], color="0.9", zorder=0)
+        if math.isfinite(times["done"]):
+            a.axvspan(times["done"], float(ride.body.t), color="#dfd", zorder=0)
+        a.legend(fontsize=7)
+        a.grid(alpha=0.3)
+
+
+experiment(
+    "humanoid.solc",
+    covers=(ROW,),
+    source="seed 000 §7.4.2, Table 7.7, Figs. 7.17–7.21 (SLC §5.3, Table 5.2; MLC §6.3, Table 6.6)",
+    summary="SOLC: HRP2 boards the V-BOARD from the floor with SLC tuning its foot-pitch damping, then MLC learns the "
+            "speed governor's PID gains from 0 — one switcher INIT → SLC → MLC → DONE at the sole-force landings",
+    params=[
+        Param("max_s", 90.0, "simulated time limit from the initial state [s] (thesis: DONE at 79.5 s)",
+              lo=1.0, hi=300.0),
+        Param("after_done_s", 2.0, "keep riding this long after DONE [s]", lo=0.0, hi=30.0),
+        Param("plant", "board", "K, T for MLC's sensitivity (as humanoid.speed-governing)", choices=PLANTS),
+        Param("eta_scale", 1.0, "factor on Table 6.6's learning rates (1 = the thesis's)", lo=1e-3, hi=1e6),
+        Param("theta_o_error_deg", 0.3, "true θ_O minus the regression intercept [deg] (ours, as "
+              "humanoid.speed-governing)", lo=-3.0, hi=3.0),
+    ],
+    checks=[
+        Check("fallen", "==", 0, f"{SEC}: Figs. 7.19–7.21, the robot boards and governs to a stop",
+              kind="reproduction"),
+        Check("converged", "==", 1, f"{SEC}: 't = 79.5[s] で式 6.32 の終了条件を満たした' (DONE reached)",
+              kind="reproduction"),
+        Check("damping_final", ">", "damping_initial", f"{SEC}: 'ダンピングゲインの学習結果に関しては,図 5.8 で得られた"
+              "実験結果と同様に増加傾向を呈しており'", kind="reproduction"),
+        Check("v_pi_dominant", "==", 1, f"{SEC}: 'vに対する調速行動制御では D 制御に比べて P 制御と I 制御が支配的'",
+              kind="reproduction"),
+        Check("final_abs_v_mps", "<", 0.05, f"{SEC}: Fig. 7.21 '目標値 v^d = 0, ω^d = 0 への収束(停止操作)に成功' "
+              "(0.05 m/s ours, as humanoid.speed-governing)", kind="reproduction"),
+        Check("final_abs_omega_rad_s", "<", 0.05, f"{SEC}: Fig. 7.21, as for v (0.05 rad/s ours)",
+              kind="reproduction"),
+        Check("t_mlc_start_s", ">", "t_slc_start_s", "Table 7.7 / Fig. 7.17: SLC then MLC (switch order)",
+              kind="consistency"),
+        Check("right_took_learned_d", "==", 1, "§5.4.1: the right pitch takes the D SLC learned", kind="consistency"),
+    ],
+    thesis={"t_slc_start_s": ThesisValue(4.0, f"{SEC}: 'SOLC は t = 4[s] から開始され'", "t_slc_start_s"),
+            "t_mlc_start_s": ThesisValue(5.5, f"{SEC}: 't = 5.5[s] を SLC と MLC の変化点として'", "t_mlc_start_s"),
+            "t_done_s": ThesisValue(79.5, f"{SEC}: '全体で 79.5[s] かかり, t = 79.5[s] で式 6.32 の終了条件を満たした'",
+                                    "t_done_s"),
+            "riding_phase_s": ThesisValue(1.5, f"{SEC}: 'Riding Phase by SLC : 4 ≤ t ≤ 5.5'", "riding_phase_s")},
+    rig=rig, variants=("solc",), filmed=("solc",), metrics=metrics, plots=plots, video=True,
+)
