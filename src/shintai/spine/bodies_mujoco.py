@@ -74,8 +74,8 @@ def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: 
     spec.visual.headlight.diffuse = [0.6, 0.6, 0.6]
     world = spec.worldbody
     world.add_light(pos=[0.4, -0.6, 1.4], dir=[-0.3, 0.5, -1.0], diffuse=[0.8, 0.8, 0.8])
-    world.add_geom(type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0.6, 0.6, 0.02], rgba=[0.85, 0.85, 0.85, 1],
-                   contype=0, conaffinity=0)
+    world.add_geom(name="ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0.6, 0.6, 0.02],
+                   rgba=[0.85, 0.85, 0.85, 1], contype=0, conaffinity=0)
     links = _add_links(spec, robot, joint, loads if loads is not None else robot.loads)
     _add_muscles(spec, robot, links, interference)
     _add_hand(spec, robot, links[-1])
@@ -94,7 +94,8 @@ def _add_links(spec, robot: SpineRobot, joint: str, loads) -> list:
     pelvis = spec.worldbody.add_body(name="link0", pos=[0, 0, PELVIS_HEIGHT_M])
     pelvis.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[bx, by, 0.012], pos=[0, 0, -0.012],
                     rgba=[0.45, 0.45, 0.5, 1], contype=0, conaffinity=0)
-    spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[0.015, PELVIS_HEIGHT_M / 2 - 0.012],
+    spec.worldbody.add_geom(name="pedestal", type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+                            size=[0.015, PELVIS_HEIGHT_M / 2 - 0.012],
                             pos=[0, 0, PELVIS_HEIGHT_M / 2 - 0.012], rgba=[0.6, 0.6, 0.65, 1], contype=0, conaffinity=0)
     links = [pelvis]
     r = robot.vertebra_radius_m
@@ -228,7 +229,7 @@ class SpineBody(MujocoBody):
 
     def __init__(self, robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
                  interference: bool = True, timestep: float = 5e-4, control_period: float | None = None,
-                 ligaments: LigamentSpec | None = None):
+                 ligaments: LigamentSpec | None = None, spec: mujoco.MjSpec | None = None):
         period = control_period if control_period is not None else robot.control_period_s
         substeps = whole_multiple(period, timestep, "control period")
         self.robot = robot
@@ -236,7 +237,9 @@ class SpineBody(MujocoBody):
         self.drive = DCMotorDrive(robot.motors)
         self.encoder = Encoder(robot.motors)
         self.sensor = TensionSensor(robot.sensor)
-        super().__init__(build_spec(robot, loads, joint, interference, timestep, ligaments), substeps=substeps)
+        if spec is None:  # a whole body (cla_body) passes its own spec, built on build_spec's spine
+            spec = build_spec(robot, loads, joint, interference, timestep, ligaments)
+        super().__init__(spec, substeps=substeps)
         self.channels = {**self.channels, **declare("duty"), **declare("hand", kind=SET)}
         m = self.model
         names = robot.muscle_names
@@ -252,6 +255,7 @@ class SpineBody(MujocoBody):
         self._acc = (self._views_of("acc_chest"), self._views_of("acc_waist"))
         self._hand = self.id("equality", "hand")
         self._hand_mocap = m.body_mocapid[self.id("body", "hand")]
+        self._pelvis = self.id("body", "link0")
 
     # -- layout helpers ---------------------------------------------------------------------------
 
@@ -330,8 +334,10 @@ class SpineBody(MujocoBody):
             self.data.eq_active[self._hand] = False
             return
         R, p, _ = self.robot.model.chain.frames(np.asarray(theta, dtype=float))
-        self.data.mocap_pos[self._hand_mocap] = p[-1] + np.array([0.0, 0.0, PELVIS_HEIGHT_M])
-        self.data.mocap_quat[self._hand_mocap] = _quat(R[-1])
+        pelvis = self._pelvis  # the pose relative to the pelvis where it is now (fixed, or free when standing)
+        R0 = self.data.xmat[pelvis].reshape(3, 3)
+        self.data.mocap_pos[self._hand_mocap] = self.data.xpos[pelvis] + R0 @ p[-1]
+        self.data.mocap_quat[self._hand_mocap] = _quat(R0 @ R[-1])
         self.data.eq_active[self._hand] = True
 
     # -- Body interface ---------------------------------------------------------------------------

@@ -3,6 +3,7 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
+from shintai.spine.cla_body import build_spec as build_cla_body
 from shintai.spine.cla_crawl import kneeling_spec
 from shintai.spine.hanzous_body import build_spec as build_hanzous
 from shintai.spine.robots import CLA, KENTA
@@ -34,3 +35,15 @@ def cla_crawl():
        "(seed 003 §3.3, §5.7)")
 def hanzous():
     return build_hanzous()
+
+
+@model("spine.cla-seated", "Whole-body Cla seated on a stool before a desk: the muscle spine (8 wire muscles), "
+       "4-DOF arms and legs, pan/tilt neck with the head camera, desk and objects (seed 003 §3.6.2, §5.2)")
+def cla_seated():
+    return build_cla_body("seated")
+
+
+@model("spine.cla-standing", "Whole-body Cla standing free on the floor: the muscle spine, 4-DOF arms and legs, neck, "
+       "4 FSRs per sole for the centre of pressure (seed 003 §3.6.2, eq. 3.5, §5.2.7)")
+def cla_standing():
+    return build_cla_body("standing")

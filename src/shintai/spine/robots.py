@@ -775,6 +775,46 @@ CRAWL_SETTLE_S = 0.5  # chosen: the body settles on hands and knees before the p
 CRAWL_EVAL_S = 8.0  # chosen: each crawl is evaluated over 8 s (the distance is a speed)
 
 # ---------------------------------------------------------------------------------------------
+# Whole-body Cla: the muscle spine with arms, neck/head and legs, seated or standing (§3.6.2, §5.2;
+# the model is shintai.spine.cla_body)
+# ---------------------------------------------------------------------------------------------
+# The spine is CLA's (bodies_mujoco: 8 tendon muscles on reels, 0.5 ms steps). §3.6.2 gives the limbs' DOF
+# ("脚は股関節・膝関節が pitch 軸のみで足首関節が pitch・roll 軸、腕は肩関節が roll・pitch 軸で肘および手首関節が
+# pitch 軸のみ"), RC servos S9204 as Rabbit's, 2 three-axis accelerometers (waist, shoulder), 4 FSR per foot
+# at the sole's corners (eq. 3.5) and two CCD cameras in the head; no sizes or masses: those are the crawl
+# model's (CRAWL_* above) where it has them, the rest chosen below. The neck's pan/tilt is §5.2.10's ("首の
+# pan(yaw)/tilt(pitch)").
+CLA_SHOULDER_M = (0.025, 0.075, 0.03)  # chosen: in the clavicle link, 25 mm in front, ±75 mm, 30 mm up (CLA_ARMS_*)
+CLA_HAND_RADIUS_M = 0.018  # chosen: the hand as a sphere at the wrist's link end
+CLA_HAND_M = 0.04  # chosen: wrist axis to the hand's centre
+CLA_UPPER_ARM_M = CRAWL_UPPER_ARM_M  # shoulder–elbow
+CLA_FOREARM_M = CRAWL_FOREARM_M - CLA_HAND_M  # elbow–wrist (the crawl's elbow–palm minus the hand)
+CLA_ARM_KG = (0.15, 0.07, 0.03)  # upper arm, forearm, hand: the 0.25 kg arm of CLA_ARMS_* split (chosen)
+CLA_HIP_M = (0.0, CRAWL_HIP_HALF_WIDTH_M, -0.03)  # chosen: hip axes in the pelvis frame (x front, y left, z up)
+CLA_THIGH_M = CRAWL_THIGH_M  # hip–knee
+CLA_SHANK_M = 0.13  # knee–ankle (chosen: the crawl's knee–toe 0.15 less the foot's height)
+CLA_FOOT_HALF_M = (0.05, 0.03, 0.01)  # chosen: sole half length, half width, half thickness; ankle 10 mm above
+CLA_LEG_KG = (0.25, 0.10, 0.05)  # thigh, shank, foot: the crawl's 0.25/0.15 kg, its shin split (chosen)
+CLA_PELVIS_KG = CLA.link_mass_kg[0]  # the hip block with its four motors (1.0 kg, chosen in CLA)
+CLA_NECK_M = 0.07  # chosen: clavicle link to the neck's pan/tilt axes
+CLA_HEAD_KG = CLA_TRUNK_LOADS[1].mass_kg  # the head (0.15 kg, CLA_TRUNK_LOADS) now on a pan/tilt neck
+CLA_HEAD_RADIUS_M = 0.04  # chosen
+CLA_FOV_DEG = 60.0  # chosen: the head camera's vertical field of view (the CCD's lens is not in text)
+# Limb and neck servos: as the crawl's (S9204, 12.6 kgf cm), the neck with a smaller torque (chosen)
+CLA_NECK_TORQUE_NM = 0.5
+CLA_SEAT_HEIGHT_M = PELVIS_HEIGHT_M - 0.024  # the seat top under the pelvis block (the pelvis is fixed on it)
+CLA_SEAT_HALF_M = (0.06, 0.08)  # chosen: a stool's seat, half depth and half width
+# The desk in front of the seated Cla (§5.2.4, §5.2.6: "机"; its size and place are not in text): chosen with
+# its top at the seated Cla's chest, 6 cm below the shoulders, as a child's desk is to a seated child
+CLA_DESK_HEIGHT_M = 0.56
+CLA_DESK_NEAR_M = 0.12  # the desk's near edge, in front of the spine axis
+CLA_DESK_HALF_M = (0.20, 0.30)  # half depth (x), half width (y)
+CLA_OBJECT_HALF_M = 0.02  # the desk object: a 40 mm cube, 30 g (chosen)
+CLA_OBJECT_KG = 0.03
+CLA_FRICTION = 0.8  # hands, feet and objects on the floor/desk, chosen
+CLA_TIMESTEP_S = 5e-4  # the muscle spine's physics step (bodies_mujoco)
+
+# ---------------------------------------------------------------------------------------------
 # The experiments' protocols (ch. 3–4)
 # ---------------------------------------------------------------------------------------------
 
