@@ -27,10 +27,12 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import SET, declare
+from shintai.core.constants import KGF_N
+from shintai.core.runtime import SET, Loop, declare
 from shintai.spine.bodies_mujoco import SpineBody, build_spec
+from shintai.spine.control import Gains, Mode, MuscleControl
 from shintai.spine.robots import (
-    KENTA, KENTA_ARM_KG, KENTA_ARM_KP, KENTA_ARM_TORQUE_NM, KENTA_CAMERA_FOVY_DEG, KENTA_CHEST_BALL_Y_M,
+    CALIBRATION_KGF, KENTA, KENTA_ARM_KG, KENTA_ARM_KP, KENTA_ARM_TORQUE_NM, KENTA_CAMERA_FOVY_DEG, KENTA_CHEST_BALL_Y_M,
     KENTA_CLAVICLE_M, KENTA_EYE_KP, KENTA_EYE_LIMIT_RAD, KENTA_EYE_X_M, KENTA_EYE_Y_M, KENTA_FOREARM_M,
     KENTA_HEAD_HALF_M, KENTA_HEAD_KG, KENTA_LIGAMENTS, KENTA_NECK_JOINTS, KENTA_NECK_K_NM_RAD, KENTA_NECK_KP,
     KENTA_NECK_LIMIT_RAD, KENTA_NECK_SEGMENT_M, KENTA_NECK_TORQUE_NM, KENTA_TORSO_M, KENTA_UPPER_ARM_M,
@@ -232,3 +234,22 @@ class KentaBody(SpineBody):
         if target is not None:
             self.data.mocap_pos[self._target] = target
         super().apply(command)
+
+
+def calibrated_kenta(teach_kgf: float = 1.0, seconds: float = 1.0):
+    """Kenta with its muscle controller after §4.6.4's encoder zeroing: the teacher's hands hold the basic
+    posture while every muscle runs LL at the "just taut" limit (CALIBRATION_KGF) toward a 10 mm shorter
+    target; the encoders are zeroed there and every muscle is left in L mode holding it. Returns
+    (body, control, the model lengths at the basic posture = the encoder zero)."""
+    body = KentaBody()
+    control = MuscleControl(KENTA.m, Gains(T_r=teach_kgf * KGF_N, T_l=CALIBRATION_KGF * KGF_N))
+    control.set_modes(Mode.LL)
+    control.set_targets(l_r=body.snapshot()["encoder"] + 0.01)
+    zero = np.zeros(3 * KENTA.n)
+    Loop(body, [control], base={"shape": zero}).run(seconds)
+    body.zero_encoders()
+    control.set_gains(T_l=teach_kgf * KGF_N)
+    control.set_targets(l_r=np.zeros(KENTA.m))
+    control.set_modes(Mode.L)
+    control.reset(body.snapshot())
+    return body, control, KENTA.model.lengths(zero)
