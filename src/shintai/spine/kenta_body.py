@@ -15,7 +15,8 @@ ligaments (:func:`~shintai.spine.bodies_mujoco.build_spec`, §3.7.1–3.7.2) plu
   region detection" (§5.2.10) is its centre projected into the left eye camera: ``target_image`` (horizontal,
   vertical) angles of the target from the optical axis [rad], ``target_visible`` whether it is in the field of view.
 * **The teacher's hands** (§4.2.1): the ``shape`` channel (set) holds every spine joint at a posture θ (3n,)
-  by position servos on its hinges (K, D: ``TEACHER_*``), as hands moulding the whole spine; a tick without a writer lets go.
+  by position servos on its hinges (K, D: ``TEACHER_*``), as hands moulding the whole spine; a tick without a
+  writer lets go.
 
 Constants with their sources: ``KENTA_*`` in :mod:`shintai.spine.robots`.
 """
@@ -32,10 +33,30 @@ from shintai.core.runtime import SET, Loop, declare
 from shintai.spine.bodies_mujoco import SpineBody, build_spec
 from shintai.spine.control import Gains, Mode, MuscleControl
 from shintai.spine.robots import (
-    CALIBRATION_KGF, KENTA, KENTA_ARM_KG, KENTA_ARM_KP, KENTA_ARM_TORQUE_NM, KENTA_CAMERA_FOVY_DEG, KENTA_CHEST_BALL_Y_M,
-    KENTA_CLAVICLE_M, KENTA_EYE_KP, KENTA_EYE_LIMIT_RAD, KENTA_EYE_X_M, KENTA_EYE_Y_M, KENTA_FOREARM_M,
-    KENTA_HEAD_HALF_M, KENTA_HEAD_KG, KENTA_LIGAMENTS, KENTA_NECK_JOINTS, KENTA_NECK_K_NM_RAD, KENTA_NECK_KP,
-    KENTA_NECK_LIMIT_RAD, KENTA_NECK_SEGMENT_M, KENTA_NECK_TORQUE_NM, KENTA_TORSO_M, KENTA_UPPER_ARM_M,
+    CALIBRATION_KGF,
+    KENTA,
+    KENTA_ARM_KG,
+    KENTA_ARM_KP,
+    KENTA_ARM_TORQUE_NM,
+    KENTA_CAMERA_FOVY_DEG,
+    KENTA_CHEST_BALL_Y_M,
+    KENTA_CLAVICLE_M,
+    KENTA_EYE_KP,
+    KENTA_EYE_LIMIT_RAD,
+    KENTA_EYE_X_M,
+    KENTA_EYE_Y_M,
+    KENTA_FOREARM_M,
+    KENTA_HEAD_HALF_M,
+    KENTA_HEAD_KG,
+    KENTA_LIGAMENTS,
+    KENTA_NECK_JOINTS,
+    KENTA_NECK_K_NM_RAD,
+    KENTA_NECK_KP,
+    KENTA_NECK_LIMIT_RAD,
+    KENTA_NECK_SEGMENT_M,
+    KENTA_NECK_TORQUE_NM,
+    KENTA_TORSO_M,
+    KENTA_UPPER_ARM_M,
 )
 
 HINGE = mujoco.mjtJoint.mjJNT_HINGE
@@ -46,7 +67,8 @@ ARM_JOINTS = (("chest", "yaw", 30), ("chest", "pitch", 30), ("chest", "roll", 30
               ("elbow", "pitch", 140), ("wrist", "yaw", 60), ("wrist", "pitch", 60), ("wrist", "roll", 60))
 ARM_NAMES = tuple(f"{part}_{axis}_{side}" for side in "LR" for part, axis, _ in ARM_JOINTS)
 NECK_AXES = ("pan", "tilt", "roll")
-TEACHER_K_NM_RAD, TEACHER_D_NMS_RAD = 300.0, 3.0  # chosen: firm human hands per spine joint axis (1 kgf muscles, 5 kg above)
+# chosen: firm human hands per spine joint axis (against 1 kgf muscles and ≈ 5 kg above the spine)
+TEACHER_K_NM_RAD, TEACHER_D_NMS_RAD = 300.0, 3.0
 # §3.7.1: "各節には過変形防止のハードウェア的なロック機構を設けた" — the spine's joint limits are hard stops; chosen:
 # a stop time constant of 4 physics steps (MuJoCo's default 20 ms lets 1 kgf muscles bend joints far past ±10°)
 SPINE_STOP_SOLREF_S = 0.002

@@ -31,10 +31,11 @@ KENTA_KEY_POSTURES_DEG = ((0.0, 15.0, 15.0), (15.0, 0.0, 0.0), (0.0, -10.0, -15.
 KENTA_TAUGHT_S = 1.5  # chosen: each posture is held by the teacher this long before its lengths are read
 
 
-def teach(teach_kgf: float, postures_deg=KENTA_KEY_POSTURES_DEG, hold_s: float = KENTA_TAUGHT_S):
+def teach(teach_kgf: float, postures_deg=KENTA_KEY_POSTURES_DEG, hold_s: float = KENTA_TAUGHT_S,
+          zeroing_s: float = 1.0):
     """§4.2.1: T mode at ``teach_kgf`` on all 40 muscles, the teacher shaping each posture (a uniform bend,
     eq. 4.29); returns (body, control, encoder lengths (3, m), true postures (3, 3n))."""
-    body, control, _ = calibrated_kenta(teach_kgf)
+    body, control, _ = calibrated_kenta(teach_kgf, zeroing_s)
     control.set_modes(Mode.T)
     encoders, truth = [], []
     for whole in np.radians(postures_deg):

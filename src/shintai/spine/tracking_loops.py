@@ -40,13 +40,19 @@ TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: w
 
 
 class TargetPath(Module):
-    """Moves the ball on centre + (a_y sin(2π t / T), 0.6 a_z sin(2π t / (0.7 T)))·(y, z), written to ``target``."""
+    """Moves the ball on centre + (0, a sin(2π t / T), 0.5 a sin(2π t / (0.7 T))), written to ``target``."""
 
     def __init__(self, centre, amplitude_m: float, period_s: float, name: str = "experimenter"):
         super().__init__(name)
         self.centre, self.a, self.T = np.asarray(centre, dtype=float), amplitude_m, period_s
+        self.t0 = 0.0
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.t0 = float(snapshot["t"])
 
     def at(self, t: float) -> np.ndarray:
+        """The ball's position at body time t (the path starts at the centre when the Loop starts)."""
+        t = t - self.t0
         w = 2 * math.pi / self.T
         return self.centre + np.array([0.0, self.a * math.sin(w * t), 0.5 * self.a * math.sin(w * t / 0.7)])
 

@@ -19,7 +19,13 @@ from shintai.spine.control import SETPOINTS
 from shintai.spine.kenta_body import calibrated_kenta, image_offset
 from shintai.spine.robots import CLA, CLA_FOV_DEG, KENTA, KENTA_EYE_LIMIT_RAD, KENTA_NECK_LIMIT_RAD
 from shintai.spine.tracking_loops import (
-    TRACKING_GAINS, TRACKING_PERIODS_S, GazeLoop, SpineGazeLoop, TargetPath, measured_period, shares,
+    TRACKING_GAINS,
+    TRACKING_PERIODS_S,
+    GazeLoop,
+    SpineGazeLoop,
+    TargetPath,
+    measured_period,
+    shares,
 )
 
 TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
@@ -60,11 +66,11 @@ def _eye_position(body, camera: str) -> np.ndarray:
 
 
 def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: float, loops: tuple[str, ...],
-          film: Callable | None = None) -> dict:
+          zeroing_s: float = 1.0, film: Callable | None = None) -> dict:
     """One tracking run of ``robot`` ("kenta" or "cla") with the visual ``loops`` on; returns the metrics and the
     recorded series (t, image offset, visibility, the parts' gaze)."""
     if robot == "kenta":
-        body, control, zero = calibrated_kenta()
+        body, control, zero = calibrated_kenta(seconds=zeroing_s)
         camera, model = "eye_L", KENTA.model
         parts = {"eyes": lambda: GazeLoop("eyes", TRACKING_PERIODS_S["eyes"], TRACKING_GAINS["eyes"],
                                           ("eye_pan", "eye_tilt"), +1.0, KENTA_EYE_LIMIT_RAD),
@@ -72,7 +78,7 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
                                           ("neck_pan", "neck_tilt"), -1.0, KENTA_NECK_LIMIT_RAD)}
     else:
         body = TrackedCla()
-        control, zero = spine_control(body)
+        control, zero = spine_control(body)  # Cla's own zeroing (1 s, cla_body)
         camera, model = "head_cam", CLA.model
         parts = {"neck": lambda: GazeLoop("neck", TRACKING_PERIODS_S["neck"], TRACKING_GAINS["neck"],
                                           ("neck_yaw", "neck_pitch"), -1.0, CLA_NECK_LIMIT_RAD)}
@@ -80,6 +86,7 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
     modules = [parts[name]() for name in loops]
     eye = _eye_position(body, camera)
     path = TargetPath(eye + np.array([TARGET_DISTANCE_M, 0.0, 0.0]), amplitude_m, path_period_s)
+    path.t0 = body.t
     body.apply({"target": path.at(body.t)})
     loop = Loop(body, stages=[[path, *modules], [control]], channels=SETPOINTS)
     series = {"t": [], "image": [], "visible": [], "gaze": []}
@@ -101,7 +108,7 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
            "max_tracking_error_deg": float(err[settled].max()),
            "visible_fraction": float(s["visible"][settled].mean()),
            "target_sweep_deg": float(np.degrees(2 * np.arctan(amplitude_m / TARGET_DISTANCE_M))),
-           "sim_time_s": duration_s + 1.0}  # + the 1 s encoder zeroing
+           "sim_time_s": duration_s + (zeroing_s if robot == "kenta" else 1.0)}  # + the encoder zeroing
     names = ("spine", "neck", "eyes")[:s["gaze"].shape[1]]
     share = shares(s["gaze"])
     for name, value in zip(names, share):

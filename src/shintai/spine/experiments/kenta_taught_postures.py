@@ -11,7 +11,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine.kenta_postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, replay, teach
 from shintai.spine.pictures_kenta import taught_postures
 
-VIEW = {"fps": 15, "width": 480, "height": 360, "camera": "side"}
+VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.8, "azimuth": 150.0, "elevation": -10}
 
 
 @scenario(
@@ -22,8 +22,11 @@ VIEW = {"fps": 15, "width": 480, "height": 360, "camera": "side"}
             "minimum-jerk interpolation in L mode, cycled",
     params=[
         Param("teach_kgf", 1.0, "teaching tension of every muscle [kgf] (§4.2.1: e.g. 1 kgf)", lo=0.1, hi=5.0),
+        Param("zeroing_s", 1.0, "§4.6.4 encoder zeroing time (LL at the just-taut limit) [s]", lo=0.2, hi=5.0),
+        Param("hold_s", KENTA_TAUGHT_S, "how long the teacher holds each posture before it is read [s]", lo=0.1,
+              hi=10.0),
         Param("cycles", 2, "replay cycles through the three postures", lo=1, hi=10),
-        Param("period_s", 2.0, "time from one posture's command to the next [s]", lo=0.5, hi=10.0),
+        Param("period_s", 2.0, "time from one posture's command to the next [s]", lo=0.2, hi=10.0),
         Param("move_s", 1.0, "minimum-jerk move to each posture [s]", lo=0.1, hi=10.0),
     ],
     checks=[
@@ -32,22 +35,24 @@ VIEW = {"fps": 15, "width": 480, "height": 360, "camera": "side"}
               "recognisably its taught one — nearer to it than to the other two (ours: no tolerance is printed)",
               kind="reproduction", row="003:fig4.1"),
         Check("mean_replay_error_deg", "<=", 5.0,
-              "§3.7.6 '全身の動きを利用した人間の動きに近づいた動きを可能にしている' with §4.2.1 (replaying the recorded "
-              "lengths reproduces the posture): within 5° of the taught whole-spine angles (ours)",
+              "§3.7.6 '全身の動きを利用した人間の動きに近づいた動きを可能にしている' with §4.2.1 (replaying "
+              "the recorded lengths reproduces the posture): within 5° of the taught whole-spine angles (ours)",
               kind="reproduction", row="003:fig3.53"),
         Check("cycle_timing_error_s", "<=", 0.2, "the replay passes posture 1 once per commanded cycle (derived: "
               "our schedule; 0.2 s = a tenth of a period)", kind="consistency"),
     ],
-    thesis={"taught_and_replayed": ThesisValue("three postures, replayed in turn repeatedly", "seed 003 §4.2.2 "
-                                               "'三種類の姿勢を教示し，それを順に繰り返し再生する'", "nearest_taught_fraction")},
+    thesis={"taught_and_replayed": ThesisValue(
+        "three postures, replayed in turn repeatedly",
+        "seed 003 §4.2.2 '三種類の姿勢を教示し，それを順に繰り返し再生する'",
+        "nearest_taught_fraction")},
     constraints=[(lambda p: p["move_s"] <= p["period_s"], "move_s must not exceed period_s")],
     video=True,
 )
 def kenta_taught_postures(ctx):
     p = ctx.params
     ctx.progress(0.05, "teaching")
-    body, control, encoders, truth = teach(p["teach_kgf"])
-    ctx.sim_time_s += 1.0 + len(encoders) * KENTA_TAUGHT_S
+    body, control, encoders, truth = teach(p["teach_kgf"], hold_s=p["hold_s"], zeroing_s=p["zeroing_s"])
+    ctx.sim_time_s += p["zeroing_s"] + len(encoders) * p["hold_s"]
     ctx.progress(0.4, "replaying")
     out = replay(body, control, encoders, truth, int(p["cycles"]), p["period_s"], p["move_s"],
                  film=lambda b: film(ctx, b, **VIEW))

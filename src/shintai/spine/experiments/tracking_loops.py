@@ -11,7 +11,8 @@ from shintai.spine.tracking_runs import track
 
 LOOPS = {"kenta": ("eyes", "neck", "spine"), "cla": ("neck", "spine")}
 ROWS = {"kenta": "003:fig5.14", "cla": "003:fig5.12"}
-VIEW = {"kenta": {"camera": "side"}, "cla": {"track": "link0", "distance": 1.2, "azimuth": 150.0, "elevation": -10}}
+VIEW = {"kenta": {"track": "link0", "distance": 2.2, "azimuth": 120.0, "elevation": -15},
+        "cla": {"track": "link0", "distance": 1.2, "azimuth": 150.0, "elevation": -10}}
 
 
 def _robots(p) -> list[str]:
@@ -40,6 +41,7 @@ def _checks():
     params=[
         Param("robots", "kenta,cla", "comma list of robots: kenta, cla"),
         Param("duration_s", 12.0, "tracking time per robot [s]", lo=0.2, hi=60.0),
+        Param("zeroing_s", 1.0, "§4.6.4 encoder zeroing time before tracking [s]", lo=0.2, hi=5.0),
         Param("amplitude_m", 0.3, "the ball's horizontal amplitude at 0.9 m [m]", lo=0.0, hi=0.6),
         Param("path_period_s", 8.0, "the ball's horizontal period [s]", lo=1.0, hi=60.0),
     ],
@@ -57,7 +59,7 @@ def tracking_loops(ctx):
     metrics, runs = {}, {}
     for i, robot in enumerate(robots):
         ctx.progress(0.05 + 0.9 * i / len(robots), robot)
-        run = track(robot, p["duration_s"], p["amplitude_m"], p["path_period_s"], LOOPS[robot],
+        run = track(robot, p["duration_s"], p["amplitude_m"], p["path_period_s"], LOOPS[robot], p["zeroing_s"],
                     film=lambda b, r=robot: film(ctx, b, r, **VIEW[r]))
         runs[robot] = run
         ctx.sim_time_s += run.pop("sim_time_s")
