@@ -416,7 +416,8 @@ ROWS = (
         where="seed 003 §5.2.11, Fig. 5.13",
         what="Kenta moves spine, neck and both arms at once",
         result="§5.2.11: shown in photographs only, no number",
-        not_built=ISSUE_17 + " (Kenta's body)",
+        not_built=ISSUE_17 + ": Kenta's body exists (spine/kenta_body.py, model spine.kenta-body); no scenario moves "
+                  "its spine, neck and arms together yet",
     ),
     Row(
         key="003:fig5.14",

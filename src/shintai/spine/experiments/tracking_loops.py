@@ -40,7 +40,8 @@ def _checks():
             "neck (66 ms) and spine (198 ms); Cla's neck and spine",
     params=[
         Param("robots", "kenta,cla", "comma list of robots: kenta, cla"),
-        Param("duration_s", 12.0, "tracking time per robot [s]", lo=0.2, hi=60.0),
+        Param("duration_s", 8.0, "tracking time per robot [s] (default: one period of the ball's sweep)", lo=0.2,
+              hi=60.0),
         Param("zeroing_s", 1.0, "§4.6.4 encoder zeroing time before tracking [s]", lo=0.2, hi=5.0),
         Param("amplitude_m", 0.3, "the ball's horizontal amplitude at 0.9 m [m]", lo=0.0, hi=0.6),
         Param("path_period_s", 8.0, "the ball's horizontal period [s]", lo=1.0, hi=60.0),
