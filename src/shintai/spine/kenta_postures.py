@@ -79,28 +79,21 @@ def replay(body, control, encoders, truth, cycles: int, period_s: float, move_s:
     out["mean_replay_error_deg"] = float(errors.mean())
     out["nearest_taught_fraction"] = float(np.mean(distance.argmin(axis=1) == np.arange(len(reached)) % k))
     out["cycle_period_s"] = k * period_s
-    arrivals = _arrivals(np.array(series["t"]), np.degrees(np.array(series["whole"])), np.degrees(taught[0]))
-    out["measured_cycle_period_s"] = float(np.mean(np.diff(arrivals))) if len(arrivals) > 1 else float("nan")
+    out["measured_cycle_period_s"] = cycle_period(np.array(series["t"]), np.array(series["whole"]), k * period_s)
     out["series"] = {"t": np.array(series["t"]), "whole": np.degrees(np.array(series["whole"])),
                      "taught": np.degrees(taught), "reached": reached}
     return out
 
 
-def _arrivals(t, whole, first, gap_s: float = 1.0) -> list[float]:
-    """Times the spine comes nearest to the first posture, one per pass (passes separated by ``gap_s``
-    farther than the mean distance)."""
-    d = np.linalg.norm(whole - first, axis=1)
-    near = d < 0.5 * np.mean(d)
-    times, start = [], None
-    for i, flag in enumerate(near):
-        if flag and start is None:
-            start = i
-        if (not flag or i == len(near) - 1) and start is not None:
-            seg = slice(start, i + 1)
-            times.append(float(t[seg][np.argmin(d[seg])]))
-            start = None
-    merged = [times[0]] if times else []
-    for x in times[1:]:
-        if x - merged[-1] > gap_s:
-            merged.append(x)
-    return merged
+def cycle_period(t, x, expected: float) -> float:
+    """The motion's repetition period [s]: the lag in [0.5, 1.5] × ``expected`` at which the trajectory x (k, d)
+    best matches itself shifted (largest mean autocorrelation over its axes); NaN when the run is shorter
+    than 1.5 periods."""
+    dt = float(np.mean(np.diff(t)))
+    x = np.asarray(x, dtype=float) - np.mean(x, axis=0)
+    lags = np.arange(int(0.5 * expected / dt), int(1.5 * expected / dt) + 1)
+    lags = lags[lags < len(x) - 1]
+    if len(lags) == 0 or t[-1] - t[0] < 1.5 * expected:
+        return float("nan")
+    score = [np.sum(x[:-lag] * x[lag:]) / (len(x) - lag) for lag in lags]
+    return float(lags[int(np.argmax(score))] * dt)
