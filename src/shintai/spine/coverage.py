@@ -157,9 +157,10 @@ ROWS = (
         difference="the teacher is a pair of hands holding every spine joint (position servos on the hinges) while "
                    "all 40 muscles run T mode at 1 kgf; three chosen postures, replayed through the seqplugin "
                    "player (minimum jerk, 1 s moves every 2 s), two cycles",
-        why_not="the replay does not reproduce the taught postures: our Kenta's fixed muscle lengths do not fix its "
-                "posture (a mechanism of the chosen muscle routing, present with the reels locked), so the spine "
-                "sags and twists away (notes/kenta-taught-postures.md)",
+        why_not="the replay follows the taught pitch sequence but twists to −50…−80° yaw and rolls 60–85° (mean "
+                "error 89°, 1 of 3 replayed postures nearest its own): our Kenta's fixed muscle lengths do not fix "
+                "its posture (a mechanism of the chosen muscle routing, present with the reels locked; "
+                "notes/kenta-taught-postures.md)",
     ),
     Row(
         key="003:s4.2.2",
