@@ -139,7 +139,12 @@ ROWS = (
         what="Kenta (tendon-driven humanoid, 10-segment spine with muscles to middle vertebrae) moves its spine",
         result="§3.7.6: '全身の動きを利用した人間の動きに近づいた動きを可能にしている様子が見られる'. Photographs "
                "only, no number",
-        not_built=ISSUE_17 + " (Kenta's body)",
+        difference="our whole-body Kenta (spine/kenta_body.py: the 40 muscles and ligaments of robots.py with chosen "
+                   "attachment points, servoed arms, a wire-sum neck, pan/tilt eyes; no legs, pelvis fixed) moves its "
+                   "spine into three taught postures (spine.kenta-taught-postures)",
+        why_not="our Kenta cannot hold a posture with its muscle lengths fixed: even with the reels locked the spine "
+                "keeps bending under its upper body (21° → 55° forward in 0.5 s), so the replayed postures are not "
+                "the taught ones (notes/kenta-taught-postures.md)",
     ),
     # ---------------------------------------------------------------- chapter 4: control of the spine
     Row(
@@ -149,7 +154,13 @@ ROWS = (
              "interpolation",
         result="§4.2.2: '腱太(第 3.7節参照)に三種類の姿勢を教示し，それを順に繰り返し再生する様子を Fig. 4.1 に示す'. "
                "Photographs only, no number",
-        not_built=ISSUE_17 + ": spine.kenta-taught-postures",
+        difference="the teacher is a pair of hands holding every spine joint (position servos on the hinges) while "
+                   "all 40 muscles run T mode at 1 kgf; three chosen postures, replayed through the seqplugin "
+                   "player (minimum jerk, 1 s moves every 2 s), two cycles",
+        why_not="the replay follows the taught pitch sequence but twists to −50…−80° yaw and rolls 60–85° (mean "
+                "error 89°, 1 of 3 replayed postures nearest its own): our Kenta's fixed muscle lengths do not fix "
+                "its posture (a mechanism of the chosen muscle routing, present with the reels locked; "
+                "notes/kenta-taught-postures.md)",
     ),
     Row(
         key="003:s4.2.2",
@@ -417,14 +428,19 @@ ROWS = (
         what="Cla tracks a coloured target with neck (pan/tilt) and spine (pitch/yaw from the NN posture) "
              "routines run in parallel",
         result="§5.2.10: realised by tuning the two routines' gains. No number",
-        not_built=ISSUE_17 + ": spine.tracking-loops",
+        difference="the whole-body Cla (spine/cla_body.py) seated; the colour-region detection replaced by the ball's "
+                   "centre projected into the head camera; the spine's posture from the muscle lengths by Jacobian "
+                   "integration (eqs. 4.26–4.28) instead of the NN; neck loop 66 ms, spine loop 198 ms, gains chosen: "
+                   "over an 8 s ±18° sweep the ball stays in view, RMS 4.0° off axis (max 5.9°), neck 71 % / spine "
+                   "29 % of the pan",
     ),
     Row(
         key="003:fig5.13",
         where="seed 003 §5.2.11, Fig. 5.13",
         what="Kenta moves spine, neck and both arms at once",
         result="§5.2.11: shown in photographs only, no number",
-        not_built=ISSUE_17 + " (Kenta's body)",
+        not_built=ISSUE_17 + ": Kenta's body exists (spine/kenta_body.py, model spine.kenta-body); no scenario moves "
+                  "its spine, neck and arms together yet",
     ),
     Row(
         key="003:fig5.14",
@@ -432,7 +448,11 @@ ROWS = (
         what="Kenta tracks a target with eyes, neck and spine: three visual-feedback loops of different periods in "
              "parallel",
         result="§5.2.12: realised ('実現している'); no period or error printed",
-        not_built=ISSUE_17 + ": spine.tracking-loops",
+        difference="our whole-body Kenta; eye loop 33 ms, neck 66 ms, spine 198 ms (periods not in the text: chosen), "
+                   "each a Module of one Loop; the ball's centre projected into the left eye camera",
+        why_not="in our Kenta the spine, held in L mode, twists to −87° under the moving head and arms after 2 s "
+                "(the mechanism of spine.kenta-taught-postures), carrying the ball 44° off axis; eyes and neck "
+                "recover it within 1.5 s, but it is in view 93 % of the time (< 95 %) (notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.21",

@@ -6,6 +6,7 @@ from shintai.spine.bodies_mujoco import build_spec
 from shintai.spine.cla_body import build_spec as build_cla_body
 from shintai.spine.cla_crawl import kneeling_spec
 from shintai.spine.hanzous_body import build_spec as build_hanzous
+from shintai.spine.kenta_body import kenta_spec
 from shintai.spine.robots import CLA, KENTA
 from shintai.spine.sq43_body import build_spec as build_sq43
 
@@ -55,3 +56,9 @@ def cla_lying():
     from shintai.spine.cla_roll_over import lying_spec
 
     return lying_spec()
+
+
+@model("spine.kenta-body", "Kenta's whole body: the 40-muscle, 10-joint spine with ligaments, arms (chest and shoulder "
+       "balls, elbow, wrist), a 5-ball wire-driven neck, a pan/tilt eye linkage with two cameras (seed 003 §3.7)")
+def kenta_body():
+    return kenta_spec()

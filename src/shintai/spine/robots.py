@@ -544,6 +544,36 @@ def _kenta() -> tuple[SpineRobot, LigamentSpec, tuple[str, ...]]:
 
 KENTA, KENTA_LIGAMENTS, KENTA_MOTOR_GROUPS = _kenta()
 
+# Kenta's whole body beyond the spine (§3.7.4, Figs. 3.49–3.52; the MuJoCo model is spine/kenta_body.py). The
+# text gives the DOF: each arm a ball joint near the chest centre and one at the upper-arm root (6 DOF), a 1-DOF
+# elbow and a 3-DOF wrist; the neck "a reduced spine", 5 ball joints (15 DOF) driven by 6 wires through guides
+# on silicone-rubber spacers, so "each joint angle cannot be set individually, but the whole posture can";
+# the eyes one closed linkage joining both, pan and tilt by two RC servos, a CCD camera in each. No length or
+# mass is printed (Figs. 3.39–3.52 are not in the text): every size below is chosen, for an adult-proportioned
+# trunk on the 0.3 m spine, and the legs (§3.7.4: 6 DOF each) are left out — the pelvis is fixed as in the
+# spine model (the experiments of Figs. 4.1, 5.13, 5.14 move the trunk, neck, arms and eyes only).
+KENTA_TORSO_M = 0.10  # chosen: shoulder block top (the top ball) to the shoulder line
+KENTA_CHEST_BALL_Y_M = 0.03  # chosen: the arm's first ball joint "near the chest centre" (§3.7.4)
+KENTA_CLAVICLE_M = 0.10  # chosen: chest ball → shoulder ball
+KENTA_UPPER_ARM_M = 0.22  # chosen
+KENTA_FOREARM_M = 0.20  # chosen
+KENTA_ARM_KG = (0.35, 0.55, 0.40)  # chosen: clavicle link (4 motors), upper arm (6), forearm + hand (4), §3.7.4
+KENTA_ARM_KP = 30.0  # N m/rad, chosen: each arm joint a stiff position servo (muscle routing, Fig. 3.50, not in text)
+KENTA_ARM_TORQUE_NM = 8.0  # chosen: 25 kgf wires (§3.7.4, wrist) on a ~30 mm lever
+KENTA_NECK_JOINTS = 5  # §3.7.4: "リンクの自由度が 15 (球面関節 5 個)"
+KENTA_NECK_SEGMENT_M = 0.022  # chosen
+KENTA_NECK_K_NM_RAD = 1.5  # chosen: silicone-rubber spacers (§3.7.4), per joint axis
+KENTA_NECK_KP = 6.0  # N m/rad of whole-neck angle, chosen: the six wires as a servo on the summed joint angles
+KENTA_NECK_TORQUE_NM = 2.0  # chosen
+KENTA_HEAD_KG = 0.8  # chosen: six neck motors, two RC servos, two cameras (§3.7.4)
+KENTA_HEAD_HALF_M = (0.06, 0.055, 0.07)  # chosen
+KENTA_EYE_Y_M = 0.03  # chosen: half the interocular distance
+KENTA_EYE_X_M = 0.06  # chosen: eyes this far in front of the neck axis
+KENTA_EYE_KP = 1.0  # N m/rad, chosen: an RC servo's position loop on a light eye linkage
+KENTA_EYE_LIMIT_RAD = math.radians(40.0)  # chosen: pan/tilt range of the eye linkage
+KENTA_NECK_LIMIT_RAD = math.radians(60.0)  # chosen: whole-neck pan/tilt range (±12° per joint)
+KENTA_CAMERA_FOVY_DEG = 45.0  # chosen: a small CCD camera's vertical field of view
+
 # ---------------------------------------------------------------------------------------------
 # SQ43, HanzouS, BeBe
 # ---------------------------------------------------------------------------------------------

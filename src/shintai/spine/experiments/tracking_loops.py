@@ -1,0 +1,71 @@
+"""``spine.tracking-loops``: visual tracking by loops of different periods run in parallel in one Loop (seed 003
+§5.2.10, §5.2.12, Figs. 5.12, 5.14): Kenta's eye, neck and spine loops; Cla's neck and spine loops."""
+
+from __future__ import annotations
+
+from shintai.scenarios.experiment import film
+from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
+from shintai.spine.pictures_kenta import tracking
+from shintai.spine.tracking_loops import TRACKING_PERIODS_S
+from shintai.spine.tracking_runs import track
+
+LOOPS = {"kenta": ("eyes", "neck", "spine"), "cla": ("neck", "spine")}
+ROWS = {"kenta": "003:fig5.14", "cla": "003:fig5.12"}
+VIEW = {"kenta": {"track": "link0", "distance": 2.2, "azimuth": 120.0, "elevation": -15},
+        "cla": {"track": "link0", "distance": 1.2, "azimuth": 150.0, "elevation": -10}}
+
+
+def _robots(p) -> list[str]:
+    return [r.strip() for r in p["robots"].split(",")]
+
+
+def _checks():
+    for robot, row in ROWS.items():
+        yield Check(f"{robot}_visible_fraction", ">=", 0.95,
+                    f"{'§5.2.12' if robot == 'kenta' else '§5.2.10'}: the tracking was realised ('実現している' / "
+                    "'トラッキング動作を行う') — the target stays in the camera's view (≥ 95 % of the time after the "
+                    "first second, ours)", kind="reproduction", row=row)
+        for name in LOOPS[robot]:
+            yield Check(f"{robot}_{name}_period_error_s", "<=", 1e-6,
+                        f"the {name} loop runs at its own period ({TRACKING_PERIODS_S[name]} s) inside the one Loop "
+                        "(derived: our chosen periods)",
+                        kind="consistency")
+
+
+@scenario(
+    "spine.tracking-loops",
+    source="seed 003 §5.2.10, §5.2.12, Figs. 5.12, 5.14",
+    covers=("003:fig5.12", "003:fig5.14"),
+    summary="visual tracking of a moving ball by loops of different periods in one Loop: Kenta's eyes (33 ms), "
+            "neck (66 ms) and spine (198 ms); Cla's neck and spine",
+    params=[
+        Param("robots", "kenta,cla", "comma list of robots: kenta, cla"),
+        Param("duration_s", 8.0, "tracking time per robot [s] (default: one period of the ball's sweep)", lo=0.2,
+              hi=60.0),
+        Param("zeroing_s", 1.0, "§4.6.4 encoder zeroing time before tracking [s]", lo=0.2, hi=5.0),
+        Param("amplitude_m", 0.3, "the ball's horizontal amplitude at 0.9 m [m]", lo=0.0, hi=0.6),
+        Param("path_period_s", 8.0, "the ball's horizontal period [s]", lo=1.0, hi=60.0),
+    ],
+    checks=list(_checks()),
+    thesis={"kenta_loops": ThesisValue("three loops (eyes, neck, spine) of different periods in parallel",
+                                       "seed 003 §5.2.12 '周期の異なる3つの制御ループを並列に実行'"),
+            "cla_loops": ThesisValue("neck and spine routines in parallel, tuned by their gains",
+                                     "seed 003 §5.2.10 '並列に実行し, (1), (2) のゲインを調節することで実現'")},
+    constraints=[(lambda p: _robots(p) and set(_robots(p)) <= set(LOOPS), "robots: a comma list of kenta, cla")],
+    video=True,
+)
+def tracking_loops(ctx):
+    p = ctx.params
+    robots = _robots(p)
+    metrics, runs = {}, {}
+    for i, robot in enumerate(robots):
+        ctx.progress(0.05 + 0.9 * i / len(robots), robot)
+        run = track(robot, p["duration_s"], p["amplitude_m"], p["path_period_s"], LOOPS[robot], p["zeroing_s"],
+                    film=lambda b, r=robot: film(ctx, b, r, **VIEW[r]))
+        runs[robot] = run
+        ctx.sim_time_s += run.pop("sim_time_s")
+        metrics.update({f"{robot}_{k}": v for k, v in run.items() if k != "series"})
+        for name in LOOPS[robot]:
+            metrics[f"{robot}_{name}_period_error_s"] = abs(run[f"{name}_period_s"] - TRACKING_PERIODS_S[name])
+    tracking(ctx, runs)
+    return metrics

@@ -1,0 +1,119 @@
+"""Visual tracking by feedback loops of different periods run in parallel (seed 003 §5.2.10, §5.2.12,
+Figs. 5.12, 5.14), as Loop configurations of runtime Modules.
+
+§5.2.10 (Cla): the target's position in the image (colour-region detection) drives "(1) a routine adjusting
+the neck's pan (yaw) and tilt (pitch) angles according to it, and (2) a routine that finds the spine's present
+posture from the present muscle lengths (§4.4.3) and bends the spine about the pitch and yaw axes by an angle
+matching the target's offset", run in parallel, tuned by their gains. §5.2.12 (Kenta): "three control loops of
+different periods moving the eyes, the neck and the spine by visual feedback, run in parallel".
+
+* :class:`GazeLoop` — a servoed part (eyes or neck): every period, pan += g·h and pitch ∓= g·v, with (h, v)
+  the target's angles from the optical axis (left and up positive), clipped to the part's range.
+* :class:`SpineGazeLoop` — every period, the present whole-spine posture from the encoder lengths by Jacobian
+  integration (eqs. 4.26–4.28; §4.4.3's other method, the NN, needs a network trained per robot), then the
+  whole-spine yaw += g·h, pitch −= g·v as a uniform bend (eq. 4.29) turned into encoder targets ``l_r`` for
+  the muscle controller (L mode) of the next stage.
+* :class:`TargetPath` — the experimenter moving the coloured ball (``target`` channel), a Lissajous path.
+
+Periods and gains are not in the text ("周期の異なる3つの制御ループ", §5.2.12): chosen in ``TRACKING_*`` below.
+Each loop records when it ran (``times``), so the measured periods come from the run.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shintai.core.runtime import Module, Snapshot
+from shintai.spine.control import encoder_targets
+from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
+from shintai.spine.inverse_model import jacobian_integration
+
+# Chosen, because §5.2.12 gives no period: the eyes at the video frame rate of the CCD cameras (NTSC, 30 Hz),
+# the neck at BeBe's image-feedback period (66 ms, §4.8.3), the spine slower again (its muscles move it at
+# tens of mm/s, Table 3.3), so the three periods differ as the thesis says.
+TRACKING_PERIODS_S = {"eyes": 0.033, "neck": 0.066, "spine": 0.198}
+# Chosen: the fraction of the image offset each loop corrects per period (the thesis tuned its gains by hand)
+TRACKING_GAINS = {"eyes": 0.3, "neck": 0.12, "spine": 0.15}
+TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
+
+
+class TargetPath(Module):
+    """Moves the ball on centre + (0, a sin(2π t / T), 0.5 a sin(2π t / (0.7 T))), written to ``target``."""
+
+    def __init__(self, centre, amplitude_m: float, period_s: float, name: str = "experimenter"):
+        super().__init__(name)
+        self.centre, self.a, self.T = np.asarray(centre, dtype=float), amplitude_m, period_s
+        self.t0 = 0.0
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.t0 = float(snapshot["t"])
+
+    def at(self, t: float) -> np.ndarray:
+        """The ball's position at body time t (the path starts at the centre when the Loop starts)."""
+        t = t - self.t0
+        w = 2 * math.pi / self.T
+        return self.centre + np.array([0.0, self.a * math.sin(w * t), 0.5 * self.a * math.sin(w * t / 0.7)])
+
+    def update(self, snapshot: Snapshot):
+        return {"target": self.at(snapshot["t"])}
+
+
+class GazeLoop(Module):
+    """A servoed part's visual-feedback loop (eyes, neck). ``channels`` = (pan channel, pitch channel) and
+    ``up`` the sign of the pitch command that looks up (+1 eyes' tilt, −1 a pitch that bends down)."""
+
+    def __init__(self, name: str, period: float, gain: float, channels: tuple[str, str], up: float, limit: float):
+        super().__init__(name, period)
+        self.gain, self.channels, self.up, self.limit = gain, channels, up, limit
+        self.angles = np.zeros(2)
+        self.times: list[float] = []
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.angles = np.zeros(2)
+        self.times = []
+
+    def update(self, snapshot: Snapshot):
+        self.times.append(float(snapshot["t"]))
+        h, v = snapshot["target_image"]
+        self.angles = np.clip(self.angles + self.gain * np.array([h, self.up * v]), -self.limit, self.limit)
+        return {self.channels[0]: self.angles[0], self.channels[1]: self.angles[1]}
+
+
+class SpineGazeLoop(Module):
+    """The spine's loop: posture from muscle lengths (eqs. 4.26–4.28), then a uniform bend toward the target."""
+
+    def __init__(self, model: SpineModel, zero_lengths, period: float, gain: float, name: str = "spine"):
+        super().__init__(name, period)
+        self.model, self.zero, self.gain = model, np.asarray(zero_lengths, dtype=float), gain
+        self.estimate = np.zeros(3 * model.n)
+        self.whole_cmd = np.zeros(3)
+        self.times: list[float] = []
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.estimate = np.zeros(3 * self.model.n)
+        self.times = []
+
+    def update(self, snapshot: Snapshot):
+        self.times.append(float(snapshot["t"]))
+        lengths = self.zero - np.asarray(snapshot["encoder"], dtype=float)  # encoder l = λ(0) − λ (control.py)
+        self.estimate = jacobian_integration(self.model, lengths, theta0=self.estimate).theta
+        roll, pitch, yaw = whole_spine(self.estimate)
+        h, v = snapshot["target_image"]
+        ymax, pmax = TRACKING_SPINE_RANGE_RAD
+        self.whole_cmd = np.array([0.0, np.clip(pitch - self.gain * v, -pmax, pmax),
+                                   np.clip(yaw + self.gain * h, -ymax, ymax)])
+        lengths_cmd = self.model.lengths(uniform_posture(self.whole_cmd, self.model.n))
+        return {"l_r": encoder_targets(lengths_cmd, self.zero)}
+
+
+def measured_period(times) -> float:
+    """Mean interval between a loop's runs [s] (NaN with fewer than two)."""
+    return float(np.mean(np.diff(times))) if len(times) > 1 else float("nan")
+
+
+def shares(parts) -> np.ndarray:
+    """Each part's share of the gaze's pan: mean |pan_k| / Σ_k mean |pan_k| over the run; ``parts`` (k, P, 2)."""
+    pan = np.abs(np.asarray(parts)[:, :, 0]).mean(axis=0)
+    return pan / max(pan.sum(), 1e-12)

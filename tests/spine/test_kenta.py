@@ -1,0 +1,97 @@
+"""Kenta's whole body (seed 003 §3.7) and its two scenarios, run short: the taught postures (Fig. 4.1) and the
+tracking loops (Figs. 5.12, 5.14)."""
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from shintai.scenarios.registry import ParameterError
+from shintai.scenarios.runner import run_scenario
+from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
+from shintai.spine.robots import KENTA, KENTA_NECK_JOINTS
+from shintai.spine.tracking_loops import TRACKING_PERIODS_S, GazeLoop, measured_period, shares
+from shintai.spine.tracking_runs import track
+
+
+@pytest.fixture(scope="module")
+def body():
+    return KentaBody()
+
+
+def test_kenta_body_has_spine_arms_neck_and_eyes(body):
+    m = body.model
+    assert KENTA.m == 40 and KENTA.n == 10
+    for name in ("HIP-BL1", "SHO-FR5", "LIG10-5", "neck_pan", "neck_tilt"):
+        assert mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_TENDON, name) >= 0
+    for name in ("chest_yaw_L", "shoulder_pitch_R", "elbow_pitch_L", "wrist_roll_R", "eye_pan", "eye_tilt"):
+        assert mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, name) >= 0
+    assert mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_CAMERA, "eye_L") >= 0
+
+
+def test_neck_wire_is_the_sum_of_the_joint_angles(body):
+    """A wire through guides changes length by offset × Σ angles: the pan tendon's length is Σ yaw."""
+    q = body.data.qpos
+    for i in range(1, KENTA_NECK_JOINTS + 1):
+        q[body.model.jnt_qposadr[body.id("joint", f"neck{i}_yaw")]] = 0.01 * i
+    body.forward()
+    pan = mujoco.mj_name2id(body.model, mujoco.mjtObj.mjOBJ_TENDON, "neck_pan")
+    assert body.data.ten_length[pan] == pytest.approx(0.15)
+    assert body.gaze()[1, 0] == pytest.approx(0.15)
+    body.reset()
+
+
+def test_teacher_hands_switch_with_the_shape_channel(body):
+    body.apply({"shape": np.zeros(3 * KENTA.n)})
+    assert not body.model.opt.disableactuator & (1 << TEACHER_GROUP)
+    body.apply({})
+    assert body.model.opt.disableactuator & (1 << TEACHER_GROUP)
+
+
+def test_image_offset_signs():
+    eye, R = np.zeros(3), np.array([[0, 0, -1], [-1, 0, 0], [0, 1, 0]], dtype=float)  # looks along +x
+    (h, v), seen = image_offset(eye, R, [1.0, 0.2, -0.1])
+    assert seen and h == pytest.approx(math.atan2(0.2, 1.0)) and v == pytest.approx(math.atan2(-0.1, 1.0))
+    assert not image_offset(eye, R, [-1.0, 0.0, 0.0])[1]
+
+
+def test_gaze_loop_integrates_the_offset_and_keeps_its_period():
+    loop = GazeLoop("eyes", 0.033, 0.5, ("eye_pan", "eye_tilt"), +1.0, 0.3)
+    loop.reset({"t": 0.0})
+    for k in range(3):
+        out = loop.update({"t": 0.033 * k, "target_image": np.array([0.1, -0.2])})
+    assert out["eye_pan"] == pytest.approx(0.15) and out["eye_tilt"] == pytest.approx(-0.3)  # clipped at 0.3
+    assert measured_period(loop.times) == pytest.approx(0.033)
+    assert shares(np.array([[[1.0, 0], [3.0, 0]]])) == pytest.approx([0.25, 0.75])
+
+
+def test_tracking_loops_short_run():
+    """Kenta's three loops run at their three periods in one Loop and keep the ball in view over 0.25 s."""
+    m = track("kenta", 0.25, 0.3, 8.0, ("eyes", "neck", "spine"), zeroing_s=0.2)
+    for name in ("eyes", "neck", "spine"):
+        assert abs(m[f"{name}_period_s"] - TRACKING_PERIODS_S[name]) < 1e-6
+    assert m["eyes_period_s"] < m["neck_period_s"] < m["spine_period_s"]
+    assert m["visible_fraction"] == 1.0 and m["rms_tracking_error_deg"] < 15.0
+    assert m["series"]["gaze"].shape[1:] == (3, 2)
+    assert sum(m[f"{n}_share"] for n in ("eyes", "neck", "spine")) == pytest.approx(1.0)
+
+
+def test_taught_postures_short_run(tmp_path):
+    """Three postures taught and replayed once: every metric computed, the picture written."""
+    result = run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
+                          overrides={"zeroing_s": "0.2", "hold_s": "0.1", "cycles": "1", "period_s": "0.2",
+                                     "move_s": "0.1"})
+    assert "error" not in result
+    m = result["metrics"]
+    assert all(math.isfinite(m[f"posture_{k}_error_deg"]) for k in (1, 2, 3))
+    assert 0.0 <= m["nearest_taught_fraction"] <= 1.0 and m["cycle_period_s"] == pytest.approx(0.6)
+    assert (tmp_path / "replay.png").exists()
+
+
+def test_bad_settings_are_one_clear_error(tmp_path):
+    with pytest.raises(ParameterError):
+        run_scenario("spine.tracking-loops", out=tmp_path, quiet=True, overrides={"robots": "bebe"})
+    with pytest.raises(ParameterError):
+        run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
+                     overrides={"move_s": "3", "period_s": "2"})
