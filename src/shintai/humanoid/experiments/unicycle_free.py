@@ -16,7 +16,7 @@ V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'
 # run away; notes): (K_P, K_I, K_D) of C_traj and of C_v
 LEARNED_TRAJ = (9.05e-5, 3.93e-4, 2.47e-5)
 LEARNED_V = (2.86e-7, 1.20e-6, 6.63e-8)
-TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the waist for 0.1 s at this body time, ≈1 s after the lift lets go
+TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body time, ≈1 s after the lift lets go
 # (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
 
 
@@ -75,7 +75,7 @@ experiment(
         Param("placement", "reference", "where the ZMP correction goes (humanoid.unicycle-learning's variants: "
               "'after_lip' = as written, 'reference')", choices=PLACEMENTS),
         P0_PARAM,
-        Param("tap_n", TAP_N, "sideways tap on the waist after the release [N] (0: none)", lo=0.0, hi=200.0),
+        Param("tap_n", TAP_N, "sideways tap on the chest after the release [N] (0: none)", lo=0.0, hi=200.0),
     ],
     checks=[
         Check("fell", "==", 0, "thesis §7.3.3: '手動により目標値を整形する操縦インターフェース(式 7.6)や … "

@@ -31,8 +31,9 @@ VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.
     ],
     checks=[
         Check("nearest_taught_fraction", ">=", 1.0,
-              "§4.2.2 '腱太に三種類の姿勢を教示し，それを順に繰り返し再生する' (Fig. 4.1): every replayed posture is "
-              "recognisably its taught one — nearer to it than to the other two (ours: no tolerance is printed)",
+              "§4.2.2 '腱太(第 3.7節参照)に三種類の姿勢を教示し，それを順に繰り返し再生する' (Fig. 4.1): every "
+              "replayed posture is recognisably its taught one — nearer to it than to the other two (ours: no "
+              "tolerance is printed)",
               kind="reproduction", row="003:fig4.1"),
         Check("mean_replay_error_deg", "<=", 5.0,
               "§3.7.6 '全身の動きを利用した人間の動きに近づいた動きを可能にしている' with §4.2.1 (replaying "
