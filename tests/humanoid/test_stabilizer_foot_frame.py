@@ -7,7 +7,7 @@ import pytest
 
 from shintai.core.runtime import Loop
 from shintai.humanoid import stabilizer
-from shintai.humanoid.stabilizer import into_yawed
+from shintai.humanoid.stabilizer import into_yawed, mean_yaw
 from shintai.humanoid.vboard_ride import VboardRide
 
 
@@ -19,6 +19,11 @@ def test_into_yawed_turns_a_world_vector_into_the_yawed_frame():
     p = 3.0
     assert into_yawed(-p * math.sin(psi), p * math.cos(psi), psi) == pytest.approx((0.0, p))
     assert into_yawed(0.4, -0.2, 0.0) == (0.4, -0.2)
+
+
+def test_the_stance_feet_mean_yaw_wraps_at_180_degrees():
+    assert mean_yaw([math.radians(179.0), math.radians(-179.0)]) == pytest.approx(math.radians(180.0))
+    assert mean_yaw([0.2, 0.4]) == pytest.approx(0.3) and mean_yaw([-0.5]) == -0.5
 
 
 def world_axes(x: float, y: float, psi: float) -> tuple[float, float]:

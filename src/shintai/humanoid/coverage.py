@@ -440,7 +440,7 @@ ROWS = (
         why_not="as written (Eq. 7.2 after the LIP tracking) the correction runs away: hrpsys's LIP gains make its "
                 "static gain negative (x = c/(1 + k1 + k3) = −2.3 c), |v| > 0.3 m/s at 13.8 s, falls at 14.9 s; "
                 "the 'reference' variant keeps |v| < 1 cm/s from 9.2 s (4 mm/s at 30 s) with K_I^traj, not K_P^traj, "
-                "dominant, K^v 6×10⁻⁵ of the V-BOARD's",
+                "dominant, K_P^v, K_D^v < 0.5 % of our V-BOARD's (speed-governing's learned gains)",
     ),
     Row(
         key="000:fig7.10",

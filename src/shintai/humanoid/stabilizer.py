@@ -65,6 +65,7 @@ from typing import NamedTuple
 import numpy as np
 
 from shintai.core.constants import GRAVITY
+from shintai.core.geometry import wrap_pi
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.foot_attitude import CONTACT_FZ
@@ -93,6 +94,11 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
     k1, k2, k3 = k
     zr, cr, vr, c, v, z = (np.asarray(a, float)[:2] for a in (zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp))
     return zr + k1 * (cr - c) + k2 * (vr - v) + k3 * (zr - z)
+
+
+def mean_yaw(yaws: list[float]) -> float:
+    """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
+    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws) / len(yaws)
 
 
 def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
@@ -263,7 +269,7 @@ class StabilizerModule(Module):
         stance = [i for i, side in enumerate(SIDES) if side in support]
         n = len(stance)
         yaw = {s: self.sensors.yaw(s) for s in SIDES}
-        psi = sum(yaw[SIDES[i]] for i in stance) / n
+        psi = mean_yaw([yaw[SIDES[i]] for i in stance])
         ax = sum(w[SIDES[i]].point[0] for i in stance) / n
         ay = sum(w[SIDES[i]].point[1] for i in stance) / n
         rx = sum(soles[i][0] for i in stance) / n

@@ -541,6 +541,8 @@ ROWS = (
                    "Cla has no touch sensor, so a push is felt through its tension sensors as a moment on the spine "
                    "(τ̂ = Jᵀ ΔT); the threshold (3 mm ≈ 5° whole-spine pitch), the two push levels (0.15 / 0.6 N m), "
                    "the nudge gain and the replay speed are ours (the thesis gives none); the posture-sensor split "
-                   "is off by default (Cla's pelvis is fixed; its accelerometers add only motion noise, up to 30°)",
+                   "is off by default (ours, not the thesis's: §5.9.1 uses the posture sensor; Cla's pelvis is "
+                   "fixed and its accelerometers add only motion noise, up to 30°); the trigger arms only on still "
+                   "tensions (ours, added after a settling transient fired a trigger with no push)",
     ),
 )

@@ -47,7 +47,9 @@ def metrics(runs, params):
          "t_done_s": times["done"], "riding_phase_s": times["mlc"] - times["slc"],
          "converged": int(math.isfinite(times["done"])), "damping_initial": float(D[0]),
          "damping_final": float(ride.standing.damping.feet["L"].D[1]),
-         "right_took_learned_d": int(ride.standing.damping.feet["R"].D[1] == ride.standing.damping.feet["L"].D[1]),
+         # the right pitch holds the left's learned D — and SLC did learn (it ran, and moved D off D₀)
+         "right_took_learned_d": int(math.isfinite(times["mlc"]) and D[-1] != D[0]
+                                     and ride.standing.damping.feet["R"].D[1] == ride.standing.damping.feet["L"].D[1]),
          "final_abs_v_mps": float(np.mean(np.abs(log.values("true_v")[tail]))),
          "final_abs_omega_rad_s": float(np.mean(np.abs(log.values("true_omega")[tail])))}
     for a in AXES:
