@@ -83,7 +83,8 @@ experiment(
               "'reference' and its gains are ours, see unicycle-learning)",
               kind="reproduction"),
         Check("speed_error_rms_mps", "<", 0.1, "thesis §7.3.3, Fig. 7.13: '目標を満たす速度制御を実現していることが確認"
-              "できる' (0.1 m/s rms, a third of the step, is our reading; placement 'reference' ours)", kind="reproduction"),
+              "できる' (0.1 m/s rms, a third of the step, is our reading; placement 'reference' ours)",
+              kind="reproduction"),
     ],
     thesis={"v_step_mps": ThesisValue(V_STEP, "seed 000 §7.3.3: 'v^d = 0.3[m/s]のステップ指令'", None)},
     rig=rig, metrics=metrics, plots=plots, video=True,
