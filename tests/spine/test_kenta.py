@@ -9,7 +9,10 @@ import pytest
 
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
+from shintai.spine.geometry import uniform_posture
 from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
+from shintai.spine.kenta_postures import locked_hold
+from shintai.spine.kenta_statics import lock_reels, muscle_span, unstretched_bend
 from shintai.spine.robots import KENTA, KENTA_NECK_JOINTS
 from shintai.spine.tracking_loops import TRACKING_PERIODS_S, GazeLoop, measured_period, shares
 from shintai.spine.tracking_runs import track
@@ -81,12 +84,13 @@ def test_taught_postures_short_run(tmp_path):
     """Three postures taught and replayed once: every metric computed, the picture written."""
     result = run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
                           overrides={"zeroing_s": "0.2", "hold_s": "0.1", "cycles": "1", "period_s": "0.2",
-                                     "move_s": "0.1"})
+                                     "move_s": "0.1", "lock_s": "0.1"})
     assert "error" not in result
     m = result["metrics"]
     assert all(math.isfinite(m[f"posture_{k}_error_deg"]) for k in (1, 2, 3))
     assert 0.0 <= m["nearest_taught_fraction"] <= 1.0 and m["cycle_period_s"] == pytest.approx(0.6)
     assert (tmp_path / "replay.png").exists()
+    assert m["muscle_rank"] == 24 and m["balanced_tension_exists"] == 0.0 and m["locked_taut_muscles"] <= 40
 
 
 def test_bad_settings_are_one_clear_error(tmp_path):
@@ -95,3 +99,34 @@ def test_bad_settings_are_one_clear_error(tmp_path):
     with pytest.raises(ParameterError):
         run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
                      overrides={"move_s": "3", "period_s": "2"})
+
+
+def test_kenta_muscles_cannot_hold_every_direction():
+    """§3.7.2's routing (muscles only to the blocks and vertebrae 2, 4, 6, 8): J_m has rank 24 of 30, no strictly
+    positive tension set balances, and a forward bend exists that lengthens no muscle — what holds it is only
+    the discs and ligaments ('復元力を持つ脊椎なので筋の本数が足りなくても姿勢は定まる')."""
+    attached = {link for path in KENTA.model.muscles.paths for link, _ in path}
+    assert attached == {0, 2, 4, 6, 8, 10}
+    theta = uniform_posture(np.radians([0.0, 21.0, 0.0]), KENTA.n)
+    span = muscle_span(KENTA.model, theta)
+    assert span["rank"] == 24 and not span["balanced"] and len(span["unresisted"]) > 30
+    rate, motion = unstretched_bend(KENTA.model, theta)
+    assert rate > 1.0 and np.all(KENTA.model.jacobian(theta) @ motion <= 1e-9)
+
+
+def test_locked_reels_hold_only_with_stiff_discs():
+    """With every reel locked (a stiff two-sided stop, slip < 0.05 mm) a taught forward bend sinks with the
+    chosen 3 N m/rad discs and holds with 30 N m/rad: the discs, not the lock, decide."""
+    soft = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2)
+    stiff = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2, disc_nm_rad=30.0)
+    assert soft["locked_end_pitch_deg"] - soft["locked_taught_pitch_deg"] > 20.0 and soft["muscle_rank"] == 24
+    assert abs(stiff["locked_end_pitch_deg"] - stiff["locked_taught_pitch_deg"]) < 5.0
+
+
+def test_lock_reels_is_a_stiff_lock():
+    """lock_reels: two-sided stops at the present winding, stiff and the motors off."""
+    b = KentaBody()
+    lock_reels(b)
+    j = b.id("joint", f"{KENTA.muscle_names[0]}:reel")
+    lo, hi = b.model.jnt_range[j]
+    assert hi - lo <= 2.1e-6 and b.model.jnt_solref[j][0] <= 1e-3
