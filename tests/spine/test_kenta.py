@@ -14,7 +14,14 @@ from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
 from shintai.spine.kenta_postures import locked_hold
 from shintai.spine.kenta_statics import lock_reels, muscle_span, unstretched_bend
 from shintai.spine.robots import KENTA, KENTA_NECK_JOINTS
-from shintai.spine.tracking_loops import TRACKING_PERIODS_S, GazeLoop, measured_period, shares
+from shintai.spine.tracking_loops import (
+    TRACKING_PERIODS_S,
+    ArmSwing,
+    GazeLoop,
+    concurrent_fraction,
+    measured_period,
+    shares,
+)
 from shintai.spine.tracking_runs import track
 
 
@@ -71,7 +78,9 @@ def test_gaze_loop_integrates_the_offset_and_keeps_its_period():
 
 def test_tracking_loops_short_run():
     """Kenta's three loops run at their three periods in one Loop and keep the ball in view over 0.25 s."""
-    m = track("kenta", 0.25, 0.3, 8.0, ("eyes", "neck", "spine"), zeroing_s=0.2)
+    m = track("kenta", 0.25, 0.3, 8.0, ("eyes", "neck", "spine"), zeroing_s=0.2, arm_swing_rad=0.5,
+              arm_period_s=0.5)
+    assert m["arm_following_error_deg"] < 10.0 and m["arm_swing_deg"] > 5.0 and "arms_period_s" not in m
     for name in ("eyes", "neck", "spine"):
         assert abs(m[f"{name}_period_s"] - TRACKING_PERIODS_S[name]) < 1e-6
     assert m["eyes_period_s"] < m["neck_period_s"] < m["spine_period_s"]
@@ -130,3 +139,16 @@ def test_lock_reels_is_a_stiff_lock():
     j = b.id("joint", f"{KENTA.muscle_names[0]}:reel")
     lo, hi = b.model.jnt_range[j]
     assert hi - lo <= 2.1e-6 and b.model.jnt_solref[j][0] <= 1e-3
+
+
+def test_arm_swing_and_concurrency():
+    """Fig. 5.13's arms: antiphase shoulders, elbows bent with them; a part counts as moving in a window when one
+    of its angles spans more than the threshold there."""
+    swing = ArmSwing(0.5, 2.0)
+    q = swing.at(0.5)
+    assert q["shoulder_pitch_L"] == pytest.approx(0.5) and q["shoulder_pitch_R"] == pytest.approx(-0.5)
+    assert q["elbow_pitch_L"] == q["elbow_pitch_R"] == pytest.approx(0.25)
+    t = np.arange(0.0, 2.0, 0.01)
+    moving, still = np.sin(2 * np.pi * t), np.zeros_like(t)
+    assert concurrent_fraction(t, [moving, np.c_[still, moving]], 0.5, 0.1) == 1.0
+    assert concurrent_fraction(t, [moving, still], 0.5, 0.1) == 0.0
