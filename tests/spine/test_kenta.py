@@ -152,3 +152,15 @@ def test_arm_swing_and_concurrency():
     moving, still = np.sin(2 * np.pi * t), np.zeros_like(t)
     assert concurrent_fraction(t, [moving, np.c_[still, moving]], 0.5, 0.1) == 1.0
     assert concurrent_fraction(t, [moving, still], 0.5, 0.1) == 0.0
+
+
+def test_kenta_export_lengths_are_eq_4_25():
+    """The MuJoCo export puts every muscle where the geometric model does (no wrong sign or vertebra): without the
+    interference sphere its path lengths equal eq. 4.25 at random postures."""
+    from shintai.spine.bodies_mujoco import SpineBody
+    from shintai.spine.robots import KENTA_LIGAMENTS
+
+    b = SpineBody(KENTA, loads=(), interference=False, ligaments=KENTA_LIGAMENTS)
+    for theta in np.random.default_rng(0).uniform(-0.17, 0.17, (10, 3 * KENTA.n)):
+        b.set_theta(theta)
+        assert np.abs(b.path_lengths() - KENTA.model.lengths(theta)).max() < 1e-9
