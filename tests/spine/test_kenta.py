@@ -9,9 +9,19 @@ import pytest
 
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
+from shintai.spine.geometry import uniform_posture
 from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
+from shintai.spine.kenta_postures import locked_hold
+from shintai.spine.kenta_statics import lock_reels, muscle_span, unstretched_bend
 from shintai.spine.robots import KENTA, KENTA_NECK_JOINTS
-from shintai.spine.tracking_loops import TRACKING_PERIODS_S, GazeLoop, measured_period, shares
+from shintai.spine.tracking_loops import (
+    TRACKING_PERIODS_S,
+    ArmSwing,
+    GazeLoop,
+    concurrent_fraction,
+    measured_period,
+    shares,
+)
 from shintai.spine.tracking_runs import track
 
 
@@ -68,7 +78,9 @@ def test_gaze_loop_integrates_the_offset_and_keeps_its_period():
 
 def test_tracking_loops_short_run():
     """Kenta's three loops run at their three periods in one Loop and keep the ball in view over 0.25 s."""
-    m = track("kenta", 0.25, 0.3, 8.0, ("eyes", "neck", "spine"), zeroing_s=0.2)
+    m = track("kenta", 0.25, 0.3, 8.0, ("eyes", "neck", "spine"), zeroing_s=0.2, arm_swing_rad=0.5,
+              arm_period_s=0.5)
+    assert m["arm_following_error_deg"] < 10.0 and m["arm_swing_deg"] > 5.0 and "arms_period_s" not in m
     for name in ("eyes", "neck", "spine"):
         assert abs(m[f"{name}_period_s"] - TRACKING_PERIODS_S[name]) < 1e-6
     assert m["eyes_period_s"] < m["neck_period_s"] < m["spine_period_s"]
@@ -81,12 +93,13 @@ def test_taught_postures_short_run(tmp_path):
     """Three postures taught and replayed once: every metric computed, the picture written."""
     result = run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
                           overrides={"zeroing_s": "0.2", "hold_s": "0.1", "cycles": "1", "period_s": "0.2",
-                                     "move_s": "0.1"})
+                                     "move_s": "0.1", "lock_s": "0.1"})
     assert "error" not in result
     m = result["metrics"]
     assert all(math.isfinite(m[f"posture_{k}_error_deg"]) for k in (1, 2, 3))
     assert 0.0 <= m["nearest_taught_fraction"] <= 1.0 and m["cycle_period_s"] == pytest.approx(0.6)
     assert (tmp_path / "replay.png").exists()
+    assert m["muscle_rank"] == 24 and m["balanced_tension_exists"] == 0.0 and m["locked_taut_muscles"] <= 40
 
 
 def test_bad_settings_are_one_clear_error(tmp_path):
@@ -95,3 +108,59 @@ def test_bad_settings_are_one_clear_error(tmp_path):
     with pytest.raises(ParameterError):
         run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
                      overrides={"move_s": "3", "period_s": "2"})
+
+
+def test_kenta_muscles_cannot_hold_every_direction():
+    """§3.7.2's routing (muscles only to the blocks and vertebrae 2, 4, 6, 8): J_m has rank 24 of 30, no strictly
+    positive tension set balances, and a forward bend exists that lengthens no muscle — what holds it is only
+    the discs and ligaments ('復元力を持つ脊椎なので筋の本数が足りなくても姿勢は定まる')."""
+    attached = {link for path in KENTA.model.muscles.paths for link, _ in path}
+    assert attached == {0, 2, 4, 6, 8, 10}
+    theta = uniform_posture(np.radians([0.0, 21.0, 0.0]), KENTA.n)
+    span = muscle_span(KENTA.model, theta)
+    assert span["rank"] == 24 and not span["balanced"] and len(span["unresisted"]) > 30
+    rate, motion = unstretched_bend(KENTA.model, theta)
+    assert rate > 1.0 and np.all(KENTA.model.jacobian(theta) @ motion <= 1e-9)
+
+
+def test_locked_reels_hold_only_with_stiff_discs():
+    """With every reel locked (a stiff two-sided stop, slip < 0.05 mm) a taught forward bend sinks with the
+    chosen 3 N m/rad discs and holds with 30 N m/rad: the discs, not the lock, decide."""
+    soft = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2)
+    stiff = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2, disc_nm_rad=30.0)
+    assert soft["locked_end_pitch_deg"] - soft["locked_taught_pitch_deg"] > 20.0 and soft["muscle_rank"] == 24
+    assert abs(stiff["locked_end_pitch_deg"] - stiff["locked_taught_pitch_deg"]) < 5.0
+
+
+def test_lock_reels_is_a_stiff_lock():
+    """lock_reels: two-sided stops at the present winding, stiff and the motors off."""
+    b = KentaBody()
+    lock_reels(b)
+    j = b.id("joint", f"{KENTA.muscle_names[0]}:reel")
+    lo, hi = b.model.jnt_range[j]
+    assert hi - lo <= 2.1e-6 and b.model.jnt_solref[j][0] <= 1e-3
+
+
+def test_arm_swing_and_concurrency():
+    """Fig. 5.13's arms: antiphase shoulders, elbows bent with them; a part counts as moving in a window when one
+    of its angles spans more than the threshold there."""
+    swing = ArmSwing(0.5, 2.0)
+    q = swing.at(0.5)
+    assert q["shoulder_pitch_L"] == pytest.approx(0.5) and q["shoulder_pitch_R"] == pytest.approx(-0.5)
+    assert q["elbow_pitch_L"] == q["elbow_pitch_R"] == pytest.approx(0.25)
+    t = np.arange(0.0, 2.0, 0.01)
+    moving, still = np.sin(2 * np.pi * t), np.zeros_like(t)
+    assert concurrent_fraction(t, [moving, np.c_[still, moving]], 0.5, 0.1) == 1.0
+    assert concurrent_fraction(t, [moving, still], 0.5, 0.1) == 0.0
+
+
+def test_kenta_export_lengths_are_eq_4_25():
+    """The MuJoCo export puts every muscle where the geometric model does (no wrong sign or vertebra): without the
+    interference sphere its path lengths equal eq. 4.25 at random postures."""
+    from shintai.spine.bodies_mujoco import SpineBody
+    from shintai.spine.robots import KENTA_LIGAMENTS
+
+    b = SpineBody(KENTA, loads=(), interference=False, ligaments=KENTA_LIGAMENTS)
+    for theta in np.random.default_rng(0).uniform(-0.17, 0.17, (10, 3 * KENTA.n)):
+        b.set_theta(theta)
+        assert np.abs(b.path_lengths() - KENTA.model.lengths(theta)).max() < 1e-9

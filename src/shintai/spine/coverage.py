@@ -142,9 +142,10 @@ ROWS = (
         difference="our whole-body Kenta (spine/kenta_body.py: the 40 muscles and ligaments of robots.py with chosen "
                    "attachment points, servoed arms, a wire-sum neck, pan/tilt eyes; no legs, pelvis fixed) moves its "
                    "spine into three taught postures (spine.kenta-taught-postures)",
-        why_not="our Kenta cannot hold a posture with its muscle lengths fixed: even with the reels locked the spine "
-                "keeps bending under its upper body (21° → 55° forward in 0.5 s), so the replayed postures are not "
-                "the taught ones (notes/kenta-taught-postures.md)",
+        why_not="our Kenta cannot hold a posture with its muscle lengths fixed: §3.7.2's muscles end only on the "
+                "blocks and vertebrae 2, 4, 6, 8 (J_m rank 24 of 30, 58 of 60 pure torques unresisted), so the "
+                "discs (3 N m/rad, chosen: not in the text) must carry the 5 kg upper body; with the reels locked "
+                "a 22° forward bend sinks to 52° in 0.5 s (holds at 30 N m/rad) (notes/kenta-taught-postures.md)",
     ),
     # ---------------------------------------------------------------- chapter 4: control of the spine
     Row(
@@ -159,8 +160,8 @@ ROWS = (
                    "player (minimum jerk, 1 s moves every 2 s), two cycles",
         why_not="the replay follows the taught pitch sequence but twists to −50…−80° yaw and rolls 60–85° (mean "
                 "error 89°, 1 of 3 replayed postures nearest its own): our Kenta's fixed muscle lengths do not fix "
-                "its posture (a mechanism of the chosen muscle routing, present with the reels locked; "
-                "notes/kenta-taught-postures.md)",
+                "its posture — §3.7.2's routing leaves it to the discs (their stiffness is not in the text), and "
+                "ours (3 N m/rad) do not hold it: locked reels, 22° → 52° in 0.5 s (notes/kenta-taught-postures.md)",
     ),
     Row(
         key="003:s4.2.2",
@@ -439,8 +440,10 @@ ROWS = (
         where="seed 003 §5.2.11, Fig. 5.13",
         what="Kenta moves spine, neck and both arms at once",
         result="§5.2.11: shown in photographs only, no number",
-        not_built=ISSUE_17 + ": Kenta's body exists (spine/kenta_body.py, model spine.kenta-body); no scenario moves "
-                  "its spine, neck and arms together yet",
+        difference="spine.tracking-loops' Kenta run: both arms swing (shoulders ±30° in antiphase, elbows with "
+                   "them, 2 s; chosen) while the eye, neck and spine loops track the ball",
+        why_not="the parts move together (every 0.5 s window), but part of the spine's motion is its collapse "
+                "(notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.14",
@@ -450,9 +453,10 @@ ROWS = (
         result="§5.2.12: realised ('実現している'); no period or error printed",
         difference="our whole-body Kenta; eye loop 33 ms, neck 66 ms, spine 198 ms (periods not in the text: chosen), "
                    "each a Module of one Loop; the ball's centre projected into the left eye camera",
-        why_not="in our Kenta the spine, held in L mode, twists to −87° under the moving head and arms after 2 s "
-                "(the mechanism of spine.kenta-taught-postures), carrying the ball 44° off axis; eyes and neck "
-                "recover it within 1.5 s, but it is in view 93 % of the time (< 95 %) (notes/tracking-loops.md)",
+        why_not="in our Kenta the spine, held in L mode, twists and falls to one side after 2 s (the mechanism of "
+                "spine.kenta-taught-postures: the muscles leave the posture to the too-soft chosen discs), carrying "
+                "the ball up to 38° off axis; eyes and neck recover it within 1.5 s, but it is in view 92 % of the "
+                "time (< 95 %; 93 % with the arms still) (notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.21",

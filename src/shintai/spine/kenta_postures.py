@@ -21,6 +21,7 @@ from shintai.core.runtime import Loop
 from shintai.spine.control import SETPOINTS, Mode
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.kenta_body import calibrated_kenta
+from shintai.spine.kenta_statics import lock_reels, muscle_span, unstretched_bend
 from shintai.spine.robots import KENTA
 from shintai.spine.scripted import Schedule
 from shintai.spine.teaching import L_GOAL, Playback
@@ -29,13 +30,18 @@ from shintai.spine.teaching import L_GOAL, Playback
 # bend forward with a twist, a side bend, a bend back with the other twist — within a third of §3.7.1's ±90°
 KENTA_KEY_POSTURES_DEG = ((0.0, 15.0, 15.0), (15.0, 0.0, 0.0), (0.0, -10.0, -15.0))
 KENTA_TAUGHT_S = 1.5  # chosen: each posture is held by the teacher this long before its lengths are read
+# chosen: the probe of :func:`locked_hold`, posture 1's forward bend without its twist (whole-spine r, p, y [deg])
+KENTA_LOCK_PROBE_DEG = (0.0, 15.0, 0.0)
 
 
 def teach(teach_kgf: float, postures_deg=KENTA_KEY_POSTURES_DEG, hold_s: float = KENTA_TAUGHT_S,
-          zeroing_s: float = 1.0):
+          zeroing_s: float = 1.0, disc_nm_rad: float | None = None):
     """§4.2.1: T mode at ``teach_kgf`` on all 40 muscles, the teacher shaping each posture (a uniform bend,
-    eq. 4.29); returns (body, control, encoder lengths (3, m), true postures (3, 3n))."""
+    eq. 4.29); returns (body, control, encoder lengths (3, m), true postures (3, 3n)). ``disc_nm_rad``: the
+    discs' stiffness set after the zeroing (a probe; default KENTA's)."""
     body, control, _ = calibrated_kenta(teach_kgf, zeroing_s)
+    if disc_nm_rad is not None:
+        body.set_disc(disc_nm_rad)
     control.set_modes(Mode.T)
     encoders, truth = [], []
     for whole in np.radians(postures_deg):
@@ -97,3 +103,26 @@ def cycle_period(t, x, expected: float) -> float:
         return float("nan")
     score = [np.sum(x[:-lag] * x[lag:]) / (len(x) - lag) for lag in lags]
     return float(lags[int(np.argmax(score))] * dt)
+
+
+def locked_hold(teach_kgf: float, hold_s: float, lock_s: float, zeroing_s: float = 1.0,
+                posture_deg=KENTA_LOCK_PROBE_DEG, disc_nm_rad: float | None = None) -> dict:
+    """The ideal replay of one taught posture: taught as in :func:`teach`, then every reel locked
+    (:func:`~shintai.spine.kenta_statics.lock_reels`) and the hands let go for ``lock_s``. Returns the whole-spine
+    pitch taught and at the end [deg], the muscles still taut, and the muscle set's span at the taught posture
+    (:mod:`~shintai.spine.kenta_statics`: J_m's rank, the unresisted pure joint torques, whether a strictly
+    positive tension set balances, the fastest forward bend lengthening no muscle [rad/s per 1 rad/s]).
+    ``disc_nm_rad`` as in :func:`teach`."""
+    body, _, _, _ = teach(teach_kgf, (posture_deg,), hold_s, zeroing_s, disc_nm_rad)
+    taught = body.theta()
+    span = muscle_span(KENTA.model, taught)
+    rate, _ = unstretched_bend(KENTA.model, taught)
+    lock_reels(body)
+    Loop(body, []).run(lock_s)
+    tension = body.wire_tension()
+    return {"locked_taught_pitch_deg": float(np.degrees(whole_spine(taught)[1])),
+            "locked_end_pitch_deg": float(np.degrees(whole_spine(body.theta())[1])),
+            "locked_taut_muscles": int(np.sum(tension > 0.0)),
+            "muscle_rank": span["rank"], "unresisted_torque_directions": len(span["unresisted"]),
+            "balanced_tension_exists": float(span["balanced"]), "unstretched_bend_rate": rate,
+            "sim_time_s": zeroing_s + hold_s + lock_s}

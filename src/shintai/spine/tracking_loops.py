@@ -14,6 +14,9 @@ different periods moving the eyes, the neck and the spine by visual feedback, ru
   whole-spine yaw += g·h, pitch −= g·v as a uniform bend (eq. 4.29) turned into encoder targets ``l_r`` for
   the muscle controller (L mode) of the next stage.
 * :class:`TargetPath` — the experimenter moving the coloured ball (``target`` channel), a Lissajous path.
+* :class:`ArmSwing` — Kenta's two arms swung through a cycle while the loops track (§5.2.11, Fig. 5.13: "脊椎の
+  動きと首の動き・両腕の動きを同時に行っている"): the shoulder pitch ±a sin(2π t / T), left and right in
+  antiphase, the elbow bent a (1 − cos(2π t / T)) / 2 with it (the motion is not in the text: chosen).
 
 Periods and gains are not in the text ("周期の異なる3つの制御ループ", §5.2.12): chosen in ``TRACKING_*`` below.
 Each loop records when it ran (``times``), so the measured periods come from the run.
@@ -58,6 +61,40 @@ class TargetPath(Module):
 
     def update(self, snapshot: Snapshot):
         return {"target": self.at(snapshot["t"])}
+
+
+class ArmSwing(Module):
+    """Both arms' cyclic motion (module docstring): writes ``shoulder_pitch_L/R`` and ``elbow_pitch_L/R`` every tick."""
+
+    def __init__(self, amplitude_rad: float, period_s: float, name: str = "arms"):
+        super().__init__(name)
+        self.a, self.T = amplitude_rad, period_s
+        self.t0 = 0.0
+
+    def reset(self, snapshot: Snapshot) -> None:
+        self.t0 = float(snapshot["t"])
+
+    def at(self, t: float) -> dict:
+        phase = 2 * math.pi * (t - self.t0) / self.T
+        swing, bend = self.a * math.sin(phase), 0.5 * self.a * (1 - math.cos(phase))
+        return {"shoulder_pitch_L": swing, "shoulder_pitch_R": -swing, "elbow_pitch_L": bend, "elbow_pitch_R": bend}
+
+    def update(self, snapshot: Snapshot):
+        return self.at(float(snapshot["t"]))
+
+
+def concurrent_fraction(t, parts, window_s: float, threshold: float) -> float:
+    """The fraction of consecutive windows of ``window_s`` in which every part moved: a part is a (P,) or (P, c)
+    array of its angles, and it moved in a window when one of its angles spans more than ``threshold``
+    (max − min, same unit) there."""
+    t = np.asarray(t, dtype=float)
+    parts = [np.asarray(x, dtype=float).reshape(len(t), -1) for x in parts]
+    moved = []
+    for start in np.arange(t[0], t[-1] - window_s + 1e-9, window_s):
+        w = (t >= start) & (t < start + window_s)
+        if w.sum() >= 2:
+            moved.append(all(np.max(x[w].max(axis=0) - x[w].min(axis=0)) > threshold for x in parts))
+    return float(np.mean(moved)) if moved else float("nan")
 
 
 class GazeLoop(Module):

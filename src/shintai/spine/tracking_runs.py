@@ -16,20 +16,25 @@ import numpy as np
 from shintai.core.runtime import SET, Loop, declare
 from shintai.spine.cla_body import ClaBody, spine_control
 from shintai.spine.control import SETPOINTS
-from shintai.spine.kenta_body import calibrated_kenta, image_offset
+from shintai.spine.kenta_body import ARM_NAMES, calibrated_kenta, image_offset
 from shintai.spine.robots import CLA, CLA_FOV_DEG, KENTA, KENTA_EYE_LIMIT_RAD, KENTA_NECK_LIMIT_RAD
 from shintai.spine.tracking_loops import (
     TRACKING_GAINS,
     TRACKING_PERIODS_S,
+    ArmSwing,
     GazeLoop,
     SpineGazeLoop,
     TargetPath,
+    concurrent_fraction,
     measured_period,
     shares,
 )
 
 TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
 CLA_NECK_LIMIT_RAD = np.radians(60.0)  # chosen: within the neck servos' range
+# chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
+CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
+SWUNG = ("shoulder_pitch_L", "shoulder_pitch_R", "elbow_pitch_L", "elbow_pitch_R")  # ArmSwing's joints
 
 
 class TrackedCla(ClaBody):
@@ -66,9 +71,13 @@ def _eye_position(body, camera: str) -> np.ndarray:
 
 
 def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: float, loops: tuple[str, ...],
-          zeroing_s: float = 1.0, film: Callable | None = None) -> dict:
+          zeroing_s: float = 1.0, film: Callable | None = None, arm_swing_rad: float = 0.0,
+          arm_period_s: float = 2.0) -> dict:
     """One tracking run of ``robot`` ("kenta" or "cla") with the visual ``loops`` on; returns the metrics and the
-    recorded series (t, image offset, visibility, the parts' gaze)."""
+    recorded series (t, image offset, visibility, the parts' gaze). Kenta with ``arm_swing_rad`` > 0 swings both
+    arms meanwhile (:class:`ArmSwing`, §5.2.11) and adds ``arm_swing_deg`` (the left shoulder's peak-to-peak),
+    ``arm_following_error_deg`` (RMS of the swung joints from their commands) and ``concurrent_fraction`` (the
+    0.5 s windows in which the spine, the neck and both arms all moved)."""
     if robot == "kenta":
         body, control, zero = calibrated_kenta(seconds=zeroing_s)
         camera, model = "eye_L", KENTA.model
@@ -84,18 +93,25 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
                                           ("neck_yaw", "neck_pitch"), -1.0, CLA_NECK_LIMIT_RAD)}
     parts["spine"] = lambda: SpineGazeLoop(model, zero, TRACKING_PERIODS_S["spine"], TRACKING_GAINS["spine"])
     modules = [parts[name]() for name in loops]
+    arms = ArmSwing(arm_swing_rad, arm_period_s) if robot == "kenta" and arm_swing_rad > 0 else None
+    if arms is not None:
+        arms.t0 = body.t
+        modules.append(arms)
     eye = _eye_position(body, camera)
     path = TargetPath(eye + np.array([TARGET_DISTANCE_M, 0.0, 0.0]), amplitude_m, path_period_s)
     path.t0 = body.t
     body.apply({"target": path.at(body.t)})
     loop = Loop(body, stages=[[path, *modules], [control]], channels=SETPOINTS)
-    series = {"t": [], "image": [], "visible": [], "gaze": []}
+    series = {"t": [], "image": [], "visible": [], "gaze": [], "arms": []}
+    swung = [ARM_NAMES.index(nm) for nm in SWUNG]
 
     def record(snap):
         series["t"].append(snap["t"])
         series["image"].append(snap["target_image"])
         series["visible"].append(snap["target_visible"])
         series["gaze"].append(snap["gaze"])
+        if arms is not None:
+            series["arms"].append(snap["arms"][swung])
 
     t0 = body.t
     with film(body) if film is not None else contextlib.nullcontext():
@@ -114,6 +130,16 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
     for name, value in zip(names, share):
         out[f"{name}_share"] = float(value)
     for m in modules:
-        out[f"{m.name}_period_s"] = measured_period(m.times)
+        if m is not arms:
+            out[f"{m.name}_period_s"] = measured_period(m.times)
+    if arms is not None:
+        q = np.degrees(s["arms"][settled])
+        wanted = np.degrees([[arms.at(t)[nm] for nm in SWUNG] for t in s["t"][settled] + t0])
+        out["arm_swing_deg"] = float(np.ptp(q[:, 0]))
+        out["arm_following_error_deg"] = float(np.sqrt(np.mean((q - wanted) ** 2)))
+        gaze = np.degrees(s["gaze"][settled])
+        out["concurrent_fraction"] = concurrent_fraction(s["t"][settled], [gaze[:, 0], gaze[:, 1], q[:, [0, 2]],
+                                                                            q[:, [1, 3]]],
+                                                         CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG)
     out["series"] = s
     return out

@@ -8,7 +8,7 @@ import math
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.kenta_postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, replay, teach
+from shintai.spine.kenta_postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, locked_hold, replay, teach
 from shintai.spine.pictures_kenta import taught_postures
 
 VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.8, "azimuth": 150.0, "elevation": -10}
@@ -28,6 +28,8 @@ VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.
         Param("cycles", 2, "replay cycles through the three postures", lo=1, hi=10),
         Param("period_s", 2.0, "time from one posture's command to the next [s]", lo=0.2, hi=10.0),
         Param("move_s", 1.0, "minimum-jerk move to each posture [s]", lo=0.1, hi=10.0),
+        Param("lock_s", 0.5, "the locked-reel probe: a taught forward bend with every reel locked, this long [s]",
+              lo=0.05, hi=5.0),
     ],
     checks=[
         Check("nearest_taught_fraction", ">=", 1.0,
@@ -64,4 +66,8 @@ def kenta_taught_postures(ctx):
     for k, (wanted, taught) in enumerate(zip(KENTA_KEY_POSTURES_DEG, series["taught"])):
         out[f"posture_{k + 1}_taught_offset_deg"] = float(sum((a - b) ** 2 for a, b in zip(wanted, taught)) ** 0.5)
     taught_postures(ctx, series)
+    ctx.progress(0.9, "locked-reel probe")
+    probe = locked_hold(p["teach_kgf"], p["hold_s"], p["lock_s"], p["zeroing_s"])
+    ctx.sim_time_s += probe.pop("sim_time_s")
+    out.update(probe)
     return out
