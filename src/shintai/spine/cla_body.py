@@ -412,16 +412,10 @@ def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, fir
     return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
 
 
-def whole(theta) -> np.ndarray:
-    """Whole-spine (roll, pitch, yaw) of a posture θ (…, 3n): the sums over the joints (uniform bend)."""
-    theta = np.asarray(theta, dtype=float)
-    return theta.reshape(theta.shape[:-1] + (CLA.n, 3)).sum(axis=-2)
-
-
 def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
     """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
     Loop(body, [control]).run(seconds)
 
 
-__all__ = ["ClaBody", "build_spec", "spine_control", "spine_loop", "whole", "settle", "start_targets",
+__all__ = ["ClaBody", "build_spec", "spine_control", "spine_loop", "settle", "start_targets",
            "LIMB_JOINTS", "SPINE_JOINTS", "OBJECTS", "POSTURES", "PELVIS_HEIGHT_M"]

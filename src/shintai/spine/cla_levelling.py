@@ -21,7 +21,8 @@ import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.actuators import tilt
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop, whole
+from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
+from shintai.spine.geometry import whole_spine
 from shintai.spine.inverse_model import NeuralInverse
 
 # The disturbance's timing (chosen): the seat tilts at 0.5 s (and again at the scenario's tilt2_s), each move
@@ -93,12 +94,12 @@ class Levelling(Module):
         if np.abs(shoulder).max() <= self.deadband:
             return None
         lengths = self.zero - np.asarray(snapshot["encoder"], dtype=float)  # l = λ(0) − λ (control.py)
-        now = whole(self.inverse.posture(lengths))
+        now = whole_spine(self.inverse.posture(lengths))
         goal = now.copy()
         goal[:2] -= self.gain * shoulder
         self.phase = "move"
         self.events.append({"t": t, "shoulder_deg": np.degrees(shoulder), "nn_whole_deg": np.degrees(now),
-                            "true_whole_deg": np.degrees(whole(snapshot["theta"])), "goal_deg": np.degrees(goal)})
+                            "true_whole_deg": np.degrees(whole_spine(snapshot["theta"])), "goal_deg": np.degrees(goal)})
         return {"goal": goal}
 
 
@@ -128,7 +129,7 @@ def run_levelling(p: dict, levelling: bool, inverse: NeuralInverse, camera=None)
     def sample(snap):
         t = snap["t"] - t0
         rows.append([t, *np.degrees(shoulder_tilt(body)), *np.degrees(tilt(snap["acc_chest"])),
-                     *np.degrees(seat.target(t)), *np.degrees(whole(snap["theta"]))])
+                     *np.degrees(seat.target(t)), *np.degrees(whole_spine(snap["theta"]))])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
         loop.run(p["duration_s"], every={max(1, round(0.02 / body.dt)): sample})

@@ -38,6 +38,7 @@ from shintai.spine.cla_body import (
 )
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.cla_reach import ArmIK
+from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import (
     CLA,
     CLA_DESK_HALF_M,
@@ -180,5 +181,5 @@ def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, cal
 def signals(body: ClaBody, grip: Grip, scene: dict) -> dict:
     """What is recorded: hand and object positions, the whole-spine (roll, pitch, yaw), the CoM margin."""
     return {"hand": body.site_pos("hand_r"), "object": body.object_pos("floor_object"),
-            "whole_deg": np.degrees(body.theta().reshape(CLA.n, 3).sum(axis=0)), "com_margin": com_margin(body),
+            "whole_deg": np.degrees(whole_spine(body.theta())), "com_margin": com_margin(body),
             "gripped": float(grip.gripped), "spot_gap": float(np.linalg.norm(body.site_pos("hand_r") - scene["spot"]))}

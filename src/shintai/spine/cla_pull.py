@@ -25,9 +25,9 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop, whole
+from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
 from shintai.spine.cla_levelling import min_jerk
-from shintai.spine.geometry import uniform_posture
+from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
 
 ARM = ("shoulder_pitch_r", "elbow_r", "wrist_r")
@@ -179,7 +179,7 @@ def run_pull(p: dict, with_spine: bool, camera=None) -> dict:
         hand, obj = snap["hand_r_pos"], body.object_pos("desk_object")
         gap = np.abs(hand - obj) - CLA_OBJECT_HALF_M
         rows.append([snap["t"] - t0, *hand, *(obj - x0), float(np.linalg.norm(np.maximum(gap, 0.0)) -
-                     CLA_HAND_RADIUS_M), *np.degrees(whole(snap["theta"]))])
+                     CLA_HAND_RADIUS_M), *np.degrees(whole_spine(snap["theta"]))])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
         loop.run(END_S, every={10: sample})

@@ -27,10 +27,10 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Loop, Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control, whole
+from shintai.spine.cla_body import ClaBody, spine_control
 from shintai.spine.cla_levelling import min_jerk
 from shintai.spine.control import SETPOINTS, encoder_targets
-from shintai.spine.geometry import uniform_posture
+from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA
 
 HOLD_S, FOLLOW_S = 0.5, 1.0  # the hold after the wind-up, the run after the throw starts [s] (chosen)
@@ -110,7 +110,7 @@ def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) ->
     def sample(snap):
         v = np.zeros(6)
         mujoco.mj_objectVelocity(body.model, body.data, mujoco.mjtObj.mjOBJ_SITE, hand, v, 0)
-        rows.append([snap["t"] - t0, float(np.linalg.norm(v[3:])), *np.degrees(whole(snap["theta"])),
+        rows.append([snap["t"] - t0, float(np.linalg.norm(v[3:])), *np.degrees(whole_spine(snap["theta"])),
                      body.joint_qpos("shoulder_pitch_r"), body.joint_qpos("elbow_r")])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
