@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.actuators import tilt
 from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
@@ -28,11 +29,6 @@ from shintai.spine.inverse_model import NeuralInverse
 # The disturbance's timing (chosen): the seat tilts at 0.5 s (and again at the scenario's tilt2_s), each move
 # taking 1 s; the shoulders' settled tilt is averaged over the last second before the next move and before the end
 TILT1_S, SEAT_MOVE_S = 0.5, 1.0
-
-
-def min_jerk(s: float) -> float:
-    """The minimum-jerk profile 10 s³ − 15 s⁴ + 6 s⁵ on s ∈ [0, 1]."""
-    return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
 
 
 class SeatTilt(Module):
@@ -53,7 +49,7 @@ class SeatTilt(Module):
             if t < start:
                 break
             s = min(1.0, (t - start) / self.move_s)
-            at = at + (goal - at) * min_jerk(s)
+            at = at + (goal - at) * minimum_jerk(s)
         return at
 
     def update(self, snapshot: Snapshot):

@@ -24,9 +24,9 @@ import contextlib
 import mujoco
 import numpy as np
 
+from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
-from shintai.spine.cla_levelling import min_jerk
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
 
@@ -144,7 +144,7 @@ class PullPattern(Module):
             begin = STARTS[name]
             if t < begin:
                 break
-            q = q + (self.keys[name] - q) * min_jerk(min(1.0, (t - begin) / (arrive - begin)))
+            q = q + (self.keys[name] - q) * minimum_jerk(min(1.0, (t - begin) / (arrive - begin)))
         return q
 
     def update(self, snapshot: Snapshot):

@@ -26,9 +26,9 @@ import contextlib
 import mujoco
 import numpy as np
 
+from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Loop, Module, Snapshot
 from shintai.spine.cla_body import ClaBody, spine_control
-from shintai.spine.cla_levelling import min_jerk
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA
@@ -46,7 +46,7 @@ ELBOW_JOINTS = ("elbow_r", "wrist_r")
 
 
 def _blend(a, b, s: float):
-    return a + (b - a) * min_jerk(min(max(s, 0.0), 1.0))
+    return a + (b - a) * minimum_jerk(min(max(s, 0.0), 1.0))
 
 
 class ThrowPattern(Module):
