@@ -42,6 +42,7 @@ import numpy as np
 
 from shintai.core.constants import KGF_N
 from shintai.core.runtime import Loop
+from shintai.sim.spec import add_capsule, add_hinge
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
 from shintai.spine.cla import cla_gains
@@ -109,14 +110,8 @@ def _sign(side: str) -> float:
     return -1.0 if side == "r" else 1.0
 
 
-def _capsule(body, to, r, mass, rgba, contact: bool = False):
-    return body.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[0, 0, 0, *to], size=[r, 0, 0], mass=mass,
-                         rgba=rgba, contype=ROBOT if contact else 0, conaffinity=0)
-
-
 def _hinge(body, name: str, axis, lo: float, hi: float) -> None:
-    body.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_HINGE, axis=list(axis), range=[lo, hi], limited=True,
-                   damping=0.02, armature=1e-4)
+    add_hinge(body, name, axis, (lo, hi), armature=1e-4, damping=0.02)
 
 
 def build_spec(posture: str = "seated", desk: bool = True, seat_tilt: bool = False) -> mujoco.MjSpec:
@@ -185,10 +180,10 @@ def _add_arms(spec) -> None:
         upper = clav.add_body(name=f"upper_arm_{side}", pos=[sx, s * sy, sz])
         _hinge(upper, f"shoulder_roll_{side}", LIMB_ROLL_AXIS[side], -0.3, 2.6)
         _hinge(upper, f"shoulder_pitch_{side}", [0, -1, 0], -1.0, 3.1)
-        _capsule(upper, [0, 0, -CLA_UPPER_ARM_M], 0.013, CLA_ARM_KG[0], limb)
+        add_capsule(upper, [0, 0, -CLA_UPPER_ARM_M], 0.013, CLA_ARM_KG[0], limb)
         fore = upper.add_body(name=f"forearm_{side}", pos=[0, 0, -CLA_UPPER_ARM_M])
         _hinge(fore, f"elbow_{side}", [0, -1, 0], 0.0, 2.6)
-        _capsule(fore, [0, 0, -CLA_FOREARM_M], 0.011, CLA_ARM_KG[1], limb)
+        add_capsule(fore, [0, 0, -CLA_FOREARM_M], 0.011, CLA_ARM_KG[1], limb)
         hand = fore.add_body(name=f"hand_{side}", pos=[0, 0, -CLA_FOREARM_M])
         _hinge(hand, f"wrist_{side}", [0, -1, 0], -1.5, 1.5)
         hand.add_geom(name=f"hand_{side}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[CLA_HAND_RADIUS_M],
@@ -223,10 +218,10 @@ def _add_legs(spec) -> None:
         s = _sign(side)
         thigh = pelvis.add_body(name=f"thigh_{side}", pos=[hx, s * hy, hz])
         _hinge(thigh, f"hip_{side}", [0, -1, 0], -1.0, 2.2)
-        _capsule(thigh, [0, 0, -CLA_THIGH_M], 0.018, CLA_LEG_KG[0], limb)
+        add_capsule(thigh, [0, 0, -CLA_THIGH_M], 0.018, CLA_LEG_KG[0], limb)
         shank = thigh.add_body(name=f"shank_{side}", pos=[0, 0, -CLA_THIGH_M])
         _hinge(shank, f"knee_{side}", [0, 1, 0], 0.0, 2.6)
-        _capsule(shank, [0, 0, -CLA_SHANK_M], 0.015, CLA_LEG_KG[1], limb)
+        add_capsule(shank, [0, 0, -CLA_SHANK_M], 0.015, CLA_LEG_KG[1], limb)
         foot = shank.add_body(name=f"foot_{side}", pos=[0, 0, -CLA_SHANK_M])
         _hinge(foot, f"ankle_pitch_{side}", [0, -1, 0], -0.8, 0.8)
         _hinge(foot, f"ankle_roll_{side}", LIMB_ROLL_AXIS[side], -0.5, 0.5)
