@@ -251,21 +251,29 @@ class LegIKModule(Module):
 
 
 class Push(Module):
-    """A disturbance, not control: an external force ``force`` (N, world x, y, z) on the waist body from
-    ``t0`` for ``duration`` seconds (written into MuJoCo's ``xfrc_applied``)."""
+    """A disturbance, not control: an external force ``force`` (N, world x, y, z) on the body ``link`` (default
+    the waist) from ``t0`` for ``duration`` seconds (written into MuJoCo's ``xfrc_applied``). As a Loop module it
+    acts at the loop's ticks (snapshot time); called with no argument it is a ``before_physics`` hook of the body
+    and acts before every physics step (body time)."""
 
-    def __init__(self, body: MujocoBody, force, t0: float, duration: float, name: str = "push"):
+    def __init__(self, body: MujocoBody, force, t0: float, duration: float, name: str = "push", link: str = "waist"):
         super().__init__(name, None)
         force = np.asarray(force, float)
         if force.shape != (3,) or not np.all(np.isfinite(force)):
             raise ValueError(f"push: force must be a finite (x, y, z) in N, got {force!r}")
         self.body, self.force = body, force
         self.t0, self.duration = check_real("push t0", t0, 0.0), check_real("push duration", duration, 0.0)
-        self._id = body.id("body", "waist")
+        self._id = body.id("body", link)
+
+    def apply(self, t: float) -> None:
+        on = self.t0 <= t < self.t0 + self.duration
+        self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
 
     def update(self, snapshot):
-        on = self.t0 <= snapshot["t"] < self.t0 + self.duration
-        self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
+        self.apply(snapshot["t"])
+
+    def __call__(self) -> None:
+        self.apply(self.body.data.time)
 
 
 SETTLE_S = 0.1  # s, chosen: the keyframe's soles touch the floor at zero penetration (≈15 N a foot)
