@@ -4,10 +4,11 @@ seated on a stool before a desk or standing (seed 003 §3.6.2, Fig. 3.36; the be
 **The spine** is exactly the MuJoCo Cla of :func:`~shintai.spine.bodies_mujoco.build_spec`: five joints of three
 hinges each (yaw, pitch, roll; θ of eq. 4.1 is their ``qpos``), the silicone discs, the eight wire muscles on
 reels driven by duty (``duty`` channel), tension sensors and encoders, 0.5-ms steps; the raised-arm loads of E11
-are replaced by real arms and the head load by a head on a neck. It is commanded as every Cla experiment does:
-:func:`spine_control` (the §4.6.4 encoder zeroing, then :class:`~shintai.spine.control.MuscleControl` in L mode)
-with :class:`~shintai.spine.postures.PostureTargets`, whose ``goal`` channel takes a uniform-bend posture
-Θ = (φ, θ, ψ) (whole-spine roll, pitch, yaw, rad; eq. 4.25's lengths become the length targets).
+are replaced by real arms and the head load by a head on a neck. It is commanded as every Cla experiment does
+(:mod:`~shintai.spine.cla_control`): :func:`~shintai.spine.cla_control.spine_control` (the §4.6.4 encoder zeroing,
+then :class:`~shintai.spine.control.MuscleControl` in L mode) with :class:`~shintai.spine.postures.PostureTargets`,
+whose ``goal`` channel takes a uniform-bend posture Θ = (φ, θ, ψ) (whole-spine roll, pitch, yaw, rad; eq. 4.25's
+lengths become the length targets).
 
 **Limbs** (§3.6.2: "脚は股関節・膝関節が pitch 軸のみで足首関節が pitch・roll 軸、腕は肩関節が roll・pitch 軸で肘
 および手首関節が pitch 軸のみ"): per arm ``shoulder_roll_<s>`` (+ = abduction, away from the body),
@@ -40,17 +41,11 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.core.constants import KGF_N
-from shintai.core.runtime import Loop
 from shintai.sim.spec import add_capsule, add_hinge
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
-from shintai.spine.cla import cla_gains
 from shintai.spine.cla_crawl import _pos_actuator
-from shintai.spine.control import SETPOINTS, Mode, MuscleControl
-from shintai.spine.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import (
-    CALIBRATION_KGF,
     CLA,
     CLA_ARM_KG,
     CLA_DESK_HALF_M,
@@ -85,7 +80,6 @@ from shintai.spine.robots import (
     CRAWL_LIMB_TORQUE_NM,
     PELVIS_HEIGHT_M,
 )
-from shintai.spine.teaching import zero_encoders
 
 POSTURES = ("seated", "standing")
 SIDES = ("r", "l")
@@ -386,31 +380,5 @@ class ClaBody(SpineBody):
         return snap
 
 
-def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0,
-                  calibration_s: float = 1.0) -> tuple[MuscleControl, np.ndarray]:
-    """Cla's muscle controller, calibrated (§4.6.4, :func:`~shintai.spine.cla.calibrated`) and in L mode:
-    returns it and the model lengths at the basic posture (the zero of the encoder targets) for
-    :class:`~shintai.spine.postures.PostureTargets`. The stages of a Loop are then
-    ``[[your schedule writing "goal"], [PostureTargets(CLA.model, zero, move_s)], [control, ...]]`` with the
-    channels ``(*control.SETPOINTS, postures.GOAL, postures.WHOLE_REF)``."""
-    control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf))
-    zero_encoders(body, control, CALIBRATION_KGF * KGF_N, seconds=calibration_s)  # = cla.calibrated, timed
-    control.set_modes(Mode.L)
-    return control, CLA.model.lengths(np.zeros(3 * CLA.n))
-
-
-def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, first=(), last=(),
-               recorder=None) -> Loop:
-    """A Loop whose first stage (``first``: modules writing ``goal`` and limb targets) is followed by the
-    posture player (``move_s`` per goal) and then the muscle controller with ``last`` (observers)."""
-    stages = [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]
-    return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
-
-
-def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
-    """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
-    Loop(body, [control]).run(seconds)
-
-
-__all__ = ["ClaBody", "build_spec", "spine_control", "spine_loop", "settle", "start_targets",
+__all__ = ["ClaBody", "build_spec", "start_targets",
            "LIMB_JOINTS", "SPINE_JOINTS", "OBJECTS", "POSTURES", "PELVIS_HEIGHT_M"]

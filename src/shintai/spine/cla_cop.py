@@ -16,7 +16,8 @@ import math
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, spine_control, start_targets
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA

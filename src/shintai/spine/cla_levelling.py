@@ -22,7 +22,8 @@ import numpy as np
 from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.actuators import tilt
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control, spine_loop
 from shintai.spine.geometry import whole_spine
 from shintai.spine.inverse_model import NeuralInverse
 

@@ -28,14 +28,8 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import (
-    LIMB_JOINTS,
-    SPINE_JOINTS,
-    ClaBody,
-    build_spec,
-    spine_control,
-    start_targets,
-)
+from shintai.spine.cla_body import LIMB_JOINTS, SPINE_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.cla_reach import ArmIK
 from shintai.spine.geometry import whole_spine

@@ -26,7 +26,8 @@ import numpy as np
 
 from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control, spine_loop
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
 

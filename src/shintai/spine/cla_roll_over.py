@@ -26,7 +26,8 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec, spine_control, start_targets
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA

@@ -28,7 +28,8 @@ import numpy as np
 
 from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Loop, Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA
