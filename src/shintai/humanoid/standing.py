@@ -19,7 +19,8 @@ deck, then the right's: :func:`platform_steps` is that plan on a rigid box.
 single-support phase, phase s ∈ [0, 1], the sole rises on a cycloid to ``max(z₀, z₁) + SWING_HEIGHT``
 at s = ½ and descends to z₁ (each half z = z_a + (z_b − z_a)(θ − sin θ)/2π, θ = 2π·(2s or 2s − 1));
 horizontally it moves on one cycloid (θ − sin θ)/2π of (s − d)/(1 − 2d) between s = d and 1 − d
-(d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The sole stays flat (no yaw in the plans).
+(d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The
+sole stays flat (no yaw in the plans).
 
 **Measured** (seeded MuJoCo, deterministic; :func:`push_recovery`, :func:`largest_push`, the tests):
 standing 5 s the CoM stays within 1.5 mm of its reference after 3 s and the ZMP inside the soles; the
