@@ -5,9 +5,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from shintai.core.interpolation import Segment, SequencePlayer, via_velocity
-from shintai.core.runtime import Loop
 from shintai.core.benchmarks import NullBody
+from shintai.core.interpolation import (
+    Segment,
+    SequencePlayer,
+    minimum_jerk,
+    via_velocity,
+)
+from shintai.core.runtime import Loop
 
 finite = st.floats(-5, 5, allow_nan=False)
 
@@ -112,3 +117,10 @@ def test_a_player_takes_its_minjerksequence_via_rule():
     assert calls == [(0.0, 60.0, 120.0)]
     p.advance(0.25)
     assert np.allclose(p.state[1], 7.0)
+
+
+def test_minimum_jerk_profile_is_the_rest_to_rest_quintic():
+    seg = Segment.minjerk(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0)
+    for s in np.linspace(0.0, 1.0, 11):
+        assert minimum_jerk(s) == pytest.approx(float(seg.state(s)[0][()]), abs=1e-12)
+    assert minimum_jerk(0.0) == 0.0 and minimum_jerk(1.0) == 1.0 and minimum_jerk(0.5) == 0.5

@@ -196,7 +196,8 @@ def test_stance_heights_rise_only_after_the_lower_foot_has_lifted():
     # flat: only the soles' 0.5 mm settling into the floor (the steps land at z = 0)
     assert np.allclose(Standing(steps=[("l", 0.0, 0.06), ("r", 0.0, -0.06)]).heights, 0.0, atol=1e-3)
     second = [k for k, s in enumerate(support) if s == "l"]  # the right foot's swing (the left on the box)
-    assert np.abs(h[:second[0]]).max() < 1e-9 and h[second[-1]] == pytest.approx(0.1, abs=1e-3) and h[-1] == pytest.approx(0.1, abs=1e-3)
+    assert np.abs(h[:second[0]]).max() < 1e-9
+    assert h[second[-1]] == pytest.approx(0.1, abs=1e-3) and h[-1] == pytest.approx(0.1, abs=1e-3)
     assert np.all(np.diff(h) >= 0) and np.abs(np.diff(h, 2)).max() / st.plan.dt**2 < 1.1  # ≤ ≈1 m/s²
 
 
@@ -244,3 +245,23 @@ def test_the_rig_rejects_bad_parameters():
         Standing(push=((math.nan, 0.0, 0.0), 0.5, 0.1))
     with pytest.raises(ValueError, match="side"):
         Standing(steps=[("x", 0.0, 0.0)])
+
+
+def test_push_on_a_named_link_as_a_before_physics_hook():
+    """Push on ``link`` (here "chest"), run before every physics step by body time: on over [t0, t0 + duration)."""
+    from shintai.humanoid.standing import Push
+    from shintai.sim.body import MujocoBody
+
+    body = MujocoBody("""<mujoco><option timestep="0.001" gravity="0 0 0"/><worldbody>
+      <body name="waist"><freejoint/><geom type="box" size=".1 .1 .1" mass="1"/></body>
+      <body name="chest" pos="1 0 0"><freejoint/><geom type="box" size=".1 .1 .1" mass="1"/></body>
+      </worldbody></mujoco>""")
+    body.before_physics.append(Push(body, (2.0, 0.0, 0.0), 0.01, 0.02, link="chest"))
+    for _ in range(50):
+        body.step()
+    chest, waist = body.id("body", "chest"), body.id("body", "waist")
+    assert body.data.qvel[0] == 0.0  # the waist is not pushed
+    assert body.data.qvel[6] == pytest.approx(2.0 * 0.02, rel=0.06)  # impulse / mass, on for 20 steps
+    assert not body.data.xfrc_applied[[chest, waist]].any()  # off again after t0 + duration
+    with pytest.raises(ValueError, match="push: force"):
+        Push(body, (1.0, math.nan, 0.0), 0.0, 0.1)

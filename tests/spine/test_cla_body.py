@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Loop
-from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec, settle, spine_control
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec
+from shintai.spine.cla_control import settle, spine_control
 from shintai.spine.control import SETPOINTS
 from shintai.spine.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import CLA

@@ -28,6 +28,13 @@ from shintai.core.runtime import Module, Snapshot
 METHODS = ("linear", "minjerk", "minjerksequence")
 
 
+def minimum_jerk(s: float) -> float:
+    """The rest-to-rest minimum-jerk profile 10 s³ − 15 s⁴ + 6 s⁵ on s ∈ [0, 1] (the quintic of
+    :func:`quintic_coefficients` with zero boundary velocity and acceleration, normalised): the fraction of a
+    move done at normalised time ``s``."""
+    return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
+
+
 def quintic_coefficients(x0, v0, a0, xf, vf, af, T: float) -> np.ndarray:
     """Coefficients c[0..5] (each a vector over DOF) of x(t) = Σ c_k t^k meeting x, v, a at 0 and T.
 

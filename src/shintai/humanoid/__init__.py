@@ -24,6 +24,7 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.constants import PHYSICS_TIMESTEP, SERVO_DAMPRATIO
+from shintai.sim.spec import add_hinge  # noqa: F401  (shared with the spine's bodies; imported from here)
 
 # Collision bits. Only these pairs collide: floor–sole, floor–tyre and sole–pedal (the unilateral
 # foot–pedal contact of Table 3.1); hands hold grips by equality constraints, the hip is welded to
@@ -78,17 +79,6 @@ def box_inertia(mass: float, size) -> list[float]:
     """Principal inertia of a solid box of full edge lengths ``size`` (x, y, z)."""
     x, y, z = size
     return [mass * (y * y + z * z) / 12, mass * (x * x + z * z) / 12, mass * (x * x + y * y) / 12]
-
-
-def add_hinge(body, name: str, axis, limits: tuple[float, float] | None = None, armature: float = 0.0,
-              damping: float = 0.0, frictionloss: float = 0.0):
-    """A hinge joint at the body origin; ``limits`` (rad) makes it limited."""
-    joint = body.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_HINGE, axis=list(axis), armature=armature,
-                           damping=damping, frictionloss=frictionloss)
-    if limits is not None:
-        joint.limited = mujoco.mjtLimited.mjLIMITED_TRUE
-        joint.range = list(limits)
-    return joint
 
 
 def add_servo(spec: mujoco.MjSpec, joint: str, kp: float, torque: float):

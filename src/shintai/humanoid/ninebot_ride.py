@@ -34,6 +34,7 @@ import numpy as np
 from shintai.core.geometry import rot_x
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid import fill_keyframe, scene_spec, set_joints
+from shintai.humanoid.ch4_riding import roll_of
 from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS, STANDING_POSTURE, SUBSTEPS
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.foot_attitude import quat_to_rot
@@ -42,7 +43,7 @@ from shintai.humanoid.prior_value_integrator import PID
 from shintai.humanoid.robots.hrp2 import LEG, SIDES, add_hrp2, side_posture
 from shintai.humanoid.speed_governing import foot_pitch_increments
 from shintai.humanoid.stabilizer import StabilizerModule
-from shintai.humanoid.standing import Standing
+from shintai.humanoid.standing import Push, Standing
 from shintai.humanoid.vboard_ride import CHANNELS as RIDE_CHANNELS
 from shintai.humanoid.vboard_ride import ChestPitchIK, FootPitch, Lift, ScooterSensors
 from shintai.humanoid.vehicles.ninebot import NINEBOT, PAD, NinebotSpec, add_ninebot, install_firmware, ninebot_velocity
@@ -190,8 +191,7 @@ class SpeedPID(LearnedPID):
 
 def chest_roll(snapshot) -> float:
     """φ_C, the chest's roll from its IMU (about +x)."""
-    R = quat_to_rot(snapshot["imu_quat"])
-    return math.atan2(R[2, 1], R[2, 2])
+    return roll_of(quat_to_rot(snapshot["imu_quat"]))
 
 
 class RollShaping(ChestPostureControl):
@@ -240,7 +240,7 @@ class NinebotRide:
         self.lift.hold()
         self.standing = Standing(body=body)
         if push is not None:  # on the chest, before every physics step (the lift owns the waist's xfrc_applied)
-            body.before_physics.append(_Tap(body, *push))
+            body.before_physics.append(Push(body, *push, link="chest"))
         self.body, self.n = body, n
         self.lift.lowering = True
         lift = self.lift
@@ -305,13 +305,3 @@ class _Target(Module):
         return {"v_d": 0.0 if not math.isfinite(t0) else float(self.v_d(float(snapshot["t"]) - t0))}
 
 
-class _Tap:
-    """A force (N, world) on the chest from body time ``t0`` for ``duration`` s; run before every physics step."""
-
-    def __init__(self, body, force, t0: float, duration: float):
-        self.data, self.force, self.t0, self.t1 = body.data, np.asarray(force, float), t0, t0 + duration
-        self.id = body.id("body", "chest")
-
-    def __call__(self) -> None:
-        on = self.t0 <= self.data.time < self.t1
-        self.data.xfrc_applied[self.id, :3] = self.force if on else 0.0

@@ -19,7 +19,8 @@ deck, then the right's: :func:`platform_steps` is that plan on a rigid box.
 single-support phase, phase s ∈ [0, 1], the sole rises on a cycloid to ``max(z₀, z₁) + SWING_HEIGHT``
 at s = ½ and descends to z₁ (each half z = z_a + (z_b − z_a)(θ − sin θ)/2π, θ = 2π·(2s or 2s − 1));
 horizontally it moves on one cycloid (θ − sin θ)/2π of (s − d)/(1 − 2d) between s = d and 1 − d
-(d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The sole stays flat (no yaw in the plans).
+(d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The
+sole stays flat (no yaw in the plans).
 
 **Measured** (seeded MuJoCo, deterministic; :func:`push_recovery`, :func:`largest_push`, the tests):
 standing 5 s the CoM stays within 1.5 mm of its reference after 3 s and the ZMP inside the soles; the
@@ -251,21 +252,29 @@ class LegIKModule(Module):
 
 
 class Push(Module):
-    """A disturbance, not control: an external force ``force`` (N, world x, y, z) on the waist body from
-    ``t0`` for ``duration`` seconds (written into MuJoCo's ``xfrc_applied``)."""
+    """A disturbance, not control: an external force ``force`` (N, world x, y, z) on the body ``link`` (default
+    the waist) from ``t0`` for ``duration`` seconds (written into MuJoCo's ``xfrc_applied``). As a Loop module it
+    acts at the loop's ticks (snapshot time); called with no argument it is a ``before_physics`` hook of the body
+    and acts before every physics step (body time)."""
 
-    def __init__(self, body: MujocoBody, force, t0: float, duration: float, name: str = "push"):
+    def __init__(self, body: MujocoBody, force, t0: float, duration: float, name: str = "push", link: str = "waist"):
         super().__init__(name, None)
         force = np.asarray(force, float)
         if force.shape != (3,) or not np.all(np.isfinite(force)):
             raise ValueError(f"push: force must be a finite (x, y, z) in N, got {force!r}")
         self.body, self.force = body, force
         self.t0, self.duration = check_real("push t0", t0, 0.0), check_real("push duration", duration, 0.0)
-        self._id = body.id("body", "waist")
+        self._id = body.id("body", link)
+
+    def apply(self, t: float) -> None:
+        on = self.t0 <= t < self.t0 + self.duration
+        self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
 
     def update(self, snapshot):
-        on = self.t0 <= snapshot["t"] < self.t0 + self.duration
-        self.body.data.xfrc_applied[self._id, :3] = self.force if on else 0.0
+        self.apply(snapshot["t"])
+
+    def __call__(self) -> None:
+        self.apply(self.body.data.time)
 
 
 SETTLE_S = 0.1  # s, chosen: the keyframe's soles touch the floor at zero penetration (≈15 N a foot)

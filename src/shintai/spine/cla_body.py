@@ -4,10 +4,11 @@ seated on a stool before a desk or standing (seed 003 §3.6.2, Fig. 3.36; the be
 **The spine** is exactly the MuJoCo Cla of :func:`~shintai.spine.bodies_mujoco.build_spec`: five joints of three
 hinges each (yaw, pitch, roll; θ of eq. 4.1 is their ``qpos``), the silicone discs, the eight wire muscles on
 reels driven by duty (``duty`` channel), tension sensors and encoders, 0.5-ms steps; the raised-arm loads of E11
-are replaced by real arms and the head load by a head on a neck. It is commanded as every Cla experiment does:
-:func:`spine_control` (the §4.6.4 encoder zeroing, then :class:`~shintai.spine.control.MuscleControl` in L mode)
-with :class:`~shintai.spine.postures.PostureTargets`, whose ``goal`` channel takes a uniform-bend posture
-Θ = (φ, θ, ψ) (whole-spine roll, pitch, yaw, rad; eq. 4.25's lengths become the length targets).
+are replaced by real arms and the head load by a head on a neck. It is commanded as every Cla experiment does
+(:mod:`~shintai.spine.cla_control`): :func:`~shintai.spine.cla_control.spine_control` (the §4.6.4 encoder zeroing,
+then :class:`~shintai.spine.control.MuscleControl` in L mode) with :class:`~shintai.spine.postures.PostureTargets`,
+whose ``goal`` channel takes a uniform-bend posture Θ = (φ, θ, ψ) (whole-spine roll, pitch, yaw, rad; eq. 4.25's
+lengths become the length targets).
 
 **Limbs** (§3.6.2: "脚は股関節・膝関節が pitch 軸のみで足首関節が pitch・roll 軸、腕は肩関節が roll・pitch 軸で肘
 および手首関節が pitch 軸のみ"): per arm ``shoulder_roll_<s>`` (+ = abduction, away from the body),
@@ -40,16 +41,11 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.core.constants import KGF_N
-from shintai.core.runtime import Loop
+from shintai.sim.spec import add_capsule, add_hinge
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
-from shintai.spine.cla import cla_gains
 from shintai.spine.cla_crawl import _pos_actuator
-from shintai.spine.control import SETPOINTS, Mode, MuscleControl
-from shintai.spine.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import (
-    CALIBRATION_KGF,
     CLA,
     CLA_ARM_KG,
     CLA_DESK_HALF_M,
@@ -84,7 +80,6 @@ from shintai.spine.robots import (
     CRAWL_LIMB_TORQUE_NM,
     PELVIS_HEIGHT_M,
 )
-from shintai.spine.teaching import zero_encoders
 
 POSTURES = ("seated", "standing")
 SIDES = ("r", "l")
@@ -109,14 +104,8 @@ def _sign(side: str) -> float:
     return -1.0 if side == "r" else 1.0
 
 
-def _capsule(body, to, r, mass, rgba, contact: bool = False):
-    return body.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[0, 0, 0, *to], size=[r, 0, 0], mass=mass,
-                         rgba=rgba, contype=ROBOT if contact else 0, conaffinity=0)
-
-
 def _hinge(body, name: str, axis, lo: float, hi: float) -> None:
-    body.add_joint(name=name, type=mujoco.mjtJoint.mjJNT_HINGE, axis=list(axis), range=[lo, hi], limited=True,
-                   damping=0.02, armature=1e-4)
+    add_hinge(body, name, axis, (lo, hi), armature=1e-4, damping=0.02)
 
 
 def build_spec(posture: str = "seated", desk: bool = True, seat_tilt: bool = False) -> mujoco.MjSpec:
@@ -185,10 +174,10 @@ def _add_arms(spec) -> None:
         upper = clav.add_body(name=f"upper_arm_{side}", pos=[sx, s * sy, sz])
         _hinge(upper, f"shoulder_roll_{side}", LIMB_ROLL_AXIS[side], -0.3, 2.6)
         _hinge(upper, f"shoulder_pitch_{side}", [0, -1, 0], -1.0, 3.1)
-        _capsule(upper, [0, 0, -CLA_UPPER_ARM_M], 0.013, CLA_ARM_KG[0], limb)
+        add_capsule(upper, [0, 0, -CLA_UPPER_ARM_M], 0.013, CLA_ARM_KG[0], limb)
         fore = upper.add_body(name=f"forearm_{side}", pos=[0, 0, -CLA_UPPER_ARM_M])
         _hinge(fore, f"elbow_{side}", [0, -1, 0], 0.0, 2.6)
-        _capsule(fore, [0, 0, -CLA_FOREARM_M], 0.011, CLA_ARM_KG[1], limb)
+        add_capsule(fore, [0, 0, -CLA_FOREARM_M], 0.011, CLA_ARM_KG[1], limb)
         hand = fore.add_body(name=f"hand_{side}", pos=[0, 0, -CLA_FOREARM_M])
         _hinge(hand, f"wrist_{side}", [0, -1, 0], -1.5, 1.5)
         hand.add_geom(name=f"hand_{side}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[CLA_HAND_RADIUS_M],
@@ -223,10 +212,10 @@ def _add_legs(spec) -> None:
         s = _sign(side)
         thigh = pelvis.add_body(name=f"thigh_{side}", pos=[hx, s * hy, hz])
         _hinge(thigh, f"hip_{side}", [0, -1, 0], -1.0, 2.2)
-        _capsule(thigh, [0, 0, -CLA_THIGH_M], 0.018, CLA_LEG_KG[0], limb)
+        add_capsule(thigh, [0, 0, -CLA_THIGH_M], 0.018, CLA_LEG_KG[0], limb)
         shank = thigh.add_body(name=f"shank_{side}", pos=[0, 0, -CLA_THIGH_M])
         _hinge(shank, f"knee_{side}", [0, 1, 0], 0.0, 2.6)
-        _capsule(shank, [0, 0, -CLA_SHANK_M], 0.015, CLA_LEG_KG[1], limb)
+        add_capsule(shank, [0, 0, -CLA_SHANK_M], 0.015, CLA_LEG_KG[1], limb)
         foot = shank.add_body(name=f"foot_{side}", pos=[0, 0, -CLA_SHANK_M])
         _hinge(foot, f"ankle_pitch_{side}", [0, -1, 0], -0.8, 0.8)
         _hinge(foot, f"ankle_roll_{side}", LIMB_ROLL_AXIS[side], -0.5, 0.5)
@@ -391,37 +380,5 @@ class ClaBody(SpineBody):
         return snap
 
 
-def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0,
-                  calibration_s: float = 1.0) -> tuple[MuscleControl, np.ndarray]:
-    """Cla's muscle controller, calibrated (§4.6.4, :func:`~shintai.spine.cla.calibrated`) and in L mode:
-    returns it and the model lengths at the basic posture (the zero of the encoder targets) for
-    :class:`~shintai.spine.postures.PostureTargets`. The stages of a Loop are then
-    ``[[your schedule writing "goal"], [PostureTargets(CLA.model, zero, move_s)], [control, ...]]`` with the
-    channels ``(*control.SETPOINTS, postures.GOAL, postures.WHOLE_REF)``."""
-    control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf))
-    zero_encoders(body, control, CALIBRATION_KGF * KGF_N, seconds=calibration_s)  # = cla.calibrated, timed
-    control.set_modes(Mode.L)
-    return control, CLA.model.lengths(np.zeros(3 * CLA.n))
-
-
-def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, first=(), last=(),
-               recorder=None) -> Loop:
-    """A Loop whose first stage (``first``: modules writing ``goal`` and limb targets) is followed by the
-    posture player (``move_s`` per goal) and then the muscle controller with ``last`` (observers)."""
-    stages = [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]
-    return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
-
-
-def whole(theta) -> np.ndarray:
-    """Whole-spine (roll, pitch, yaw) of a posture θ (…, 3n): the sums over the joints (uniform bend)."""
-    theta = np.asarray(theta, dtype=float)
-    return theta.reshape(theta.shape[:-1] + (CLA.n, 3)).sum(axis=-2)
-
-
-def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
-    """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
-    Loop(body, [control]).run(seconds)
-
-
-__all__ = ["ClaBody", "build_spec", "spine_control", "spine_loop", "whole", "settle", "start_targets",
+__all__ = ["ClaBody", "build_spec", "start_targets",
            "LIMB_JOINTS", "SPINE_JOINTS", "OBJECTS", "POSTURES", "PELVIS_HEIGHT_M"]

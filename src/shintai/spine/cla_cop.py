@@ -16,8 +16,10 @@ import math
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, spine_control, start_targets
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
+from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA
 
 # Chosen, because not in the text (§5.2.7 says only "中心付近", "少しずつ", "ゆっくりと"):
@@ -100,6 +102,6 @@ def build(swing: bool, cycles: int, bend_deg: float = BEND_DEG, half_period_s: f
 def signals(body, reflex: ArmSwingReflex, snap) -> dict:
     return {"cop": np.asarray(snap["cop"], dtype=float), "sole_centre_x": sole_centre_x(body),
             "force": float(np.sum(snap["sole_force"])), "arm_offset_deg": math.degrees(reflex.offset),
-            "roll_deg": math.degrees(float(np.sum(body.theta().reshape(CLA.n, 3)[:, 0]))),
+            "roll_deg": math.degrees(float(whole_spine(body.theta())[0])),
             "pelvis_z": float(body.body_pos("link0")[2]),
             "com": body.data.subtree_com[body.id("body", "link0")].copy()}

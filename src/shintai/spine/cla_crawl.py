@@ -44,6 +44,7 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
+from shintai.sim.spec import add_capsule
 from shintai.spine.robots import (
     CLA,
     CLA_ARMS_DOWN,
@@ -128,11 +129,6 @@ def _pos_actuator(spec, joint: str, kp: float, kv: float, limit: float) -> None:
     act.forcelimited, act.forcerange = True, [-limit, limit]
 
 
-def _capsule(body, to, r, mass, rgba, **kw):
-    return body.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[0, 0, 0, *to], size=[r, 0, 0], mass=mass,
-                         rgba=rgba, contype=1, conaffinity=0, **kw)
-
-
 def build_spec() -> mujoco.MjSpec:
     """Cla kneeling on hands and knees (see the module docstring); every spine hinge also has a joint-equality
     lock at 0, inactive (``lock_spine`` of :func:`model` activates them)."""
@@ -172,7 +168,7 @@ def build_spec() -> mujoco.MjSpec:
                       contype=1, conaffinity=0)
         mass = CLA.link_mass_kg[i + 1]
         if mass > 0:
-            _capsule(link, [CLA_SEGMENT_M, 0, 0], 0.6 * r, mass, bone)
+            add_capsule(link, [CLA_SEGMENT_M, 0, 0], 0.6 * r, mass, bone, contype=1)
     clav = link  # the robot's (x, y, z) load offsets are the trunk's (−z, y, x)
     for load in CLA_TRUNK_LOADS:
         (lx, ly, lz), (sx, sy, sz) = load.com_m, load.size_m
@@ -184,24 +180,24 @@ def build_spec() -> mujoco.MjSpec:
         upper = clav.add_body(name=f"upper_arm_{side}", pos=[SHOULDER[0], s * SHOULDER[1], SHOULDER[2]])
         upper.add_joint(name=f"shoulder_{side}", axis=[0, -1, 0], range=[-2.2, 2.2], limited=True,
                         damping=0.02, armature=1e-4)
-        _capsule(upper, [0, 0, -CRAWL_UPPER_ARM_M], 0.012, CRAWL_ARM_KG[0], limb)
+        add_capsule(upper, [0, 0, -CRAWL_UPPER_ARM_M], 0.012, CRAWL_ARM_KG[0], limb, contype=1)
         fore = upper.add_body(name=f"forearm_{side}", pos=[0, 0, -CRAWL_UPPER_ARM_M])
         fore.add_joint(name=f"elbow_{side}", axis=[0, -1, 0], range=[0.0, 2.6], limited=True, damping=0.02,
                        armature=1e-4)
-        _capsule(fore, [0, 0, -CRAWL_FOREARM_M], 0.01, CRAWL_ARM_KG[1] * 0.5, limb)
+        add_capsule(fore, [0, 0, -CRAWL_FOREARM_M], 0.01, CRAWL_ARM_KG[1] * 0.5, limb, contype=1)
         fore.add_geom(name=f"palm_{side}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[CRAWL_HAND_RADIUS_M],
                       pos=[0, 0, -CRAWL_FOREARM_M], mass=CRAWL_ARM_KG[1] * 0.5, rgba=limb, contype=1,
                       conaffinity=0)
         thigh = pelvis.add_body(name=f"thigh_{side}", pos=[HIP[0], s * HIP[1], HIP[2]])
         thigh.add_joint(name=f"hip_{side}", axis=[0, -1, 0], range=[-1.8, 1.8], limited=True, damping=0.02,
                         armature=1e-4)
-        _capsule(thigh, [0, 0, -CRAWL_THIGH_M], 0.018, CRAWL_LEG_KG[0], limb)
+        add_capsule(thigh, [0, 0, -CRAWL_THIGH_M], 0.018, CRAWL_LEG_KG[0], limb, contype=1)
         shin = thigh.add_body(name=f"shin_{side}", pos=[0, 0, -CRAWL_THIGH_M])
         shin.add_joint(name=f"knee_{side}", axis=[0, -1, 0], range=[-2.8, 0.2], limited=True, damping=0.02,
                        armature=1e-4)
         shin.add_geom(name=f"knee_{side}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[CRAWL_KNEE_RADIUS_M], mass=0.02,
                       rgba=limb, contype=1, conaffinity=0)
-        _capsule(shin, [0, 0, -CRAWL_SHIN_M], 0.015, CRAWL_LEG_KG[1], limb)
+        add_capsule(shin, [0, 0, -CRAWL_SHIN_M], 0.015, CRAWL_LEG_KG[1], limb, contype=1)
     for joint in LIMB_JOINTS:
         _pos_actuator(spec, joint, CRAWL_LIMB_KP, CRAWL_LIMB_KV, CRAWL_LIMB_TORQUE_NM)
     for joint in SPINE_JOINTS:

@@ -19,19 +19,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.actuators import tilt
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop, whole
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control, spine_loop
+from shintai.spine.geometry import whole_spine
 from shintai.spine.inverse_model import NeuralInverse
 
 # The disturbance's timing (chosen): the seat tilts at 0.5 s (and again at the scenario's tilt2_s), each move
 # taking 1 s; the shoulders' settled tilt is averaged over the last second before the next move and before the end
 TILT1_S, SEAT_MOVE_S = 0.5, 1.0
-
-
-def min_jerk(s: float) -> float:
-    """The minimum-jerk profile 10 s³ − 15 s⁴ + 6 s⁵ on s ∈ [0, 1]."""
-    return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
 
 
 class SeatTilt(Module):
@@ -52,7 +50,7 @@ class SeatTilt(Module):
             if t < start:
                 break
             s = min(1.0, (t - start) / self.move_s)
-            at = at + (goal - at) * min_jerk(s)
+            at = at + (goal - at) * minimum_jerk(s)
         return at
 
     def update(self, snapshot: Snapshot):
@@ -93,12 +91,12 @@ class Levelling(Module):
         if np.abs(shoulder).max() <= self.deadband:
             return None
         lengths = self.zero - np.asarray(snapshot["encoder"], dtype=float)  # l = λ(0) − λ (control.py)
-        now = whole(self.inverse.posture(lengths))
+        now = whole_spine(self.inverse.posture(lengths))
         goal = now.copy()
         goal[:2] -= self.gain * shoulder
         self.phase = "move"
         self.events.append({"t": t, "shoulder_deg": np.degrees(shoulder), "nn_whole_deg": np.degrees(now),
-                            "true_whole_deg": np.degrees(whole(snapshot["theta"])), "goal_deg": np.degrees(goal)})
+                            "true_whole_deg": np.degrees(whole_spine(snapshot["theta"])), "goal_deg": np.degrees(goal)})
         return {"goal": goal}
 
 
@@ -128,7 +126,7 @@ def run_levelling(p: dict, levelling: bool, inverse: NeuralInverse, camera=None)
     def sample(snap):
         t = snap["t"] - t0
         rows.append([t, *np.degrees(shoulder_tilt(body)), *np.degrees(tilt(snap["acc_chest"])),
-                     *np.degrees(seat.target(t)), *np.degrees(whole(snap["theta"]))])
+                     *np.degrees(seat.target(t)), *np.degrees(whole_spine(snap["theta"]))])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
         loop.run(p["duration_s"], every={max(1, round(0.02 / body.dt)): sample})

@@ -28,16 +28,11 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import (
-    LIMB_JOINTS,
-    SPINE_JOINTS,
-    ClaBody,
-    build_spec,
-    spine_control,
-    start_targets,
-)
+from shintai.spine.cla_body import LIMB_JOINTS, SPINE_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
 from shintai.spine.cla_reach import ArmIK
+from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import (
     CLA,
     CLA_DESK_HALF_M,
@@ -180,5 +175,5 @@ def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, cal
 def signals(body: ClaBody, grip: Grip, scene: dict) -> dict:
     """What is recorded: hand and object positions, the whole-spine (roll, pitch, yaw), the CoM margin."""
     return {"hand": body.site_pos("hand_r"), "object": body.object_pos("floor_object"),
-            "whole_deg": np.degrees(body.theta().reshape(CLA.n, 3).sum(axis=0)), "com_margin": com_margin(body),
+            "whole_deg": np.degrees(whole_spine(body.theta())), "com_margin": com_margin(body),
             "gripped": float(grip.gripped), "spot_gap": float(np.linalg.norm(body.site_pos("hand_r") - scene["spot"]))}

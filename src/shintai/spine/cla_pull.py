@@ -25,9 +25,10 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control, spine_loop, whole
-from shintai.spine.cla_levelling import min_jerk
-from shintai.spine.geometry import uniform_posture
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control, spine_loop
+from shintai.spine.cla_keyframes import Key, KeyframePlayer
+from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
 
 ARM = ("shoulder_pitch_r", "elbow_r", "wrist_r")
@@ -126,30 +127,36 @@ def arm_keyframes(m, lean: float, x_obj: float) -> dict[str, np.ndarray]:
     return out
 
 
+def arm_keys(keyframes: dict[str, np.ndarray]) -> list[Key]:
+    """The arm's part of the timeline as key postures for the keyframe player: each keyframe reached at its
+    arrival time from its move's start (:data:`STARTS`), a hold (a key naming no joint) where the arm waits."""
+    keys, at = [], 0.0
+    for arrive, name, _ in TIMELINE:
+        if STARTS[name] > at:
+            keys.append(Key(STARTS[name] - at, {}, "hold"))
+        keys.append(Key(arrive - STARTS[name], dict(zip(ARM, keyframes[name])), name))
+        at = arrive
+    return keys
+
+
 class PullPattern(Module):
     """The pull's timeline: the spine's goals (whole-spine pitch) on the ticks they change and the arm's targets
-    every tick, joint-space minimum jerk from keyframe to keyframe."""
+    every tick, joint-space minimum jerk from keyframe to keyframe (the seqplugin player,
+    :class:`~shintai.spine.cla_keyframes.KeyframePlayer`)."""
 
     def __init__(self, keyframes: dict[str, np.ndarray], lean: float, start_arm, name: str = "pull"):
         super().__init__(name)
         self.keys, self.lean, self.start = keyframes, lean, np.asarray(start_arm, dtype=float)
+        self.player = KeyframePlayer(ARM, dict(zip(ARM, self.start)), arm_keys(keyframes), channel="arm")
         self.t0, self.sent = 0.0, set()
 
     def reset(self, snapshot: Snapshot) -> None:
         self.t0, self.sent = snapshot["t"], set()
-
-    def arm(self, t: float) -> np.ndarray:
-        q = self.start
-        for arrive, name, _ in TIMELINE:
-            begin = STARTS[name]
-            if t < begin:
-                break
-            q = q + (self.keys[name] - q) * min_jerk(min(1.0, (t - begin) / (arrive - begin)))
-        return q
+        self.player.reset(snapshot)
 
     def update(self, snapshot: Snapshot):
         t = snapshot["t"] - self.t0
-        out = dict(zip(ARM, self.arm(t)))
+        out = dict(zip(ARM, self.player.update(snapshot)["arm"]))
         for _, name, fraction in TIMELINE:
             if t >= STARTS[name] and name not in self.sent:
                 self.sent.add(name)
@@ -179,7 +186,7 @@ def run_pull(p: dict, with_spine: bool, camera=None) -> dict:
         hand, obj = snap["hand_r_pos"], body.object_pos("desk_object")
         gap = np.abs(hand - obj) - CLA_OBJECT_HALF_M
         rows.append([snap["t"] - t0, *hand, *(obj - x0), float(np.linalg.norm(np.maximum(gap, 0.0)) -
-                     CLA_HAND_RADIUS_M), *np.degrees(whole(snap["theta"]))])
+                     CLA_HAND_RADIUS_M), *np.degrees(whole_spine(snap["theta"]))])
 
     with camera(body) if camera is not None else contextlib.nullcontext():
         loop.run(END_S, every={10: sample})

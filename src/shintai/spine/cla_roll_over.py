@@ -26,8 +26,10 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec, spine_control, start_targets
+from shintai.spine.cla_body import LIMB_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla_control import spine_control
 from shintai.spine.cla_keyframes import Key, WholeBodyKeys
+from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA
 
 CONTACT_MIN_SIZE_M = 0.009  # robot geoms at least this large touch the floor (not the reels, sites' helpers)
@@ -92,5 +94,5 @@ def build(spine: bool, yaw_deg: float = YAW_DEG, calibration_s: float = 1.0):
 
 def signals(body: ClaBody) -> dict:
     return {"pelvis_turn_deg": turn_deg(body, "link0"), "shoulder_turn_deg": turn_deg(body, f"link{CLA.n}"),
-            "whole_deg": np.degrees(body.theta().reshape(CLA.n, 3).sum(axis=0)),
+            "whole_deg": np.degrees(whole_spine(body.theta())),
             "pelvis": body.body_pos("link0").copy()}

@@ -27,10 +27,11 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Loop, Module, Snapshot
-from shintai.spine.cla_body import ClaBody, spine_control, whole
-from shintai.spine.cla_levelling import min_jerk
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control
+from shintai.spine.cla_keyframes import SPINE_AXES, Key, KeyframePlayer
 from shintai.spine.control import SETPOINTS, encoder_targets
-from shintai.spine.geometry import uniform_posture
+from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA
 
 HOLD_S, FOLLOW_S = 0.5, 1.0  # the hold after the wind-up, the run after the throw starts [s] (chosen)
@@ -43,14 +44,15 @@ ARM_WINDUP = {"shoulder_roll_r": 0.3, "shoulder_pitch_r": 2.9, "elbow_r": 2.0, "
 ARM_RELEASE = {"shoulder_roll_r": 0.3, "shoulder_pitch_r": 1.2, "elbow_r": 0.2, "wrist_r": 0.5}
 SHOULDER_JOINTS = ("shoulder_roll_r", "shoulder_pitch_r")
 ELBOW_JOINTS = ("elbow_r", "wrist_r")
-
-
-def _blend(a, b, s: float):
-    return a + (b - a) * min_jerk(min(max(s, 0.0), 1.0))
+START_ARM = {"shoulder_pitch_r": 0.0, "elbow_r": 0.3}  # the seated keyframe's arm (cla_body.SEATED_POSE)
+PARTS = {"spine": SPINE_AXES, "shoulder": SHOULDER_JOINTS, "elbow": ELBOW_JOINTS}  # each on its own player
 
 
 class ThrowPattern(Module):
-    """The throw's timeline (module docstring); durations [s]; ``starts`` the three parts' throw starts."""
+    """The throw's timeline (module docstring); durations [s]; ``starts`` the three parts' throw starts. Each part
+    (:data:`PARTS`: the whole-spine Θ, the shoulder, the elbow and wrist) is a
+    :class:`~shintai.spine.cla_keyframes.KeyframePlayer` (the seqplugin player, minimum jerk) of three keys: the
+    wind-up, a hold until its throw start, the release."""
 
     def __init__(self, zero_lengths, spine_s: float, shoulder_s: float, elbow_s: float, sequenced: bool = True,
                  windup_s: float = 1.5, name: str = "throw"):
@@ -61,38 +63,24 @@ class ThrowPattern(Module):
         peak = self.throw_at + spine_s / 2  # every part's velocity peak at the spine's
         # not sequenced (the ablation): every part starts together when the throw starts
         self.starts = {part: peak - d / 2 if sequenced else self.throw_at for part, d in self.durations.items()}
-        self.spine = (np.zeros(3), np.radians(SPINE_WINDUP_DEG), np.radians(SPINE_RELEASE_DEG))
-        self.t0 = 0.0
+        windup = {**dict(zip(SPINE_AXES, np.radians(SPINE_WINDUP_DEG))), **ARM_WINDUP}
+        release = {**dict(zip(SPINE_AXES, np.radians(SPINE_RELEASE_DEG))), **ARM_RELEASE}
+        self.players = {}
+        for part, names in PARTS.items():
+            keys = [Key(windup_s, {n: windup[n] for n in names}, "wind-up"),
+                    Key(self.starts[part] - windup_s, {}, "hold"),
+                    Key(self.durations[part], {n: release[n] for n in names}, "throw")]
+            self.players[part] = KeyframePlayer(names, START_ARM, keys, channel=part, name=part)
 
     def reset(self, snapshot: Snapshot) -> None:
-        self.t0 = snapshot["t"]
-
-    def progress(self, part: str, t: float) -> float:
-        return (t - self.starts[part]) / self.durations[part]
-
-    def spine_whole(self, t: float) -> np.ndarray:
-        rest, windup, release = self.spine
-        if t < self.throw_at:
-            return _blend(rest, windup, t / self.windup_s)
-        return _blend(windup, release, self.progress("spine", t))
-
-    def arm(self, t: float) -> dict[str, float]:
-        out = {}
-        for joint, goal in ARM_WINDUP.items():
-            part = "shoulder" if joint in SHOULDER_JOINTS else "elbow"
-            if t < self.throw_at:
-                out[joint] = _blend(START_ARM.get(joint, 0.0), goal, t / self.windup_s)
-            else:
-                out[joint] = _blend(goal, ARM_RELEASE[joint], self.progress(part, t))
-        return out
+        for player in self.players.values():
+            player.reset(snapshot)
 
     def update(self, snapshot: Snapshot):
-        t = snapshot["t"] - self.t0
-        l_r = encoder_targets(CLA.model.lengths(uniform_posture(self.spine_whole(t), CLA.n)), self.zero)
-        return {"l_r": l_r, "l_0": l_r, **self.arm(t)}
-
-
-START_ARM = {"shoulder_pitch_r": 0.0, "elbow_r": 0.3}  # the seated keyframe's arm (cla_body.SEATED_POSE)
+        x = {part: player.update(snapshot)[part] for part, player in self.players.items()}
+        l_r = encoder_targets(CLA.model.lengths(uniform_posture(x["spine"], CLA.n)), self.zero)
+        arm = {n: float(v) for part in ("shoulder", "elbow") for n, v in zip(PARTS[part], x[part])}
+        return {"l_r": l_r, "l_0": l_r, **arm}
 
 
 def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) -> dict:
@@ -110,7 +98,7 @@ def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) ->
     def sample(snap):
         v = np.zeros(6)
         mujoco.mj_objectVelocity(body.model, body.data, mujoco.mjtObj.mjOBJ_SITE, hand, v, 0)
-        rows.append([snap["t"] - t0, float(np.linalg.norm(v[3:])), *np.degrees(whole(snap["theta"])),
+        rows.append([snap["t"] - t0, float(np.linalg.norm(v[3:])), *np.degrees(whole_spine(snap["theta"])),
                      body.joint_qpos("shoulder_pitch_r"), body.joint_qpos("elbow_r")])
 
     with camera(body) if camera is not None else contextlib.nullcontext():

@@ -1,5 +1,6 @@
 """``spine.posture-database``'s run: one posture-database session on the MuJoCo Cla (seed 003 §5.9) and its
-metrics, computed from what the session logged (:mod:`shintai.spine.posture_session`).
+metrics, computed from what the session logged (:mod:`shintai.spine.posture_session`,
+:mod:`shintai.spine.posture_person`).
 
 The session (chosen; the thesis shows Kenta being taught in photographs, Fig. 5.30, with no protocol): a
 strong push forward → taught by hand to a bent-forward posture; two weak pushes; a strong push sideways →
@@ -18,7 +19,8 @@ from shintai.core.runtime import Loop
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.posture_database import PostureDatabase
-from shintai.spine.posture_session import EXEC_DWELL_S, LIMP, MOVE, PLAY, SETTLE_S, Action, Experimenter, Supervisor
+from shintai.spine.posture_person import EXEC_DWELL_S, Action, Experimenter
+from shintai.spine.posture_session import LIMP, MOVE, PLAY, SETTLE_S, Supervisor
 from shintai.spine.robots import CLA, SAMPLE_PERIOD_S
 from shintai.spine.tactile import STRONG, WEAK, TriggerLevels
 from shintai.spine.teach_runs import teaching_body

@@ -14,7 +14,8 @@ from collections.abc import Callable
 import numpy as np
 
 from shintai.core.runtime import SET, Loop, declare
-from shintai.spine.cla_body import ClaBody, spine_control
+from shintai.spine.cla_body import ClaBody
+from shintai.spine.cla_control import spine_control
 from shintai.spine.control import SETPOINTS
 from shintai.spine.kenta_body import ARM_NAMES, calibrated_kenta, image_offset
 from shintai.spine.robots import CLA, CLA_FOV_DEG, KENTA, KENTA_EYE_LIMIT_RAD, KENTA_NECK_LIMIT_RAD
@@ -87,7 +88,7 @@ def track(robot: str, duration_s: float, amplitude_m: float, path_period_s: floa
                                           ("neck_pan", "neck_tilt"), -1.0, KENTA_NECK_LIMIT_RAD)}
     else:
         body = TrackedCla()
-        control, zero = spine_control(body)  # Cla's own zeroing (1 s, cla_body)
+        control, zero = spine_control(body)  # Cla's own zeroing (1 s, cla_control)
         camera, model = "head_cam", CLA.model
         parts = {"neck": lambda: GazeLoop("neck", TRACKING_PERIODS_S["neck"], TRACKING_GAINS["neck"],
                                           ("neck_yaw", "neck_pitch"), -1.0, CLA_NECK_LIMIT_RAD)}
