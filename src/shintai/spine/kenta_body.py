@@ -30,6 +30,7 @@ import numpy as np
 
 from shintai.core.constants import KGF_N
 from shintai.core.runtime import SET, Loop, declare
+from shintai.sim.spec import add_capsule
 from shintai.spine.bodies_mujoco import SpineBody, build_spec
 from shintai.spine.control import Gains, Mode, MuscleControl
 from shintai.spine.robots import (
@@ -89,8 +90,7 @@ def _servo(spec, name: str, joint: str, kp: float, torque: float, lim: float, te
 
 
 def _capsule(body, to, radius, mass, rgba=(0.75, 0.75, 0.8, 1)) -> None:
-    body.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[0, 0, 0, *to], size=[radius, 0, 0], mass=mass,
-                  rgba=list(rgba), contype=0, conaffinity=0)
+    add_capsule(body, to, radius, mass, list(rgba))  # a limb segment that collides with nothing
 
 
 def _add_arm(spec, top, side: str) -> None:
