@@ -13,6 +13,10 @@ a motion is only the discs and ligaments, whose constants the thesis does not gi
 * :func:`unstretched_bend` — the fastest forward bend (d Σpitch) along which no muscle lengthens (an LP).
 * :func:`lock_reels` — the reels of a :class:`~shintai.spine.bodies_mujoco.SpineBody` fixed where they are
   (two-sided stops on the reel joints: an ideal length control).
+* :func:`upright_stiffness`, :func:`upright_margin`, :func:`critical_disc_stiffness` — the thesis's criterion
+  for the discs (§7.1.1 "椎間板による基本姿勢と復元力 (重力を前提)", §4.6.2): upright is a stable equilibrium
+  under gravity with every muscle at one tension; k* the smallest disc stiffness for which it is
+  (robots.KENTA_DISC_NM_RAD = 2 × k*).
 """
 
 from __future__ import annotations
