@@ -7,13 +7,21 @@ import mujoco
 import numpy as np
 import pytest
 
+from shintai.core.constants import KGF_N
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
 from shintai.spine.kenta_postures import locked_hold
-from shintai.spine.kenta_statics import lock_reels, muscle_span, unstretched_bend
-from shintai.spine.robots import KENTA, KENTA_NECK_JOINTS
+from shintai.spine.kenta_statics import (
+    critical_disc_stiffness,
+    lock_reels,
+    muscle_span,
+    unstretched_bend,
+    upright_margin,
+    upright_stiffness,
+)
+from shintai.spine.robots import KENTA, KENTA_DISC_NM_RAD, KENTA_NECK_JOINTS
 from shintai.spine.tracking_loops import (
     TRACKING_PERIODS_S,
     ArmSwing,
@@ -124,12 +132,28 @@ def test_kenta_muscles_cannot_hold_every_direction():
 
 
 def test_locked_reels_hold_only_with_stiff_discs():
-    """With every reel locked (a stiff two-sided stop, slip < 0.05 mm) a taught forward bend sinks with the
-    chosen 3 N m/rad discs and holds with 30 N m/rad: the discs, not the lock, decide."""
-    soft = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2)
-    stiff = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2, disc_nm_rad=30.0)
+    """With every reel locked (a stiff two-sided stop, slip < 0.05 mm) a taught forward bend sinks with 3 N m/rad
+    discs (our old choice) and holds with KENTA's (2 × k*, robots.KENTA_DISC_NM_RAD): the discs, not the lock,
+    decide."""
+    soft = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2, disc_nm_rad=3.0)
+    stiff = locked_hold(1.0, 0.8, 0.4, zeroing_s=0.2)
     assert soft["locked_end_pitch_deg"] - soft["locked_taught_pitch_deg"] > 20.0 and soft["muscle_rank"] == 24
     assert abs(stiff["locked_end_pitch_deg"] - stiff["locked_taught_pitch_deg"]) < 5.0
+
+
+def test_upright_is_stable_with_kentas_discs():
+    """The criterion behind KENTA_DISC_NM_RAD (seed 003 §7.1.1 "直立した姿勢を基本姿勢とすると…基本姿勢に向かう場合に
+    …復元力が生じる", §4.6.2: all muscles at one tension leave only the discs' restoring force): upright, under
+    gravity with every muscle at 1 kgf, is stable (the stiffness about it positive definite) with KENTA's discs
+    and unstable with half of k*; the chosen value keeps the factor 2 over k*, and slack muscles need less."""
+    b = KentaBody()
+    k_star = critical_disc_stiffness(b, KGF_N, tol_nm_rad=1.0)
+    assert KENTA.disc.k_bend_nm_rad == KENTA.disc.k_twist_nm_rad == KENTA_DISC_NM_RAD >= 2 * k_star - 1.0
+    assert upright_margin(b, KGF_N, KENTA_DISC_NM_RAD) > 0.0 > upright_margin(b, KGF_N, 0.5 * k_star)
+    assert upright_margin(b, KGF_N, k_star - 1.0) < 0.0 < upright_margin(b, KGF_N, k_star + 1.0)
+    assert upright_margin(b, 0.0, 0.5 * k_star) > upright_margin(b, KGF_N, 0.5 * k_star)
+    K, names = upright_stiffness(b, KGF_N, 0.0)
+    assert np.allclose(K, K.T) and len(names) == 3 * KENTA.n + 20 + 15 + 2  # spine, arms, neck, eyes
 
 
 def test_lock_reels_is_a_stiff_lock():

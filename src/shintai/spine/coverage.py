@@ -141,11 +141,10 @@ ROWS = (
                "only, no number",
         difference="our whole-body Kenta (spine/kenta_body.py: the 40 muscles and ligaments of robots.py with chosen "
                    "attachment points, servoed arms, a wire-sum neck, pan/tilt eyes; no legs, pelvis fixed) moves its "
-                   "spine into three taught postures (spine.kenta-taught-postures)",
-        why_not="our Kenta cannot hold a posture with its muscle lengths fixed: §3.7.2's muscles end only on the "
-                "blocks and vertebrae 2, 4, 6, 8 (J_m rank 24 of 30, 58 of 60 pure torques unresisted), so the "
-                "discs (3 N m/rad, chosen: not in the text) must carry the 5 kg upper body; with the reels locked "
-                "a 22° forward bend sinks to 52° in 0.5 s (holds at 30 N m/rad) (notes/kenta-taught-postures.md)",
+                   "spine into three taught postures (spine.kenta-taught-postures) and back, within 2° of them; discs "
+                   "280 N m/rad = 2 × the stiffness that makes upright stable under gravity with all muscles at 1 kgf "
+                   "(§7.1.1's criterion: not a thesis number); the teacher reaches only half the commanded bend",
+        why_not="the replayed postures miss the taught ones (mean error > 5°) (notes/kenta-taught-postures.md)",
     ),
     # ---------------------------------------------------------------- chapter 4: control of the spine
     Row(
@@ -157,11 +156,10 @@ ROWS = (
                "Photographs only, no number",
         difference="the teacher is a pair of hands holding every spine joint (position servos on the hinges) while "
                    "all 40 muscles run T mode at 1 kgf; three chosen postures, replayed through the seqplugin "
-                   "player (minimum jerk, 1 s moves every 2 s), two cycles",
-        why_not="the replay follows the taught pitch sequence but twists to −50…−80° yaw and rolls 60–85° (mean "
-                "error 89°, 1 of 3 replayed postures nearest its own): our Kenta's fixed muscle lengths do not fix "
-                "its posture — §3.7.2's routing leaves it to the discs (their stiffness is not in the text), and "
-                "ours (3 N m/rad) do not hold it: locked reels, 22° → 52° in 0.5 s (notes/kenta-taught-postures.md)",
+                   "player (minimum jerk, 1 s moves every 2 s), two cycles; discs 280 N m/rad (2 × the stiffness "
+                   "that makes upright stable under gravity with all muscles at 1 kgf, §7.1.1's criterion), so the "
+                   "teacher reaches only 6–9° short of the commanded postures; replayed within 1.3° (mean)",
+        why_not="replayed postures not nearest their own taught ones (notes/kenta-taught-postures.md)",
     ),
     Row(
         key="003:s4.2.2",
@@ -442,8 +440,9 @@ ROWS = (
         result="§5.2.11: shown in photographs only, no number",
         difference="spine.tracking-loops' Kenta run: both arms swing (shoulders ±30° in antiphase, elbows with "
                    "them, 2 s; chosen) while the eye, neck and spine loops track the ball",
-        why_not="the parts move together (every 0.5 s window), but part of the spine's motion is its collapse "
-                "(notes/tracking-loops.md)",
+        why_not="the arms move in every 0.5 s window but the spine in 8 % of them (concurrent fraction 0.08 < 0.9): "
+                "the spine loop's posture estimate from the encoder lengths (J_m rank 24 of 30) runs away 0.4 s in "
+                "and its command stays on its clip (notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.14",
@@ -452,11 +451,9 @@ ROWS = (
              "parallel",
         result="§5.2.12: realised ('実現している'); no period or error printed",
         difference="our whole-body Kenta; eye loop 33 ms, neck 66 ms, spine 198 ms (periods not in the text: chosen), "
-                   "each a Module of one Loop; the ball's centre projected into the left eye camera",
-        why_not="in our Kenta the spine, held in L mode, twists and falls to one side after 2 s (the mechanism of "
-                "spine.kenta-taught-postures: the muscles leave the posture to the too-soft chosen discs), carrying "
-                "the ball up to 38° off axis; eyes and neck recover it within 1.5 s, but it is in view 92 % of the "
-                "time (< 95 %; 93 % with the arms still) (notes/tracking-loops.md)",
+                   "each a Module of one Loop; the ball's centre projected into the left eye camera; in view 99.4 % "
+                   "of the time, but the spine loop's posture estimate runs away and the eyes and neck track alone",
+        why_not="the ball leaves the eyes' view (notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.21",

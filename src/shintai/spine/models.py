@@ -6,7 +6,7 @@ from shintai.spine.bodies_mujoco import build_spec
 from shintai.spine.cla_body import build_spec as build_cla_body
 from shintai.spine.cla_crawl import kneeling_spec
 from shintai.spine.hanzous_body import build_spec as build_hanzous
-from shintai.spine.kenta_body import kenta_spec
+from shintai.spine.kenta_body import SPINE_ARMATURE_KGM2, kenta_spec
 from shintai.spine.robots import CLA, KENTA
 from shintai.spine.sq43_body import build_spec as build_sq43
 
@@ -18,7 +18,11 @@ def cla():
 
 @model("spine.kenta", "Kenta's spine: ten joints and forty muscles, ligaments included (seed 003 §3.7)")
 def kenta():
-    return build_spec(KENTA)
+    spec = build_spec(KENTA)
+    for joint in spec.joints:  # kenta_body's armature: the 280 N m/rad discs need it at the 0.5 ms step
+        if joint.name.startswith("j") and ":" not in joint.name:
+            joint.armature = SPINE_ARMATURE_KGM2
+    return spec
 
 
 @model("spine.sq43", "SQ43: 14-DOF quadruped, shoulder + compliant 3-block spine + hip, 1.9 kg (seed 003 §3.2, §5.6)")

@@ -524,6 +524,21 @@ def _kenta_ligaments(model_chain: Chain) -> LigamentSpec:
     return LigamentSpec(springs, np.array(k), rest - np.array(stretch), tuple(types))
 
 
+# Kenta's disc stiffness per joint axis [N m/rad]. The thesis gives no disc constant, but it gives the criterion:
+# seed 003 §7.1.1 "椎間板による基本姿勢と復元力 (重力を前提)": "直立した姿勢を基本姿勢とすると、
+# 基本姿勢は重力のポテンシャルエネルギーが高い状態になり、姿勢を変形した状態から基本姿勢に向かう場合に
+# アクチュエータに必要とされる力を補助する形で復元力が生じる", and §4.6.2: with every muscle
+# tension-controlled at the same tension "筋の張力はつりあって体幹の動きには影響を与えなくなる。
+# つまり、シリコンゴムから成る椎間板のばね成分で初期姿勢に戻ろうとする力が生じているだけの状態になる".
+# So upright must be a stable equilibrium of the discs under gravity with every muscle at one tension (1 kgf, §4.2.1).
+# kenta_statics.critical_disc_stiffness computes on the whole body (arms, neck and eyes on their servos): the
+# smallest eigenvalue of the stiffness about upright (discs + ligaments + the held wires' geometric stiffness +
+# servos − gravity) crosses zero at k* = 136.7 N m/rad (78.3 with the muscles slack: the 40 wires at 1 kgf
+# compress the column); the unstable mode is the whole spine rolling. Chosen: 2 × k* (the usual safety factor of
+# 2, our choice), rounded up to 280. (Was 3, chosen without a criterion: the spine then sank under gravity.)
+KENTA_DISC_NM_RAD = 280.0
+
+
 def _kenta() -> tuple[SpineRobot, LigamentSpec, tuple[str, ...]]:
     chain = Chain.straight([KENTA_SEGMENT_M] * KENTA_JOINTS, KENTA_LIMIT_RAD,
                            rest_pitch_rad=np.radians(KENTA_REST_PITCH_DEG))
@@ -532,7 +547,8 @@ def _kenta() -> tuple[SpineRobot, LigamentSpec, tuple[str, ...]]:
     robot = SpineRobot(
         name="Kenta", source="seed 003 §3.7, Table 3.3", model=SpineModel(chain, muscles), motors=motors,
         pull_link=tuple(0 if nm.startswith("HIP") else KENTA_JOINTS for nm in muscles.names),
-        disc=DiscSpec(3.0, 3.0, 0.05, "chosen (moulded KE-106 JIS-A 50 around the ball, §3.7.1)"),
+        disc=DiscSpec(KENTA_DISC_NM_RAD, KENTA_DISC_NM_RAD, 0.05,
+                      "derived (moulded KE-106 JIS-A 50 around the ball, §3.7.1; 2 × k*, see KENTA_DISC_NM_RAD)"),
         link_mass_kg=(3.0,) + (0.06,) * (KENTA_JOINTS - 1) + (1.5,),  # chosen: 20 motors per block
         block_half_m=KENTA_BLOCK_HALF_M, vertebra_radius_m=0.018,
         notes=("central Ø1.2 mm stainless wire fixed at the hip, tensioned at the shoulder (§3.7.1): "
