@@ -33,21 +33,21 @@ import numpy as np
 
 from shintai.core.geometry import rot_x
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid import fill_keyframe, scene_spec, set_joints
+from shintai.humanoid import fill_keyframe, scene_spec
 from shintai.humanoid.ch4_riding import roll_of
-from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS, STANDING_POSTURE, SUBSTEPS
+from shintai.humanoid.constants import CONTROL_PERIOD, SUBSTEPS
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.foot_attitude import quat_to_rot
 from shintai.humanoid.mlc import MLC, MLC_V, SIGMA_V, MLCParams
 from shintai.humanoid.prior_value_integrator import PID
-from shintai.humanoid.robots.hrp2 import LEG, SIDES, add_hrp2, side_posture
+from shintai.humanoid.robots.hrp2 import add_hrp2
 from shintai.humanoid.speed_governing import foot_pitch_increments
 from shintai.humanoid.stabilizer import StabilizerModule
 from shintai.humanoid.standing import Push, Standing
 from shintai.humanoid.vboard_ride import CHANNELS as RIDE_CHANNELS
 from shintai.humanoid.vboard_ride import ChestPitchIK, FootPitch, Lift, ScooterSensors
+from shintai.humanoid.vboard_stand import posture_on_pads
 from shintai.humanoid.vehicles.ninebot import NINEBOT, PAD, NinebotSpec, add_ninebot, install_firmware, ninebot_velocity
-from shintai.sim import ik
 from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------------
@@ -62,34 +62,13 @@ MLC_SPEED = MLC_V  # the speed loop's plant for Eqs. 6.20–6.29: Table 6.2's (n
 START_DELAY = 0.0  # s after the lift's release; the thesis's 0–2 s are its first (unlearned) batch
 JOY_FULL = 0.05  # rad of vehicle roll at full stick (chosen, the operator model of RollShaping)
 ALPHA = 0.5 * CONTROL_PERIOD  # rad per tick at full stick: φ_C^d moves ≤ 0.5 rad/s (Eq. 7.6's α, not given)
-COM_ITERATIONS = 3
 CHANNELS = {**RIDE_CHANNELS, **declare("zmp_mod", "ref:chest_roll", kind=SET)}
 
 
 def standing_posture(model: mujoco.MjModel, n: NinebotSpec = NINEBOT) -> np.ndarray:
-    """qpos with the soles on the footboards' centres and the mass centre over the axle (vboard_stand's recipe)."""
-    qpos = model.qpos0.copy()
-    posture = side_posture(STANDING_POSTURE)
-    set_joints(model, qpos, posture)
-    hip, knee = posture["l_hip_pitch"], posture["l_knee_pitch"]
-    leg = HRP2_LINKS.thigh * np.cos(hip) + HRP2_LINKS.shank * np.cos(hip + knee)
-    root = model.joint("root").qposadr[0]
-    qpos[root:root + 3] = [0.0, 0.0, n.board_height - HRP2_LINKS.hip_z + leg + HRP2_LINKS.ankle_height]
-    data = mujoco.MjData(model)
-    waist = model.body("waist").id
-    for _ in range(COM_ITERATIONS):
-        data.qpos[:] = qpos
-        mujoco.mj_kinematics(model, data)
-        targets = {f"{s}_sole": (data.site(PAD[s]).xpos.copy(), np.eye(3)) for s in SIDES}
-        result = ik.solve(model, targets, qpos, LEG, posture={j: posture[j] for j in LEG if j in posture})
-        if not result.ok:
-            raise ValueError(f"riding posture on the Ninebot not reachable: residual {result.residual[0]:.4f} m")
-        qpos = result.q
-        data.qpos[:] = qpos
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_comPos(model, data)
-        qpos[root] -= data.subtree_com[waist][0] - data.site("ninebot_centre").xpos[0]
-    return qpos
+    """qpos with the soles level on the footboards' centres and the mass centre over the axle."""
+    return posture_on_pads(model, model.qpos0.copy(), n.board_height, PAD, "ninebot_centre", "on the Ninebot",
+                           flat_soles=True)
 
 
 def build_ninebot_stand(n: NinebotSpec = NINEBOT, training_wheels: bool = True, substeps: int = SUBSTEPS):
