@@ -11,6 +11,7 @@ from shintai.core.constants import KGF_N
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 from shintai.spine.geometry import uniform_posture
+from shintai.spine.inverse_model import PINV_RCOND, jacobian_integration
 from shintai.spine.kenta_body import TEACHER_GROUP, KentaBody, image_offset
 from shintai.spine.kenta_postures import locked_hold
 from shintai.spine.kenta_statics import (
@@ -95,6 +96,26 @@ def test_tracking_loops_short_run():
     assert m["visible_fraction"] == 1.0 and m["rms_tracking_error_deg"] < 15.0
     assert m["series"]["gaze"].shape[1:] == (3, 2)
     assert sum(m[f"{n}_share"] for n in ("eyes", "neck", "spine")) == pytest.approx(1.0)
+
+
+def test_length_estimate_ill_conditioned_off_straight():
+    """Why Kenta's spine-loop estimate runs away (notes/tracking-loops.md): J_m (40 × 30) has rank 24 at the
+    basic posture, but 0.2° off it one of the six lost directions comes back with a singular value ≈ 1e-4 of the
+    largest — above PINV_RCOND, so eq. 4.27's J_m⁺ keeps it: 0.01 mm of length error along it moves a joint by
+    degrees in one step (along the largest direction: 0.0003°), and the step leaves q(θ) off by more than the
+    error was."""
+    model = KENTA.model
+    assert muscle_span(model, np.zeros(3 * model.n))["rank"] == 24
+    prev = np.radians(0.2) * np.random.default_rng(0).uniform(-1, 1, 3 * model.n)
+    U, s, _ = np.linalg.svd(model.jacobian_fd(prev))
+    assert 1e-5 < s[24] / s[0] < 1e-3 and s[25] / s[0] < PINV_RCOND
+    steps = []
+    for u in (U[:, 24], U[:, 0]):
+        r = jacobian_integration(model, model.lengths(prev) + 1e-5 * u, theta0=prev)
+        steps.append(np.degrees(np.abs(r.theta - prev).max()))
+    assert steps[0] > 1.0 and steps[1] < 1e-3
+    assert r.length_residual_m < 1e-6  # the well-conditioned step lands on q
+    assert jacobian_integration(model, model.lengths(prev) + 1e-5 * U[:, 24], theta0=prev).length_residual_m > 1e-5
 
 
 def test_taught_postures_short_run(tmp_path):

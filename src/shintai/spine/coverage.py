@@ -442,8 +442,13 @@ ROWS = (
         difference="spine.tracking-loops' Kenta run: both arms swing (shoulders ±30° in antiphase, elbows with "
                    "them, 2 s; chosen) while the eye, neck and spine loops track the ball",
         why_not="the arms move in every 0.5 s window but the spine in 8 % of them (concurrent fraction 0.08 < 0.9): "
-                "the spine loop's posture estimate from the encoder lengths (J_m rank 24 of 30) runs away 0.4 s in "
-                "and its command stays on its clip (notes/tracking-loops.md)",
+                "the spine loop's posture estimate from the encoder lengths runs away 0.4 s in and its command stays "
+                "on its clip: eq. 4.27's J_m⁺ on Kenta's J_m (rank 24 of 30 straight) keeps one of the six lost "
+                "directions once it returns off straight (σ 1.6e-6 of σ_max at a 0.19° estimate, above our rcond "
+                "1e-6), so 0.006 mm of length error becomes a 6.9 rad step (roll 30°) — the divergence §4.4.3 "
+                "reports for the method ('小さい誤差が生じると…発散していきやすい'); the thesis's NN is not built "
+                "for Kenta. A probe with rcond 1e-3 keeps the estimate within 0.7° but the well-tracking eyes then "
+                "leave the spine still (fraction 0.00) (notes/tracking-loops.md)",
     ),
     Row(
         key="003:fig5.14",
