@@ -24,15 +24,34 @@ import numpy as np
 from shintai.core.runtime import Module
 from shintai.humanoid import ch4_riding as cr
 from shintai.humanoid.ch4_riding import Rider, vehicle_pose2d, vehicle_roll
-from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_C, LEAD_DT, LEGS_FZ, NAVIGATION, OVERTURN_ROLL,
-                                        SLIP_START_S)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    DEG,
+    DELTA_C,
+    LEAD_DT,
+    LEGS_FZ,
+    NAVIGATION,
+    OVERTURN_ROLL,
+    SLIP_START_S,
+)
 from shintai.humanoid.corrections import push_down_angle
-from shintai.humanoid.navigation import (Costmap, DepthSensor, DynamicWindow, crank_rate, crank_reference,
-                                         global_path, handle_reference)
+from shintai.humanoid.navigation import (
+    Costmap,
+    DepthSensor,
+    DynamicWindow,
+    crank_rate,
+    crank_reference,
+    global_path,
+    handle_reference,
+)
 from shintai.humanoid.switching import active_leg
 from shintai.humanoid.tricycle_rig import CrankEstimate
+from shintai.scenarios.registry import Param
 
 DRIVES = ("motor", "legs")
+# the ch. 4 scenarios' crank driver choice (one declaration for every scenario that drives with Eq. 4.22's target)
+DRIVE_PARAM = Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor "
+                    "(stand-in)", choices=DRIVES)
 MOTOR_NOTE = ("drive=motor: a crank motor stands in for the legs (NOT the thesis's pedalling); the arms steer by "
               "the humanoid's own IK")
 LEGS_NOTE = "drive=legs: the humanoid pedals with its own legs (ch. 3 active/passive role switching)"

@@ -10,8 +10,18 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import (CH4_VIEW, DRIVES, LEAD_NOTE, MOTOR_NOTE, Navigator, drive_modules,
-                                        foot_off_pedal, min_distance, overturned, vehicle_geoms)
+from shintai.humanoid.ch4_drive import (
+    CH4_VIEW,
+    DRIVE_PARAM,
+    LEAD_NOTE,
+    MOTOR_NOTE,
+    Navigator,
+    drive_modules,
+    foot_off_pedal,
+    min_distance,
+    overturned,
+    vehicle_geoms,
+)
 from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
 from shintai.humanoid.constants import DEG, NAVIGATION
 from shintai.humanoid.localisation import Localiser, box_map
@@ -129,8 +139,7 @@ experiment(
     summary="Large obstacle: head depth sensor → costmap → DWA → handle/crank targets; around a partition wall, on "
             "the true pose and on the self-localisation's estimate",
     params=[
-        Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
-              choices=DRIVES),
+        DRIVE_PARAM,
         Param("max_s", 60.0, "give up after this much driving [s]", lo=5.0, hi=200.0),
         Param("goal_x_m", NAV_GOAL[0], "goal x [m] (start at the origin, heading +x)", lo=5.5, hi=8.5),
         Param("pose", "both", "the navigator's vehicle pose: true (simulator), estimated (self-localisation, "

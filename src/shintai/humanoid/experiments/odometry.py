@@ -10,7 +10,7 @@ import numpy as np
 
 from shintai.core.runtime import FunctionModule
 from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVES, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
+from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
 from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
 from shintai.humanoid.constants import DEG, TRICYCLE
 from shintai.humanoid.localisation import LOCALISATION, Localiser, box_map
@@ -114,8 +114,7 @@ experiment(
     summary="Tricycle driven and stopped at a −25° handle: wheel / visual odometry and MCL on the head's depth rays "
             "against the truth",
     params=[
-        Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
-              choices=DRIVES),
+        DRIVE_PARAM,
         Param("handle_deg", -25.0, "handle angle held while driving [deg] (Fig. 7.4: −25°)", lo=-25.0, hi=25.0),
         Param("travel_m", 1.5, "distance driven by the crank count before stopping [m] (ours: about the arc "
               "from (0, 0) to the thesis's end (1.3, −0.6) m)", lo=0.2, hi=3.0),

@@ -9,7 +9,7 @@ import numpy as np
 
 from shintai.core.runtime import FunctionModule
 from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVES, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
+from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
 from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d, vehicle_roll
 from shintai.humanoid.constants import DEG, POSTURE_K_C, POSTURE_T_C, STEP_HEIGHT, STEPS_SPEED, TRICYCLE
 from shintai.humanoid.corrections import ChestPostureControl
@@ -76,8 +76,7 @@ experiment(
     source="seed 000 §4.3.3, §7.3.1, Eqs. 4.8–4.11, Fig. 7.2",
     summary="Driving over two 10 mm steps with and without the chest posture control running in parallel",
     params=[
-        Param("drive", "legs", "who turns the crank: legs (Eq. 4.22 crank target from ω_c^ref) or motor (stand-in)",
-              choices=DRIVES),
+        DRIVE_PARAM,
         Param("k_c", POSTURE_K_C, "posture feedback gain k_C of Eq. 4.8 [1/s] (not in the thesis)", lo=0.1, hi=50.0),
         Param("t_c", POSTURE_T_C, "time constant T_C of Eq. 4.8 [s] (not in the thesis)", lo=0.05, hi=10.0),
         Param("max_s", 40.0, "give up after this much driving [s]", lo=5.0, hi=200.0),
