@@ -20,7 +20,7 @@ def test_variant_names_go_before_the_unit():
     assert per_variant({"with": {"a_m": 1}, "without": {"a_m": 2}}) == {"a_with_m": 1, "a_without_m": 2}
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """A NullBody driven by a set-point stage feeding a controller stage (the gain differs per variant)."""
     body = NullBody(dt=0.01)
     gain = params["gain"] if variant == "with" else 0.0

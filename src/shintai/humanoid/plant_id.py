@@ -51,9 +51,9 @@ def excitation(params, axis: str):
     return u
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     ride = VboardRide(level=2, theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                      excite=excitation(params, variant), seed=params.get("seed", 0))
+                      excite=excitation(params, variant), seed=seed)
 
     def board(snapshot):
         th = {s: float(snapshot[f"board_{s}_pitch"][0]) for s in "rl"}

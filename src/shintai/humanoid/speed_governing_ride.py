@@ -124,14 +124,14 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
 VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
 
 
-def governed_rig(params: dict, mode: str, learn: bool = True, boarding: bool = False) -> Rig:
+def governed_rig(params: dict, mode: str, seed: int, learn: bool = True, boarding: bool = False) -> Rig:
     """One run of the scenarios: :func:`governed_ride` from their parameters (``plant``, ``learn_s``,
     ``start_delay_s``, ``eta_scale``, ``theta_o_error_deg``, ``damping_d``), stopping at a fall or ``learn_s`` after
     the learning start; records the ride's signals every 5 ticks. ``boarding``: Fig. 6.16's self-boarding start."""
     pv = plant_values(params["plant"])
     ride = governed_ride(pv, mode=mode, learn=learn, start_delay=params.get("start_delay_s", START_DELAY),
                          theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                         eta_scale=params.get("eta_scale", 1.0), seed=params.get("seed", 0), boarding=boarding)
+                         eta_scale=params.get("eta_scale", 1.0), seed=seed, boarding=boarding)
     ride.plant = pv
     before = ride.boarding[0].duration if boarding else 0.0  # the boarding plan's length: a bound on the start
 

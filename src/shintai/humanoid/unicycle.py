@@ -29,9 +29,9 @@ P0_PARAM = Param("p0_m", P0_M, "the Ninebot firmware's moment zero point p⁰, x
                  "mass centre is placed over the axle)", lo=-0.1, hi=0.1)
 
 
-def unicycle_rig(params: dict, **ride_kw) -> Rig:
+def unicycle_rig(params: dict, seed: int, **ride_kw) -> Rig:
     """A run of ``params["duration_s"]`` after the release, ending at a fall."""
-    ride = NinebotRide(seed=params.get("seed", 0), n=replace(NINEBOT, p0=params.get("p0_m", P0_M)), **ride_kw)
+    ride = NinebotRide(seed=seed, n=replace(NINEBOT, p0=params.get("p0_m", P0_M)), **ride_kw)
 
     def until(snapshot) -> bool:
         return ride.fallen() or float(snapshot["t"]) >= ride.t0 + params["duration_s"]

@@ -3,7 +3,7 @@
 An experiment file (``shintai/<body>/experiments/<name>.py``) declares what one run is and lets the
 runner do the rest (DESIGN.md, "the runner owns the loop"):
 
-* ``rig(params, variant) -> Rig``: the body, the modules (in stages), the loop's own channels, the
+* ``rig(params, variant, seed) -> Rig``: the body, the modules (in stages), the loop's own channels, the
   stop rule (``duration`` and/or ``until``), what to record ``every`` n steps and the camera view;
 * ``variants``: the runs that make up the experiment (``("with", "without")``, or a function of the
   parameters); one run by default;
@@ -138,7 +138,7 @@ def run_rig(rig: Rig, recorder: Recorder | None = None, progress: Callable[[floa
     return Run("", rig, loop, recorder, steps)
 
 
-def run_variants(ctx, build: Callable[[dict, str], Rig], variants: Sequence[str], filmed: Sequence[str] | None = None
+def run_variants(ctx, build: Callable[[dict, str, int], Rig], variants: Sequence[str], filmed: Sequence[str] | None = None
                  ) -> dict[str, Run]:
     """Run every variant of an experiment: build its rig, film it (the first filmed variant into
     ``video.mp4``), run it with progress, merge its signals into ``ctx.recorder`` under ``<variant>.``
@@ -147,7 +147,7 @@ def run_variants(ctx, build: Callable[[dict, str], Rig], variants: Sequence[str]
     runs: dict[str, Run] = {}
     filmed = list(variants if filmed is None else filmed)
     for i, variant in enumerate(variants):
-        rig = build(ctx.params, variant)
+        rig = build(ctx.params, variant, ctx.seed)
         recorder = Recorder()
         name = None if filmed and variant == filmed[0] else variant
         share = 1.0 / len(variants)

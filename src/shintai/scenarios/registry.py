@@ -212,7 +212,7 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
                covers: Sequence[str] = (), stochastic: bool = False) -> Scenario:
     """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
 
-    Either ``rig(params, variant) -> Rig`` with ``metrics(runs, params) -> dict`` (and optionally
+    Either ``rig(params, variant, seed) -> Rig`` (``seed`` the run's, from which every random source derives) with ``metrics(runs, params) -> dict`` (and optionally
     ``plots(ctx, runs, params)``, ``variants``, ``filmed``), or ``compute(ctx) -> dict`` for an
     experiment that is not one loop per run. ``constraints``: ``(holds(params), message)`` pairs
     checked with the parameters (a violation is a parameter error, exit 2).

@@ -229,8 +229,8 @@ def variants(params) -> tuple[str, ...]:
 
 
 def condition_rig(cond: TwoPlaneCondition):
-    """``rig(params, variant)`` of a §4.5 condition."""
-    return lambda params, variant: two_plane_rig(cond, params["duration_s"],
+    """``rig(params, variant, seed)`` of a §4.5 condition."""
+    return lambda params, variant, seed: two_plane_rig(cond, params["duration_s"],
                                                  None if variant == "with_null_space" else 0.0)
 
 

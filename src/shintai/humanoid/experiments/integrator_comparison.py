@@ -28,8 +28,8 @@ MODES = ("corrected", "saturated")
 STARTS = ("boarding", "lift")
 
 
-def rig(params, variant):
-    return governed_rig(params, variant, boarding=params["start"] == "boarding")
+def rig(params, variant, seed):
+    return governed_rig(params, variant, seed, boarding=params["start"] == "boarding")
 
 
 def increase_ticks(s: dict) -> np.ndarray:

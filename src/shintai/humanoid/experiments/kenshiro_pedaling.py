@@ -28,7 +28,7 @@ def spec(params):
     return dataclasses.replace(KENSHIRO, k_n=params["k_n_mm_per_n"] / 1000)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Settle, then pedal until the second role swap (or for ``max_s``), recording every tick."""
     k = spec(params)
     body = build_kenshiro(theta_c=THETA_C_INIT, k=k)

@@ -35,7 +35,7 @@ POSES = ("both", "true", "estimated")
 VARIANTS = {"both": ("run", "estimated"), "true": ("run",), "estimated": ("estimated",)}
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """The tricycle at the origin heading +x, the wall across the straight line at x = 4 m, the goal at
     (goal_x_m, 0); stops once the navigator has stopped near the goal and the tricycle stands, or on a fall."""
     t_wall = time.perf_counter()

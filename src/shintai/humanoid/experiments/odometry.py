@@ -15,7 +15,7 @@ from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
 from shintai.humanoid.constants import DEG, TRICYCLE
 from shintai.humanoid.localisation import LOCALISATION, Localiser, box_map
 from shintai.humanoid.navigation import crank_rate
-from shintai.scenarios.experiment import Rig, run_variants
+from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 # The room (ours; the thesis's lab is not described): walls and two pillars the head's depth rays see
@@ -31,7 +31,7 @@ SETTLE_S = 1.5  # s: standing still after the stop before the run ends, chosen
 ESTIMATES = ("wheel", "visual", "localisation")
 
 
-def rig(params, seed):
+def rig(params, variant, seed):
     """The tricycle at the origin heading +x in the room: steer to θ_h, pedal (Eq. 4.18's ω_c^ref at
     ``speed_mps``) until the crank says ``travel_m`` (D_c Δθ_c / 2π), stop, settle. The localiser runs
     every planner period beside the drive."""
@@ -66,20 +66,14 @@ def rig(params, seed):
                view={**CH4_VIEW, "distance": 4.0, "elevation": -35.0}, state=state)
 
 
-def compute(ctx):
-    """One run through the runner's run_variants: compute only because the visual odometry's noise and
-    the particles are drawn from the run's seed, which ``rig(params, variant)`` does not receive."""
-    ctx.runs = run_variants(ctx, lambda params, variant: rig(params, ctx.seed), ["run"])
-    return metrics(ctx.runs["run"], ctx.params)
-
-
 def tracks(loc) -> dict[str, np.ndarray]:
     """(K, 3) poses of the truth and each estimate, one per localiser update."""
     names = ("t", "truth", "wheel", "visual", "localisation", "fused")
     return {name: np.array([r[k] for r in loc.history]) for k, name in enumerate(names)}
 
 
-def metrics(run, params):
+def metrics(runs, params):
+    run = runs["run"]
     s = run.state
     tr = tracks(s.loc)
     truth = tr["truth"]
@@ -139,5 +133,5 @@ experiment(
                                         "true_end_y_m"),
             "localisation_nearest": ThesisValue(1, "seed 000 §7.3.2 'Ground Truth Odometry に最も近い位置に補正"
                                                 "されている'", "localisation_nearest")},
-    compute=compute, plots=draw, video=True, stochastic=True,
+    rig=rig, metrics=metrics, plots=draw, video=True, stochastic=True,
 )

@@ -23,7 +23,7 @@ PER_RUN = ("distance_m", "duration_s", "falls", "max_tilt_deg", "passive_force_m
            "min_foot_force_n", "crank_advance_deg", "mean_speed_mps")
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     goals = route_goals(params["revolutions"], params["limit_deg"] * DEG)
     dt = DELTA_T * params["time_scale"]
     options = {"simultaneous": True, "wait_fraction": WAIT_FRACTION_IMPROVED} if variant == "improved" else {}

@@ -24,7 +24,7 @@ STEPS = (Obstacle("step_1", (0.75, 0.2, STEP_HEIGHT / 2), (1.75, 0.3, STEP_HEIGH
 UNTIL_X = STEPS[1].pos[0] + STEPS[1].half[0] + TRICYCLE.crank_to_back + 0.5  # both steps crossed
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Straight at 0.3 m/s over the steps; ``with``: the chest posture control runs in the same Loop as
     the driving modules (parallel processing, §7.3.1)."""
     body = build_ch4(STEPS, hip="contact", crank_motor=params["drive"] == "motor")

@@ -25,7 +25,7 @@ from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Drive straight at 0.3 m/s while the seat slips; ``with``: a Switcher runs the driving system or the
     recovery (STAND → SHIFT → RESEAT), each a Group of modules switched together."""
     motor = params["drive"] == "motor"

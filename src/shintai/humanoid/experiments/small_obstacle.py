@@ -61,7 +61,7 @@ def ppdm(crank: CrankEstimate, push_factor: float) -> Switcher:
     return switcher
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Pedal toward the board at ẋ^ref = 0.3 m/s; ``with``: PPDM (legs only). The hip is welded to the
     saddle (§3.3.2's assumption)."""
     body = build_ch4([BOARD], hip="weld", crank_motor=params["drive"] == "motor")

@@ -18,9 +18,9 @@ AXES = ("v", "omega")
 SEC, ROW = "thesis §7.4.2", "000:fig7.19"
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     pv = plant_values(params["plant"])
-    ride = solc_ride(pv, params["theta_o_error_deg"], params["eta_scale"])
+    ride = solc_ride(pv, params["theta_o_error_deg"], params["eta_scale"], seed)
     ride.plant = pv
     sw, feet = ride.switcher, ride.standing.damping.feet
 

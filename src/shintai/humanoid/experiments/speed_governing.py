@@ -28,8 +28,8 @@ TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (
 AXES = ("v", "omega")
 
 
-def rig(params, variant):
-    return governed_rig(params, "corrected", learn=variant != "off", boarding=variant == "boarding")
+def rig(params, variant, seed):
+    return governed_rig(params, "corrected", seed, learn=variant != "off", boarding=variant == "boarding")
 
 
 def variants(params) -> tuple[str, ...]:

@@ -22,7 +22,7 @@ def variants(params):
     return (AP, BOTH) if params["both_active_revolutions"] > 0 else (AP,)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Active/passive: the left leg starts active at θ_c = 0, the roles swap at 110° and 290° (§3.5.2).
     Both active: the same samples, both feet on the nominal circle under the active impedance."""
     body = riding.build_riding(crank_error=(params["crank_error_mm"] / 1000, params["crank_error_up_mm"] / 1000))

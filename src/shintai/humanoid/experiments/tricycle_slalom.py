@@ -11,7 +11,7 @@ from shintai.humanoid.tricycle_rig import F_TRG
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     goals = slalom_goals(params["curve_deg"] * DEG, params["limit_deg"] * DEG, params["slalom_deg"] * DEG)
     schedule = OperationSchedule(0.0, 0.0, goals, DELTA_T * params["time_scale"], D_THETA_H, D_THETA_C)
     return Ride(schedule, F_TRG, params["crank_error_mm"], params["handle_error_mm"]).rig()

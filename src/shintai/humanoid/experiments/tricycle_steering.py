@@ -22,7 +22,7 @@ def variants(params):
     return (AP, BOTH) if params["both_active"] else (AP,)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """Active/passive: the left arm active from 0 to −25° and back, the right arm after the measured
     handle passes 0°, up to +25° (§3.5.2). Both active: the same command on the nominal grip plans."""
     schedule = steer_schedule(DELTA_T * params["time_scale"], params["limit_deg"] * DEG)

@@ -20,12 +20,12 @@ TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body ti
 # (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     ride_push = None
     if params["tap_n"] > 0:
         ride_push = (np.array([0.0, params["tap_n"], 0.0]), TAP_AT_S, 0.1)
     step_at = params["step_at_s"]
-    return unicycle_rig(params, control="parallel", learn=False, training_wheels=False,
+    return unicycle_rig(params, seed, control="parallel", learn=False, training_wheels=False,
                         roll_shaping=params["roll_shaping"], placement=params["placement"],
                         gains=(LEARNED_TRAJ, LEARNED_V), v_d=lambda t: V_STEP if t >= step_at else 0.0, push=ride_push)
 

@@ -14,8 +14,8 @@ VARIANTS = {"as_written": "after_lip", "reference": "reference"}
 assert set(VARIANTS.values()) == set(PLACEMENTS)
 
 
-def rig(params, variant):
-    return unicycle_rig(params, control="parallel", learn=True, training_wheels=True, placement=VARIANTS[variant])
+def rig(params, variant, seed):
+    return unicycle_rig(params, seed, control="parallel", learn=True, training_wheels=True, placement=VARIANTS[variant])
 
 
 def metrics(runs, params):

@@ -7,8 +7,8 @@ from shintai.humanoid.unicycle import P0_PARAM, V_DIVERGED, summary, unicycle_ri
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
-def rig(params, variant):
-    return unicycle_rig(params, control="stabilizer", training_wheels=True)
+def rig(params, variant, seed):
+    return unicycle_rig(params, seed, control="stabilizer", training_wheels=True)
 
 
 def metrics(runs, params):

@@ -21,7 +21,7 @@ VARIANTS = ("fixed_d", "slc")
 AFTER_S = 2.0  # s of standing after the plan's end (the robot on the scooter), if it has not fallen
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     """The stack of :class:`~shintai.humanoid.standing.Standing` stepping onto the scooter
     (:mod:`shintai.humanoid.boarding`); the SLC schedule runs inside the foot damping, learning (``slc``) or
     only marking the same window (``fixed_d``: D = D₀ throughout)."""

@@ -14,9 +14,9 @@ VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
 EARLY_S = 0.5  # s after boarding: Fig. 6.3-(b1)'s window '0.0[s]-0.5[s](搭乗直後)'
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     ride = VboardRide(level=1 if variant == "level1" else 2, theta_o_error_deg=params["theta_o_error_deg"],
-                      D=params["damping_d"], speed=params["lift_speed_mps"], seed=params.get("seed", 0))
+                      D=params["damping_d"], speed=params["lift_speed_mps"], seed=seed)
     return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["max_s"],
                until=lambda s: ride.fallen(), record={5: ride.signals}, view=VIEW, state=ride)
 

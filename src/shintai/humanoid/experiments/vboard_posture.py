@@ -13,9 +13,9 @@ from shintai.scenarios.registry import Check, Param, experiment
 VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     ride = VboardRide(level=int(params["level"]), theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                      posture=variant == "with", seed=params.get("seed", 0))
+                      posture=variant == "with", seed=seed)
 
     def signals(snapshot):
         out = ride.signals(snapshot)

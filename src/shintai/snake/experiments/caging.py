@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-from shintai.scenarios.experiment import run_variants
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.snake.caging import box_track, caging_metrics, caging_rig, mismatch_growth
 from shintai.snake.constants import CAGING, CH3_ROBOT
@@ -11,14 +10,12 @@ from shintai.snake.plots import plot_box, plot_caging, plot_modes, plot_time_ser
 from shintai.snake.tracking import TrackingRun
 
 
-def compute(ctx):
-    """The runs of :func:`caging_rig` through the runner's own run_variants: compute only because the MuJoCo
-    run's mocap noise is drawn from the run's seed, which ``rig(params, variant)`` does not receive."""
-    p = ctx.params
-    names = ("mujoco", "kinematic") if p["plant"] == "mujoco" else ("kinematic",)
-    rig = lambda params, variant: caging_rig(params["duration_s"], variant, params["mocap_noise_m"], ctx.seed)  # noqa: E731
-    ctx.runs = run_variants(ctx, rig, names, filmed=("mujoco",))
-    return metrics(ctx.runs, p)
+def rig(params, variant, seed):
+    return caging_rig(params["duration_s"], variant, params["mocap_noise_m"], seed)
+
+
+def variants(params):
+    return ("mujoco", "kinematic") if params["plant"] == "mujoco" else ("kinematic",)
 
 
 def metrics(runs, params):
@@ -70,6 +67,6 @@ experiment(
         "box": ThesisValue("carried as the robot advances (Fig. 3.9)", "seed 001 §3.4.1", "box_advance_x_m"),
         "modes": ThesisValue("the mode changes with the situation", "seed 001 §3.4.1", "distinct_modes"),
     },
-    compute=compute, plots=plots,
+    rig=rig, variants=variants, filmed=("mujoco",), metrics=metrics, plots=plots,
     video=lambda params: params["plant"] == "mujoco",
 )

@@ -19,11 +19,11 @@ def compute(ctx):
     p = ctx.params
     perturbed = [f"perturbed_{k + 1}" for k in range(p["runs"])]
 
-    def rig(params, variant):
+    def rig(params, variant, seed):
         if variant == PULL:
             return pull_rig()
         k = 0 if variant == "nominal" else int(variant.rsplit("_", 1)[1])
-        return door_rig(seed=ctx.seed + k, perturbed=k > 0, head_pose=params["head_pose"])
+        return door_rig(seed=seed + k, perturbed=k > 0, head_pose=params["head_pose"])
 
     ctx.runs = run_variants(ctx, rig, ["nominal", *perturbed, PULL], filmed=("nominal",))
     outcomes = [DoorRun.of(ctx.runs[name]) for name in ("nominal", *perturbed)]

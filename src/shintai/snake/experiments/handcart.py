@@ -13,7 +13,7 @@ def variants(params):
     return ("mujoco", "kinematic") if params["plant"] == "mujoco" else ("kinematic",)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     return handcart_rig(params["duration_s"], variant)
 
 

@@ -16,7 +16,7 @@ def variants(params):
     return LABELS if params["plant"] == "kinematic" else (*LABELS, *(f"{label}_kinematic" for label in LABELS))
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     label, _, reference = variant.partition("_")
     return tracking_rig(params["duration_s"], params["candidates"], switching=label == "switching",
                         plant="kinematic" if reference else params["plant"])

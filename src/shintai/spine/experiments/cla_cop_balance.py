@@ -17,7 +17,7 @@ Q_REFLEX = ("§5.2.7 '常に足裏の前後方向の中心付近に重心の投�
 FALLEN_FORCE = 0.5  # fallen: the soles carry less than half the weight (chosen)
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     body, player, reflex, control, centre = CB.build(variant == "swing", params["cycles"], params["bend_deg"],
                                                      params["half_period_s"])
     return Rig(body, stages=[[player, reflex], [control]], channels=SETPOINTS,

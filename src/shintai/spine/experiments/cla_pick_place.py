@@ -19,7 +19,7 @@ Q_PLACE = ("§5.2.6 '座った状態では、脊椎を動かさなければ机�
            "伸ばして物を机の上に置くことができた'")
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     body, player, grip, control, scene, gaps = PP.build(variant == "spine", params["roll_deg"], params["yaw_deg"])
     duration = float(player.times[-1]) * params["fraction"]
     return Rig(body, stages=[[player, grip], [control]], channels=SETPOINTS, duration=duration,

@@ -16,7 +16,7 @@ Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身
 Q_ROLL = "§5.2.8 'これにより、仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるようになった'"
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     body, player, control = RO.build(variant == "spine", params["yaw_deg"])
     return Rig(body, stages=[[player], [control]], channels=SETPOINTS,
                duration=float(player.times[-1]) * params["fraction"],

@@ -28,7 +28,7 @@ def filmed(params) -> list[str]:
     return ["all_ll.pitch"] if "all_ll.pitch" in runs else runs[:1]
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     mode, axis = variant.rsplit(".", 1)
     if mode == ABLATION:
         return mode_rig("all_l", axis, dict(params, interference=False), log=False)

@@ -29,7 +29,7 @@ def variants(params) -> list[str]:
     return list(runs_by_name(params))
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     prefix, level = runs_by_name(params)[variant]
     return stiffening_rig(linear_disc(RABBIT) if prefix else RABBIT, level * 1e-3, params["push_n"])
 

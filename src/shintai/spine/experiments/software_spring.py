@@ -29,7 +29,7 @@ def variants(params) -> list[str]:
     return main + ([f"{other_law(params)}.{v}" for v in main] if params["compare"] else [])
 
 
-def rig(params, variant):
+def rig(params, variant, seed):
     law, _, name = variant.rpartition(".")  # "newtons.k50": the other law; "k50": the chosen one
     return spring_rig(trial_names(params)[name], params["push_deg"], params["push_s"], params["release_s"],
                       law or params["spring_law"], log=not law)
