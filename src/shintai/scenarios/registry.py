@@ -155,6 +155,8 @@ class Scenario:
     notes_path: Path | None = None  # the scenario's account, <body>/notes/<name>.md
     covers: tuple[str, ...] = ()  # the coverage rows (thesis experiments) it reproduces
     stochastic: bool = False  # its result depends on the seed: `reproduce --seeds N` gives mean ± std
+    rig: Callable | None = None  # rig(params, variant, seed) of a declared experiment (None for a compute)
+    variants: Callable[[dict], Sequence[str]] | None = None  # its variants' names from the parameters
 
     def films(self, params: dict) -> bool:
         """Whether ``--video`` can film this scenario with these parameters."""
@@ -225,8 +227,11 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
     if rig is not None:
         from shintai.scenarios.experiment import run_variants
 
+        def names_of(params):
+            return list(variants(params) if callable(variants) else variants)
+
         def run(ctx):
-            names = list(variants(ctx.params) if callable(variants) else variants)
+            names = names_of(ctx.params)
             shot = filmed(ctx.params) if callable(filmed) else filmed
             ctx.runs = run_variants(ctx, rig, names, shot)
             return metrics(ctx.runs, ctx.params)
@@ -234,7 +239,7 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
     module_file = sys._getframe(1).f_globals.get("__file__")
     return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
                               demo_video, tuple(constraints), plots, notes_file(id, module_file), tuple(covers),
-                              stochastic))
+                              stochastic, rig, names_of if rig is not None else None))
 
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
