@@ -12,6 +12,10 @@
                                 (:mod:`shintai.gym.tricycle`)
 ``shintai/QuadrupedCrawl-v0``   seed 004 §4: TITAN-VIII to its destination past a wall and a low obstacle,
                                 one walking cycle's displacement per action (:mod:`shintai.gym.quadruped`)
+``shintai/VBoardRide-v0``       seed 000 ch. 6: HRP2 rides the V-BOARD, the agent its speed governor — (u_v, u_ω)
+                                of Eq. 6.5 every 24 ms, balance and foot damping inside (:mod:`shintai.gym.vboard`)
+``shintai/NinebotRide-v0``      seed 000 §7.3.3: HRP2 rides the Ninebot, the agent its speed controller C_v — u_v
+                                of Eq. 6.5 every 24 ms, balance inside (:mod:`shintai.gym.ninebot`)
 ==============================  =====================================================================
 
 Every environment renders ``rgb_array`` frames, resets from a seed, and states its spaces with units in its
@@ -30,6 +34,8 @@ ENVIRONMENTS = {
     "shintai/ClaPosture-v0": ("shintai.gym.spine:ClaPostureEnv", 60),
     "shintai/TricyclePedal-v0": ("shintai.gym.tricycle:TricyclePedalEnv", 60),
     "shintai/QuadrupedCrawl-v0": ("shintai.gym.quadruped:QuadrupedCrawlEnv", 50),  # seed 004 §4.1.2: 50 cycles
+    "shintai/VBoardRide-v0": ("shintai.gym.vboard:VBoardRideEnv", 500),  # vboard.EPISODE_STEPS: 12 s of 24 ms steps
+    "shintai/NinebotRide-v0": ("shintai.gym.ninebot:NinebotRideEnv", 500),  # the same
 }
 
 for _id, (_entry, _steps) in ENVIRONMENTS.items():

@@ -1,7 +1,8 @@
 """A Gymnasium environment over a shintai Body and its modules, run by the shared Loop.
 
-The agent is one more module: :class:`ActionModule` writes the latest action to a set channel of the rig
-every tick; :meth:`LoopEnv.step` runs the Loop for one agent period and reads the snapshot. A subclass says
+The agent is one more module: :class:`ActionModule` writes the latest action to a channel of the rig every
+tick — a set channel, whose one writer it is, or an additive one, where it adds to the other modules'
+contributions (a governor's place on the riders' ``foot_pitch``); :meth:`LoopEnv.step` runs the Loop for one agent period and reads the snapshot. A subclass says
 what the rig is (:meth:`LoopEnv.build`), what the agent sees (:meth:`observe`) and what it is paid
 (:meth:`reward`) — the bodies, laws and modules are the scenarios' own, not copies.
 """
@@ -17,7 +18,8 @@ from shintai.core.runtime import Body, Channel, Loop, Module, Snapshot
 
 
 class ActionModule(Module):
-    """Writes the agent's latest action to ``channel`` every tick (the agent is a module of the Loop)."""
+    """Writes the agent's latest command to ``channel`` every tick (the agent is a module of the Loop; the
+    channel's kind, set or additive, is the rig's)."""
 
     def __init__(self, channel: str, size: int):
         super().__init__(f"agent:{channel}")
