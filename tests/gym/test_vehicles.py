@@ -93,3 +93,13 @@ def test_bad_actions_and_options_are_refused(env_id):
         env.reset(seed=0, options={"speed": 1.0})
     assert env.action_space.high[0] == U_MAX
     env.close()
+
+
+def test_the_example_black_box_search_runs(capsys):
+    import runpy
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "vboard_black_box.py"
+    result = runpy.run_path(str(example), run_name="example")["main"](2, 0.1)
+    assert np.isfinite(result["best"]) and result["gains"].shape == (4,)
+    assert "zero gains (level 2)" in capsys.readouterr().out
