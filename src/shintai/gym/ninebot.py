@@ -18,8 +18,9 @@ foot-pitch integrator.) Episodes start riding (:mod:`shintai.gym.riding`: lift b
   ω is not governed, W_ω = 0). **Target** v_d drawn at reset within ±0.1 m/s; ``options={"targets": (0.0,)}``
   stands still as §7.3.3's runs do. **Terminated** on a fall (``ride.fallen()``); at most 500 steps (12 s).
 
-Measured (seed 0, v_d = 0): the zero action rides 6 s with |v| ≲ 2 cm/s; u_v = ∓3e-4 drifts v to ±2 cm/s in
-3 s, then runs away (±0.5 m/s) and falls after ≈5 s — toes down drives the Ninebot backwards, as on the V-BOARD.
+Measured (seed 0, v_d = 0; 6 s rides from the first observation): the zero action rides with |v| < 1 cm/s;
+u_v = ∓3e-4 drifts v to ±3 cm/s within 2.5 s, then runs away (±0.5 m/s) and falls after ≈5 s — toes down drives
+the Ninebot backwards, as on the V-BOARD.
 """
 
 from __future__ import annotations

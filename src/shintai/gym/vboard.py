@@ -19,10 +19,12 @@ as Eq. 6.5's disturbance d). Episodes start riding (:mod:`shintai.gym.riding`: l
   standing still as §6.4.1 does. **Terminated** when the robot falls (``ride.fallen()``: the waist 0.15 m low or
   tilted 0.5 rad); 500 steps of 24 ms (12 s, six of MLC's 2 s mini-batches) at most.
 
-Measured (seed 0, v_d = ω_d = 0): the zero action rides 6 s with |v| ≲ 6 cm/s; u_ω = +3e-4 spins the scooter up
-to ω ≈ 2 rad/s within 0.6 s and falls after 4 s; u_v = ±3e-4 falls after 5–6 s, its effect on v small and, after
-the first 0.2 s, reversed (the damping cancels a foot-pitch step within ≈0.2 s: the level-3 caveat of
-``vboard_ride.py``, where fixed PID gains also fall within 6 s).
+Measured (seed 0, v_d = ω_d = 0; 6 s rides from the first observation): the zero action rides with |v| < 6 cm/s;
+u_ω = +3e-4 spins the scooter up to ω ≈ 2 rad/s within 0.6 s and falls after 4 s; u_v = +3e-4 (toes down, forward
+by Eq. A.1) moves it *backwards* (−0.14 m/s after 0.6 s, against −0.02 with the zero action) and falls after
+≈5 s, −3e-4 after ≈6 s — the damping cancels a foot-pitch step within ≈0.2 s (the level-3 caveat of
+``vboard_ride.py``, where fixed PID gains also fall within 6 s), so u_v's authority over v is small and
+wrong-signed; the example's search (``examples/vboard_black_box.py``) finds a negative K_I for v.
 """
 
 from __future__ import annotations
