@@ -72,9 +72,14 @@ class RideEnv(LoopEnv):
         return self.observe(self.snapshot), self.info(self.snapshot)
 
     def step(self, action):
-        if self.loop is not None:
-            self.steps += 1
-        return super().step(action)
+        if self.loop is None:
+            return super().step(action)  # the base's error
+        self.steps += 1  # before the reward: a fall pays for the steps after this one
+        try:
+            return super().step(action)
+        except ValueError:  # a refused action is no step
+            self.steps -= 1
+            raise
 
     def measured(self, name: str) -> float:
         """The latest value of a loop channel the ride's sensors write (``v``, ``omega``; 0 before the first tick)."""
