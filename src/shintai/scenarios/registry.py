@@ -157,6 +157,7 @@ class Scenario:
     stochastic: bool = False  # its result depends on the seed: `reproduce --seeds N` gives mean ± std
     rig: Callable | None = None  # rig(params, variant, seed) of a declared experiment (None for a compute)
     variants: Callable[[dict], Sequence[str]] | None = None  # its variants' names from the parameters
+    smoke: dict[str, Any] | None = None  # `--set` overrides of the registry test's short run (tests/scenarios)
 
     def films(self, params: dict) -> bool:
         """Whether ``--video`` can film this scenario with these parameters."""
@@ -211,13 +212,14 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
                metrics: Callable | None = None, plots: Callable | None = None, compute: Callable | None = None,
                filmed: Sequence[str] | Callable[[dict], Sequence[str]] | None = None, constraints=(),
                demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True,
-               covers: Sequence[str] = (), stochastic: bool = False) -> Scenario:
+               covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None) -> Scenario:
     """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
 
     Either ``rig(params, variant, seed) -> Rig`` (``seed`` the run's, from which every random source derives) with ``metrics(runs, params) -> dict`` (and optionally
     ``plots(ctx, runs, params)``, ``variants``, ``filmed``), or ``compute(ctx) -> dict`` for an
     experiment that is not one loop per run. ``constraints``: ``(holds(params), message)`` pairs
-    checked with the parameters (a violation is a parameter error, exit 2).
+    checked with the parameters (a violation is a parameter error, exit 2). ``smoke``: the parameter overrides
+    (as ``--set`` would give them) of the short run the registry test makes of every experiment.
     """
     if (rig is None) == (compute is None):
         raise ValueError(f"scenario {id!r}: declare rig= (with metrics=) or compute=, not both")
@@ -239,18 +241,28 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
     module_file = sys._getframe(1).f_globals.get("__file__")
     return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
                               demo_video, tuple(constraints), plots, notes_file(id, module_file), tuple(covers),
-                              stochastic, rig, names_of if rig is not None else None))
+                              stochastic, rig, names_of if rig is not None else None, _smoke(id, smoke)))
+
+
+def _smoke(scenario_id: str, smoke: dict[str, Any] | None) -> dict[str, str] | None:
+    """``smoke`` as ``--set`` texts (``True`` → ``"true"``)."""
+    if smoke is None:
+        return None
+    if not isinstance(smoke, dict):
+        raise ValueError(f"scenario {scenario_id!r}: smoke must be a dict of parameter overrides")
+    return {k: (str(v).lower() if isinstance(v, bool) else str(v)) for k, v in smoke.items()}
 
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
              demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=(),
-             covers: Sequence[str] = (), stochastic: bool = False):
+             covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None):
     """Decorator registering ``compute(ctx) -> metrics`` as a scenario (:func:`experiment` with ``compute=``)."""
 
     def register(fn):
         module_file = sys.modules[fn.__module__].__dict__.get("__file__") if fn.__module__ in sys.modules else None
         _register(Scenario(id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                           demo_video, tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic))
+                           demo_video, tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic,
+                           smoke=_smoke(id, smoke)))
         return fn
 
     return register

@@ -35,6 +35,7 @@ COUPLED_XD = np.array([1.0, 2.0])
     ],
     demo=True,
     constraints=[(lambda p: p["plant_slope"] != 0, "plant_slope must be non-zero: x would not depend on ρ")],
+    smoke={},
 )
 def search_index_scenario(ctx):
     p = ctx.params

@@ -85,6 +85,7 @@ def metrics_of(run, p) -> dict:
             "levelling": ThesisValue("posture sensing → spine correction → motion, repeated; shoulders level "
                                      "(photographs, no number)", "seed 003 §5.2.2")},
     video=False,
+    smoke={"cycles": 1},
 )
 def cla_teach(ctx):
     p = ctx.params

@@ -62,6 +62,7 @@ def postures(description, count: int) -> list[np.ndarray]:
     thesis={"connections": ThesisValue("several sockets on one nervous, one reader thread each", "seed 003 C.2.2"),
             "stream": ThesisValue("state sent at the sensor period to each connection", "seed 003 §6.3.3")},
     video=False,
+    smoke={"seconds": 0.5, "postures": 2},
 )
 def clients(ctx):
     p = ctx.params

@@ -78,6 +78,7 @@ def expected(method: str, via: str, times: np.ndarray) -> np.ndarray:
                                     "seed 003 App. C.2.2")},
     covers=("003:figC.1",),
     video=False,
+    smoke={},
 )
 def fig_c1(ctx):
     p = ctx.params

@@ -41,6 +41,7 @@ from shintai.sim.corner import AXES, CONTROL_STEP, build_corner, passive_loop, p
     video=True,
     constraints=[(lambda p: is_multiple(p["update_s"], CONTROL_STEP),
                   f"update_s must be a whole multiple of the {1000 * CONTROL_STEP:g} ms control step")],
+    smoke={"updates": 3},
 )
 def wall_force_scenario(ctx):
     p = ctx.params

@@ -69,4 +69,5 @@ experiment(
     },
     rig=rig, variants=variants, filmed=("mujoco",), metrics=metrics, plots=plots,
     video=lambda params: params["plant"] == "mujoco",
+    smoke={"duration_s": 0.5},
 )

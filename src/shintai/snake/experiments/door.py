@@ -71,4 +71,5 @@ experiment(
     },
     compute=compute, plots=plots,
     video=True,
+    smoke={"runs": 0},
 )

@@ -47,4 +47,5 @@ experiment(
                                   "seed 001 §3.4.2", "cart_displacement_m")},
     rig=rig, variants=variants, filmed=("mujoco",), metrics=metrics, plots=plots,
     video=lambda params: params["plant"] == "mujoco",
+    smoke={"duration_s": 0.5},
 )

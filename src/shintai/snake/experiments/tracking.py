@@ -67,4 +67,5 @@ experiment(
     demo=True,
     video=lambda params: params["plant"] == "mujoco",
     demo_video=False,  # the demo runs the kinematic plant; only plant=mujoco renders
+    smoke={"duration_s": 1.0},
 )

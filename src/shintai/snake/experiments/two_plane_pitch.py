@@ -15,4 +15,5 @@ experiment(
     summary="head transition, straddling and connection transitions onto a front plane pitched by −0.0609 rad",
     params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_2, "Fig. 4.14"),
     rig=condition_rig(CONDITION_2), variants=variants, metrics=condition_metrics, plots=plot_two_plane,
+    smoke={"duration_s": 2.0, "null_space": False},
 )

@@ -15,4 +15,5 @@ experiment(
     summary="head transition, straddling and connection transitions onto a front plane rolled by −0.107 rad",
     params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_1, "Fig. 4.13"),
     rig=condition_rig(CONDITION_1), variants=variants, metrics=condition_metrics, plots=plot_two_plane,
+    smoke={"duration_s": 2.0, "null_space": False},
 )
