@@ -97,3 +97,71 @@ def test_no_body_keeps_a_scenarios_module():
     """Scenarios live one per file in ``<body>/experiments/`` (issue 12); the old ``*scenarios*.py`` are gone."""
     left = [str(p.relative_to(SRC)) for p in FILES if "scenarios" in p.stem and p.parent.name != "scenarios"]
     assert not left, left
+
+
+# --- the spine's layout (issue 25): one folder per robot beside the flat shared layers ---------------------------
+
+SPINE = SRC / "spine"
+SPINE_UNITS = ("cla", "kenta", "sq43", "hanzous", "bebe", "mocap", "rabbit")
+MAX_MODULES_PER_FOLDER = 20  # DESIGN.md: "no folder holds more than about 20 modules"
+FLAT_FOLDERS = ("experiments", "notes")  # one scenario per file, flat by design
+
+
+def spine_folders() -> list[Path]:
+    return [SPINE, *(SPINE / u for u in SPINE_UNITS)]
+
+
+def test_spine_units_exist_and_nothing_else_is_a_folder():
+    folders = {p.name for p in SPINE.iterdir() if p.is_dir() and p.name != "__pycache__"}
+    assert folders == set(SPINE_UNITS) | set(FLAT_FOLDERS), folders
+
+
+def test_spine_units_do_not_import_their_siblings():
+    offenders = []
+    for unit in SPINE_UNITS:
+        for path in (SPINE / unit).rglob("*.py"):
+            for m, _ in imports(path):
+                parts = m.split(".")
+                if m.startswith("shintai.spine.") and len(parts) > 2 and parts[2] in SPINE_UNITS and parts[2] != unit:
+                    offenders.append((module_name(path), m))
+    assert not offenders, offenders
+
+
+def test_spine_folders_hold_at_most_20_modules():
+    big = {str(f.relative_to(SRC)): n for f in spine_folders()
+           if (n := len([p for p in f.glob("*.py") if p.name != "__init__.py"])) > MAX_MODULES_PER_FOLDER}
+    assert not big, big
+
+
+def test_spine_modules_are_on_their_package_map():
+    """Each folder's ``__init__`` docstring names every module of the folder, one line each (``name — ...``)."""
+    missing = {}
+    for folder in spine_folders():
+        doc = ast.get_docstring(ast.parse((folder / "__init__.py").read_text())) or ""
+        named = {line.split(" — ")[0].strip() for line in doc.splitlines() if " — " in line}
+        modules = {p.stem for p in folder.glob("*.py") if p.name != "__init__.py"}
+        if modules - named:
+            missing[str(folder.relative_to(SRC))] = sorted(modules - named)
+        stale = named - modules - {f"{d}/" for d in FLAT_FOLDERS} - {"experiments/", "trained/"}
+        stale = {n for n in stale if not n.endswith("/")}
+        if stale:
+            missing[f"{folder.relative_to(SRC)} (stale)"] = sorted(stale)
+    assert not missing, missing
+
+
+# a private name taken from another file; bodies not yet done (another branch) are named here
+PRIVATE_IMPORT_EXCEPTIONS = {("shintai.humanoid.vboard_ride", "shintai.humanoid.standing._rot_xy")}
+
+
+def test_no_private_imports_across_files():
+    offenders = []
+    for path in FILES:
+        tree = ast.parse(path.read_text(), str(path))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("shintai"):
+                for a in node.names:
+                    if a.name.startswith("_") and not a.name.startswith("__"):
+                        pair = (module_name(path), f"{node.module}.{a.name}")
+                        if pair not in PRIVATE_IMPORT_EXCEPTIONS:
+                            offenders.append(pair)
+    assert not offenders, offenders

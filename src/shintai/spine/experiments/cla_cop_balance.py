@@ -1,6 +1,6 @@
 """``spine.cla-cop-balance``: Cla standing bends its spine slowly from side to side while an arm-swing reflex keeps
 the soles' centre of pressure (eq. 3.5, four FSRs per foot) near their front–back centre; the same bends without
-the reflex (seed 003 §5.2.7, Fig. 5.8). Reflex and bends: :mod:`shintai.spine.cla_cop`."""
+the reflex (seed 003 §5.2.7, Fig. 5.8). Reflex and bends: :mod:`shintai.spine.cla.cop`."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_cop as CB
+from shintai.spine.cla import cop as CB
 from shintai.spine.control import SETPOINTS
 
 Q_REFLEX = ("§5.2.7 '常に足裏の前後方向の中心付近に重心の投影点が来るように, 両腕を前後にゆっくりと動かしながらバランス"

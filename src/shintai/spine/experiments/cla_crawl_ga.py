@@ -1,6 +1,6 @@
 """``spine.cla-crawl-ga``: Cla crawling on hands and knees, its spine's roll evolved by seed 003's GA, against
 the same crawl with the spine locked straight and the hand-made roll pattern (seed 003 §5.2.9, Figs. 5.10–5.11;
-model, genes and fitness: :mod:`shintai.spine.cla_crawl`). A GA, not a loop over time: a compute scenario."""
+model, genes and fitness: :mod:`shintai.spine.cla.crawl`). A GA, not a loop over time: a compute scenario."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import cla_crawl as CC
+from shintai.spine.cla import crawl as CC
 from shintai.spine import ga_run
 from shintai.spine.robots import CRAWL_EVAL_S
 

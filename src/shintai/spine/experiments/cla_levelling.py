@@ -1,6 +1,6 @@
 """``spine.cla-levelling``: the seated whole-body Cla levels its shoulders by the shoulder accelerometer while its
 stool is tilted, the spine's present posture estimated from the muscle lengths by the §4.4.3 network (seed 003
-§5.2.2, Fig. 5.2); with and without the levelling (:mod:`shintai.spine.cla_levelling`)."""
+§5.2.2, Fig. 5.2); with and without the levelling (:mod:`shintai.spine.cla.levelling`)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.cla_levelling import TILT1_S, run_levelling, settled
+from shintai.spine.cla.levelling import TILT1_S, run_levelling, settled
 from shintai.spine.inverse_model import NeuralInverse
 from shintai.spine.robots import CLA
 

@@ -1,6 +1,6 @@
 """``spine.cla-pick-place``: Cla, seated, picks an object from the floor by bending its spine sideways and puts it
 on the desk by twisting it; the same keys solved for a locked spine (seed 003 §5.2.5–5.2.6, Fig. 5.7; Figs.
-2.1–2.2). Behaviour, scene and hand: :mod:`shintai.spine.cla_pick_place`."""
+2.1–2.2). Behaviour, scene and hand: :mod:`shintai.spine.cla.pick_place`."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_pick_place as PP
+from shintai.spine.cla import pick_place as PP
 from shintai.spine.control import SETPOINTS
 from shintai.spine.robots import CLA_DESK_HALF_M, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_OBJECT_HALF_M
 

@@ -1,6 +1,6 @@
 """``spine.cla-pull``: the seated whole-body Cla pulls an object on the desk towards itself, leaning with the
 spine to reach behind it (seed 003 §5.2.4, Fig. 5.5); the same motion with the spine locked upright does not reach
-the object (Fig. 5.6) (:mod:`shintai.spine.cla_pull`)."""
+the object (Fig. 5.6) (:mod:`shintai.spine.cla.pull`)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from matplotlib.patches import Rectangle
 
 from shintai.scenarios.experiment import film, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.cla_pull import SUCCESS_M, pull_summary, run_pull
+from shintai.spine.cla.pull import SUCCESS_M, pull_summary, run_pull
 from shintai.spine.robots import CLA_DESK_HEIGHT_M, CLA_OBJECT_HALF_M
 
 VARIANTS = ("with_spine", "without_spine")

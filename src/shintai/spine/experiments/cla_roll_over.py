@@ -1,6 +1,6 @@
 """``spine.cla-roll-over``: Cla lying on its back tries to roll onto its front by yawing its spine together with
 its shoulder and hip, and the same keys with the spine locked (seed 003 §5.2.8, Fig. 5.9). Model, keys and the
-turn measure: :mod:`shintai.spine.cla_roll_over`."""
+turn measure: :mod:`shintai.spine.cla.roll_over`."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_roll_over as RO
+from shintai.spine.cla import roll_over as RO
 from shintai.spine.control import SETPOINTS
 
 Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身を起こすことができない。脊椎を yaw 軸回りに回転させる動きと"

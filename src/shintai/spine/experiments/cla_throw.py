@@ -1,7 +1,7 @@
 """``spine.cla-throw``: the seated whole-body Cla throws overhand, the spine's motion started first, then the
 shoulder's, then the elbow's, so that their speed peaks coincide (seed 003 §5.2.3, Figs. 5.3–5.4); the same
 throw with the spine locked (Fig. 5.4), and the ablation: the spine free but every part started together
-(:mod:`shintai.spine.cla_throw`)."""
+(:mod:`shintai.spine.cla.throw`)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import film, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.cla_throw import run_throw, throw_summary
+from shintai.spine.cla.throw import run_throw, throw_summary
 
 VIEW = {"fps": 30, "width": 480, "height": 360, "track": "link0", "distance": 1.0, "azimuth": 120.0,
         "elevation": -10}

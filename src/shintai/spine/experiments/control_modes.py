@@ -1,13 +1,13 @@
 """``spine.control-modes``: E11 on a MuJoCo Cla with arms raised — the eight L/T/S/LL combinations over
 ±30° pitch and roll (seed 003 §4.7.2–4.7.3, Tables 4.7–4.8). One run per mode configuration and axis
-(:func:`shintai.spine.modes.mode_rig`), plus all-L without interference."""
+(:func:`shintai.spine.cla.modes.mode_rig`), plus all-L without interference."""
 
 from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import pictures
-from shintai.spine.cla import SPRING_LAWS
-from shintai.spine.modes import (
+from shintai.spine import plots as pictures
+from shintai.spine.cla.setup import SPRING_LAWS
+from shintai.spine.cla.modes import (
     ABLATION, AXES, MODE_CONFIGS, TABLE_4_7, TABLE_4_7_COLUMNS, TABLE_4_7_TOLERANCE_DEG, TABLE_4_8, TABLE_COLUMNS,
     THESIS_ROW, mode_metrics, mode_rig, rows_until_lost, table_4_7_held,
 )

@@ -13,15 +13,15 @@ from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, ThesisValue, experiment
 from shintai.sim.body import MujocoBody
 from shintai.spine import ga_run
-from shintai.spine import pictures_hanzous as pictures
-from shintai.spine.brachiation import (
+from shintai.spine.hanzous import plots as pictures
+from shintai.spine.hanzous.brachiation import (
     N_GENES,
     POLICIES,
     BrachiationFitness,
     Brachiator,
     gene_bounds,
 )
-from shintai.spine.hanzous_body import VIDEO_VIEW, build_spec
+from shintai.spine.hanzous.body import VIDEO_VIEW, build_spec
 
 GENERATIONS = 3  # short default; the thesis prints no generation count (§5.7.3): --set generations=N
 

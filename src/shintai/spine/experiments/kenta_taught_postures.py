@@ -1,6 +1,6 @@
 """``spine.kenta-taught-postures``: Fig. 4.1 on the whole-body Kenta (seed 003 §4.2.1–4.2.2): three postures taught
 with every muscle tension-controlled, replayed in turn with minimum-jerk interpolation, cycled. Teaching comes
-before the replay on the same body: a compute experiment (:mod:`shintai.spine.kenta_postures`)."""
+before the replay on the same body: a compute experiment (:mod:`shintai.spine.kenta.postures`)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import math
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.kenta_postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, locked_hold, replay, teach
-from shintai.spine.pictures_kenta import taught_postures
+from shintai.spine.kenta.postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, locked_hold, replay, teach
+from shintai.spine.kenta.plots import taught_postures
 
 VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.8, "azimuth": 150.0, "elevation": -10}
 

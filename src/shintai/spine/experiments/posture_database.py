@@ -1,6 +1,6 @@
 """``spine.posture-database``: the posture database of seed 003 §5.9 on the MuJoCo Cla — pushes taught by hand,
 weak-push nudges, the history replayed, a model motion executed by nearest nodes. One session, a chain of
-dependent events in one Loop, so a compute scenario (:mod:`shintai.spine.posture_runs`). The thesis ran it on
+dependent events in one Loop, so a compute scenario (:mod:`shintai.spine.cla.posture_runs`). The thesis ran it on
 Kenta (§5.9.2–5.9.3, Fig. 5.30); our Kenta spine has no validated controller set-up, so Cla's (E9's) is used."""
 
 from __future__ import annotations
@@ -9,9 +9,10 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import inverse_model, pictures_posturedb
-from shintai.spine.cla import CLA_VIEW
-from shintai.spine.posture_runs import run_session, session_actions, session_metrics
+from shintai.spine import inverse_model
+from shintai.spine.cla import plots as pictures_posturedb
+from shintai.spine.cla.setup import CLA_VIEW
+from shintai.spine.cla.posture_runs import run_session, session_actions, session_metrics
 from shintai.spine.posture_session import D_LEN_MM
 from shintai.spine.robots import CLA
 from shintai.spine.tactile import TriggerLevels

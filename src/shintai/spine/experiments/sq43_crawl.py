@@ -1,8 +1,8 @@
 """``spine.sq43-crawl``: SQ43's statically planned crawl and the lift tests behind it (seed 003 §3.2.4, §3.2.5,
-Fig. 3.7) on the MuJoCo SQ43 (:mod:`shintai.spine.sq43_body`): lift the right front leg from four-leg standing,
+Fig. 3.7) on the MuJoCo SQ43 (:mod:`shintai.spine.sq43.body`): lift the right front leg from four-leg standing,
 with and without first shifting the centre of mass toward the left hind foot, hold it, lift a diagonal pair,
 then crawl. Several dependent scripted runs, each a planned schedule played on the body: a compute experiment
-(:func:`shintai.spine.sq43_gaits.simulate_crawl`)."""
+(:func:`shintai.spine.sq43.gaits.simulate_crawl`)."""
 
 from __future__ import annotations
 
@@ -12,8 +12,8 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.sq43_body import BODY
-from shintai.spine.sq43_gaits import CRAWL_ORDER, CrawlPlan, simulate_crawl
+from shintai.spine.sq43.body import BODY
+from shintai.spine.sq43.gaits import CRAWL_ORDER, CrawlPlan, simulate_crawl
 
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 135.0,
         "elevation": -20}

@@ -1,7 +1,7 @@
 """``spine.sq43-levelling``: SQ43 keeps its shoulder level by its accelerometers while a board under the left
-front foot rises and lowers (seed 003 §3.2.4, Fig. 3.6), on the MuJoCo SQ43 (:mod:`shintai.spine.sq43_body`).
+front foot rises and lowers (seed 003 §3.2.4, Fig. 3.6), on the MuJoCo SQ43 (:mod:`shintai.spine.sq43.body`).
 Two runs (with and without the levelling) whose board moves by script and whose controller acts on steady
-windows only: a compute experiment (:func:`shintai.spine.sq43_gaits.simulate_levelling`)."""
+windows only: a compute experiment (:func:`shintai.spine.sq43.gaits.simulate_levelling`)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import film, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.sq43_gaits import Levelling, simulate_levelling
+from shintai.spine.sq43.gaits import Levelling, simulate_levelling
 
 VARIANTS = ("with", "without")
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.8, "azimuth": 180.0,

@@ -1,0 +1,46 @@
+"""Commanding the whole-body Cla's spine (:mod:`~shintai.spine.cla.body`) as every Cla experiment does: the §4.6.4
+encoder zeroing, then :class:`~shintai.spine.control.MuscleControl` in L mode (:func:`spine_control`), a Loop with
+the posture player between a schedule and the controller (:func:`spine_loop`), and holding still (:func:`settle`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.core.constants import KGF_N
+from shintai.core.runtime import Loop
+from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.cla.setup import cla_gains
+from shintai.spine.control import SETPOINTS, Mode, MuscleControl
+from shintai.spine.cla.postures import GOAL, WHOLE_REF, PostureTargets
+from shintai.spine.robots import CALIBRATION_KGF, CLA
+from shintai.spine.teaching import zero_encoders
+
+
+def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0,
+                  calibration_s: float = 1.0) -> tuple[MuscleControl, np.ndarray]:
+    """Cla's muscle controller, calibrated (§4.6.4, :func:`~shintai.spine.cla.setup.calibrated`) and in L mode:
+    returns it and the model lengths at the basic posture (the zero of the encoder targets) for
+    :class:`~shintai.spine.cla.postures.PostureTargets`. The stages of a Loop are then
+    ``[[your schedule writing "goal"], [PostureTargets(CLA.model, zero, move_s)], [control, ...]]`` with the
+    channels ``(*control.SETPOINTS, postures.GOAL, postures.WHOLE_REF)``."""
+    control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf))
+    zero_encoders(body, control, CALIBRATION_KGF * KGF_N, seconds=calibration_s)  # = cla.calibrated, timed
+    control.set_modes(Mode.L)
+    return control, CLA.model.lengths(np.zeros(3 * CLA.n))
+
+
+def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, first=(), last=(),
+               recorder=None) -> Loop:
+    """A Loop whose first stage (``first``: modules writing ``goal`` and limb targets) is followed by the
+    posture player (``move_s`` per goal) and then the muscle controller with ``last`` (observers)."""
+    stages = [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]
+    return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
+
+
+def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
+    """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
+    Loop(body, [control]).run(seconds)
+
+
+__all__ = ["spine_control", "spine_loop", "settle"]

@@ -1,0 +1,4 @@
+"""Rabbit (seed 003 §3.5): the spine of silicone ring discs, modelled quasi-statically.
+
+stiffening — E6: stiffening by pre-compressing the discs (§3.5.3–3.5.4)
+"""

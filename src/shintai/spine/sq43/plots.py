@@ -1,0 +1,47 @@
+"""SQ43's pictures: the design search (seed 003 §3.2.3, cf. Fig. 3.4) and the levelling, crawl and trot runs
+(§3.2.4, §5.6)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shintai.spine.robots import SQ43_GRID_CHECK_DEG
+from shintai.spine.sq43 import design as sq43
+
+
+def plot_sq43(ctx, paths: list, prm: sq43.SQ43Params, grid_best: float) -> None:
+    """Fig. 3.4 analogue (objective against step) and the paths in (a1, a2), (a2, a3)."""
+    with ctx.figure("sq43_search", nrows=1, ncols=3, figsize=(13.0, 4.2)) as (fig, ax):
+        for k, path in enumerate(paths):
+            pts = np.array(path.points)
+            ax[0].plot(path.values, "-", lw=1.2, label=f"start {k + 1} {tuple(sq43.TABLE_3_1[k])}")
+            for j, (u, v) in enumerate(((0, 1), (1, 2))):
+                ax[j + 1].plot(pts[:, u], pts[:, v], "-", lw=1)
+                ax[j + 1].plot(pts[0, u], pts[0, v], "o", ms=4, color=ax[0].lines[-1].get_color())
+                ax[j + 1].plot(pts[-1, u], pts[-1, v], "*", ms=9, color=ax[0].lines[-1].get_color())
+        ax[0].axhline(grid_best, color="k", ls=":", lw=0.8, label=f"best of a {SQ43_GRID_CHECK_DEG}° grid")
+        ax[0].set_xlabel("search step t")
+        ax[0].set_ylabel("lifted left-front foot height [mm]")
+        ax[0].legend(fontsize=7)
+        for j, (u, v) in enumerate(((0, 1), (1, 2))):
+            ax[j + 1].set_xlabel(f"a{u + 1} [deg]")
+            ax[j + 1].set_ylabel(f"a{v + 1} [deg]")
+            ax[j + 1].set_xlim(-31, 31)
+            ax[j + 1].set_ylim(-31, 31)
+            ax[j + 1].set_aspect("equal")
+            ax[j + 1].grid(lw=0.3)
+        ax[1].set_title("paths (o start, * end); |a4| ≤ 30° bounds the region", fontsize=8)
+
+
+def plot_sq43_shapes(ctx, starts, ends, prm: sq43.SQ43Params) -> None:
+    """Side view (y–z) of the start and end spines of each search."""
+    with ctx.figure("sq43_spines", figsize=(7.5, 4.0)) as (fig, ax):
+        for k, (a0, a1) in enumerate(zip(starts, ends)):
+            for a, ls in ((a0, ":"), (a1, "-")):
+                poly = sq43.spine_shape(a, prm).polyline
+                ax.plot(1e3 * poly[:, 1], 1e3 * (poly[:, 2] - 0.03 * k), ls, lw=1.5, color=f"C{k}",
+                        label=f"start {k + 1}: {'start' if ls == ':' else 'end'}")
+        ax.set_xlabel("y [mm] (front →)")
+        ax.set_ylabel("z [mm] (offset 30 mm per start)")
+        ax.set_aspect("equal")
+        ax.legend(fontsize=6, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.2))
