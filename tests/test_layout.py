@@ -165,3 +165,16 @@ def test_no_private_imports_across_files():
                         if pair not in PRIVATE_IMPORT_EXCEPTIONS:
                             offenders.append(pair)
     assert not offenders, offenders
+
+
+TESTS = Path(__file__).parent
+
+
+def test_tests_mirror_src():
+    """Every test folder is a folder of ``src/shintai``; a spine unit's tests are in its folder, not flat."""
+    strays = [str(d.relative_to(TESTS)) for d in TESTS.rglob("*") if d.is_dir() and d.name != "__pycache__"
+              and not d.name.startswith(".") and not (SRC / d.relative_to(TESTS)).is_dir()]
+    assert not strays, f"test folders with no src folder: {strays}"
+    flat = [p.name for p in (TESTS / "spine").glob("test_*.py")
+            if any(p.stem == f"test_{u}" or p.stem.startswith(f"test_{u}_") for u in SPINE_UNITS)]
+    assert not flat, f"spine unit tests outside their unit's folder: {flat}"
