@@ -1,5 +1,5 @@
-"""The MuJoCo SQ43 (spine/sq43_body.py) and its behaviours (spine/sq43_gaits.py): model, trot generator,
-levelling, the GA on every executor and its resume."""
+"""The MuJoCo SQ43 (spine/sq43/body.py) and its gaits (spine/sq43/gaits.py): model, trot generator, the GA on
+every executor and its resume."""
 
 from types import SimpleNamespace
 
@@ -66,14 +66,6 @@ def test_trot_foot_path_follows_the_genes():
     # trot: the diagonal pairs in phase
     np.testing.assert_allclose(G.foot_path(genome, t, "LF")[:, 2], G.foot_path(genome, t, "RH")[:, 2])
     np.testing.assert_allclose(G.foot_path(genome, t, "RF")[:, 2], G.foot_path(genome, t, "LH")[:, 2])
-
-
-def test_levelling_reduces_the_roll():
-    without = G.simulate_levelling(None, duration=5.5)
-    levelled = G.simulate_levelling(G.Levelling(), duration=5.5)
-    late = without["t"] > 5.0
-    assert without["roll_deg"][late].mean() > 3.0
-    assert abs(levelled["roll_deg"][late].mean()) < 1.0 and len(levelled["acted_s"]) >= 1
 
 
 def test_trot_rollout_equals_the_body_replay():

@@ -318,9 +318,9 @@ def accelerometer_roll(acc) -> np.ndarray:
 class SQ43Body(MujocoBody):
     """The MuJoCo SQ43 (module docstring) standing on its feet, reset to the ``stand`` keyframe."""
 
-    def __init__(self, spec: SQ43BodySpec = BODY, board: bool = False):
+    def __init__(self, spec: SQ43BodySpec = BODY, board: bool = False, substeps: int = 1):
         self.spec_values = spec
-        super().__init__(build_spec(spec, board), keyframe="stand")
+        super().__init__(build_spec(spec, board), substeps=substeps, keyframe="stand")
         self.leg_ids, self.spine_ids = actuator_ids(self.model)
 
     def set_servos(self, legs: dict, spine_deg=(0.0, 0.0)) -> None:

@@ -1,6 +1,5 @@
-"""SQ43's behaviours on the MuJoCo body (:mod:`shintai.spine.sq43.body`): the accelerometer levelling
-(§3.2.4, Fig. 3.6), the statically planned crawl and its lift tests (§3.2.4, §3.2.5, Fig. 3.7), and the GA
-trot's foot-path generator and fitness (§5.6.2, Figs. 5.20–5.21).
+"""SQ43's gaits on the MuJoCo body (:mod:`shintai.spine.sq43.body`): the statically planned crawl and its lift
+tests (§3.2.4, §3.2.5, Fig. 3.7), and the GA trot's foot-path generator and fitness (§5.6.2, Figs. 5.20–5.21).
 
 **Trot genes (§5.6.2).** "cycle (2.0 ~ 4.0[sec])，fore (40.0 ~ 80.0[mm])，natural-length (208.0 ~ 228.0[mm])，
 height (5.0 ~ 25.0[mm])，leg-center (前脚，後脚．それぞれ -30.0 ~ 30.0[mm]) を GA の遺伝子に対応させ … duty は
@@ -33,7 +32,7 @@ import numpy as np
 from mujoco import rollout
 
 from shintai.spine.sq43.body import (
-    BODY, LEGS, SQ43Body, SQ43BodySpec, accelerometer_roll, build_spec, leg_ik, leg_root, relative_twist, roll_of,
+    BODY, LEGS, SQ43Body, SQ43BodySpec, build_spec, leg_ik, leg_root, relative_twist,
     servo_ctrl, standing_angles,
 )
 
@@ -177,76 +176,6 @@ class _null:
 
     def __exit__(self, *exc):
         return False
-
-
-# ------------------------------------------------------------------------------------------- levelling
-
-@dataclass(frozen=True)
-class Levelling:
-    """§3.2.4's shoulder levelling: "センサの値が定常になった時の値のみを姿勢情報として利用する" — the
-    shoulder accelerometer is read only when steady (its reading varies less than ``steady_ms2`` over
-    ``window_s``); then the left-front leg's length changes by ``gain`` × the shoulder height error
-    (half body width × sin roll) toward level, and the controller waits for the next steady window.
-    Numbers chosen (not in the text)."""
-
-    period_s: float = 0.02
-    window_s: float = 0.3
-    steady_ms2: float = 0.15
-    deadband_deg: float = 0.5
-    gain: float = 0.8
-
-
-def board_height(t, rise_mm: float, times=(1.0, 2.0, 6.0, 7.0)) -> np.ndarray:
-    """The board under the left front foot: up from t0 to t1, held, down from t2 to t3 (Fig. 3.6 1→2, 3→4)."""
-    t0, t1, t2, t3 = times
-    up = np.clip((np.asarray(t) - t0) / (t1 - t0), 0, 1) - np.clip((np.asarray(t) - t2) / (t3 - t2), 0, 1)
-    return 1e-3 * rise_mm * up
-
-
-def simulate_levelling(levelling: Levelling | None, rise_mm: float = 20.0, duration: float = 11.0,
-                       spec: SQ43BodySpec = BODY, camera=None) -> dict:
-    """Raise and lower the board; with ``levelling`` the controller adjusts the LF leg. Returns series:
-    t, board [mm], shoulder roll (true, from the body's orientation) [deg], the accelerometer roll [deg],
-    the LF leg length [mm], and the times the controller acted."""
-    body = SQ43Body(spec, board=True)
-    model, data = body.model, body.data
-    board = model.body("board").mocapid[0]
-    board_xy = data.mocap_pos[board].copy()
-    sub = round((levelling.period_s if levelling else 0.02) / model.opt.timestep)
-    acc = slice(model.sensor("acc_shoulder").adr[0], model.sensor("acc_shoulder").adr[0] + 3)
-    quat = slice(model.sensor("shoulder_quat").adr[0], model.sensor("shoulder_quat").adr[0] + 4)
-    stand = standing_angles(spec)
-    lf_length = spec.natural_length_m
-    window = []
-    out = {k: [] for k in ("t", "board_mm", "roll_deg", "acc_roll_deg", "lf_length_mm")}
-    acted = []
-    with camera(body) if camera is not None else _null():
-        while data.time < duration:
-            data.mocap_pos[board] = board_xy + [0, 0, float(board_height(data.time, rise_mm))]
-            if levelling is not None:
-                window.append(data.sensordata[acc].copy())
-                n = round(levelling.window_s / levelling.period_s)
-                window = window[-n:]
-                if len(window) == n and np.ptp(np.array(window), axis=0).max() < levelling.steady_ms2:
-                    roll = float(accelerometer_roll(np.mean(window, axis=0)))
-                    if abs(math.degrees(roll)) > levelling.deadband_deg:
-                        lf_length -= levelling.gain * spec.body_width_m * math.sin(roll)
-                        lf_length = float(np.clip(lf_length, 0.15, 0.245))
-                        acted.append(data.time)
-                        window = []
-            legs = dict(stand)
-            legs["LF"] = leg_ik("LF", [0.0, 0.0, -lf_length], spec)
-            data.ctrl[:] = servo_ctrl(model, legs)
-            for _ in range(sub):
-                body.step()
-            out["t"].append(data.time)
-            out["board_mm"].append(1e3 * float(board_height(data.time, rise_mm)))
-            out["roll_deg"].append(math.degrees(float(roll_of(data.sensordata[quat]))))
-            out["acc_roll_deg"].append(math.degrees(float(accelerometer_roll(data.sensordata[acc]))))
-            out["lf_length_mm"].append(1e3 * lf_length)
-    series = {k: np.array(v) for k, v in out.items()}
-    series["acted_s"] = np.array(acted)
-    return series
 
 
 # ----------------------------------------------------------------------------------------------- crawl

@@ -45,3 +45,26 @@ def plot_sq43_shapes(ctx, starts, ends, prm: sq43.SQ43Params) -> None:
         ax.set_ylabel("z [mm] (offset 30 mm per start)")
         ax.set_aspect("equal")
         ax.legend(fontsize=6, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+
+
+def levelling(ctx, runs: dict, rise_mm: float) -> None:
+    """Fig. 3.6: the shoulder roll with and without the levelling against the board, and the left front leg."""
+    with ctx.figure("levelling_roll") as (fig, ax):
+        for v, s in runs.items():
+            ax.plot(s["t"], s["roll_deg"], label=f"shoulder roll, {v} levelling")
+        for a in runs["with"]["acted_s"]:
+            ax.axvline(a, color="0.8", lw=0.6)
+        ax2 = ax.twinx()
+        ax2.plot(runs["with"]["t"], runs["with"]["board_mm"], "k--", lw=0.8, label="board height")
+        ax2.set_ylabel("board under LF [mm]")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("shoulder roll [deg] (+: left side up)")
+        ax.set_title(f"SQ43 levelling (Fig. 3.6): board up {rise_mm:g} mm and down; grey: controller steps", fontsize=9)
+        ax.legend(fontsize=7, loc="upper right")
+    with ctx.figure("levelling_leg") as (fig, ax):
+        ax.plot(runs["with"]["t"], runs["with"]["lf_length_mm"], label="LF leg length (with levelling)")
+        ax.plot(runs["with"]["t"], runs["with"]["acc_roll_deg"] + runs["with"]["lf_length_mm"].mean(), lw=0.6,
+                label="accelerometer roll [deg] (offset)")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("[mm]")
+        ax.legend(fontsize=7)
