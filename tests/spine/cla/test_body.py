@@ -6,7 +6,8 @@ import pytest
 
 from shintai.core.runtime import Loop
 from shintai.spine.cla.body import LIMB_JOINTS, ClaBody, build_spec
-from shintai.spine.cla.control import settle, spine_control
+from shintai.scenarios.experiment import Rig, run_rig
+from shintai.spine.cla.control import spine_control
 from shintai.spine.control import SETPOINTS
 from shintai.spine.cla.postures import GOAL, WHOLE_REF, PostureTargets
 from shintai.spine.robots import CLA
@@ -45,7 +46,7 @@ def test_the_muscles_bend_the_free_spine_and_the_lock_holds_it():
 def test_standing_soles_carry_the_weight_and_the_cop_lies_between_the_feet():
     body = ClaBody("standing")
     control, _ = spine_control(body, calibration_s=0.3)
-    settle(body, control, 0.3)
+    run_rig(Rig(body, [control], duration=0.3))  # the muscles holding their targets
     snap = body.snapshot()
     weight = body.model.body_subtreemass[body.id("body", "link0")] * 9.81
     assert snap["sole_force"].sum() == pytest.approx(weight, rel=0.1)

@@ -30,7 +30,8 @@ with free objects. **Standing**: the pelvis is free (joint ``root``) on the legs
 through their four corner spheres, under the FSRs.
 
 **The spine lock** (the thesis's "without the spine", Figs. 5.4 and 5.6): an equality per spine hinge
-(``lock_j<i>_<axis>``) holds it at the angle it has when :meth:`ClaBody.lock_spine` is called.
+(``lock_j<i>_<axis>``) holds it at the angle it has when :meth:`ClaBody.lock_spine` is called (or the
+``spine_lock`` channel turns on).
 
 **Grips**: a weld per hand and object (``grip_<s>_<object>``), off at start; :meth:`ClaBody.grip` welds the
 object to the hand where it is now (a hand that closes on it), and lets go.
@@ -41,6 +42,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from shintai.core.runtime import SET, declare
 from shintai.sim.spec import add_capsule, add_hinge, add_position_actuator
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
@@ -306,8 +308,17 @@ class ClaBody(SpineBody):
         self._fsr_cols = np.array([m.sensor_adr[self.id("sensor", f"fsr_{s}{k + 1}")] for s in SIDES
                                    for k in range(4)])
         self.objects = tuple(o for o in OBJECTS if mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, o) >= 0)
+        self.channels = {**self.channels, **declare("spine_lock", kind=SET)}
         self.reset(posture)
         mujoco.mj_forward(m, self.data)
+
+    def apply(self, command) -> None:
+        """SpineBody's channels, and ``spine_lock`` (set): the spine locked where it is when it turns on."""
+        command = dict(command)
+        lock = command.pop("spine_lock", None)
+        if lock is not None and bool(lock) != self.spine_locked:
+            self.lock_spine(bool(lock))
+        super().apply(command)
 
     # -- the spine lock ---------------------------------------------------------------------------------
 

@@ -1,6 +1,6 @@
 """Commanding the whole-body Cla's spine (:mod:`~shintai.spine.cla.body`) as every Cla experiment does: the §4.6.4
-encoder zeroing, then :class:`~shintai.spine.control.MuscleControl` in L mode (:func:`spine_control`), a Loop with
-the posture player between a schedule and the controller (:func:`spine_loop`), and holding still (:func:`settle`).
+encoder zeroing, then :class:`~shintai.spine.control.MuscleControl` in L mode (:func:`spine_control`), and the
+stages with the posture player between a schedule and the controller (:func:`spine_stages`, :data:`CHANNELS`).
 """
 
 from __future__ import annotations
@@ -8,7 +8,6 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.core.constants import KGF_N
-from shintai.core.runtime import Loop
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.cla.setup import cla_gains
 from shintai.spine.control import SETPOINTS, Mode, MuscleControl
@@ -30,17 +29,10 @@ def spine_control(body: SpineBody, T_l_kgf: float = 2.0, T_r_kgf: float = 1.0,
     return control, CLA.model.lengths(np.zeros(3 * CLA.n))
 
 
-def spine_loop(body: SpineBody, control: MuscleControl, zero, move_s: float, first=(), last=(),
-               recorder=None) -> Loop:
-    """A Loop whose first stage (``first``: modules writing ``goal`` and limb targets) is followed by the
-    posture player (``move_s`` per goal) and then the muscle controller with ``last`` (observers)."""
-    stages = [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]
-    return Loop(body, recorder=recorder, stages=stages, channels=(*SETPOINTS, GOAL, WHOLE_REF))
+CHANNELS = (*SETPOINTS, GOAL, WHOLE_REF)  # the loop channels of :func:`spine_stages`
 
 
-def settle(body: SpineBody, control: MuscleControl, seconds: float) -> None:
-    """Run the body with the muscles holding their targets (the servos holding theirs) for ``seconds``."""
-    Loop(body, [control]).run(seconds)
-
-
-__all__ = ["spine_control", "spine_loop", "settle"]
+def spine_stages(control: MuscleControl, zero, move_s: float, first=(), last=()) -> list[list]:
+    """The stages of a Cla run: ``first`` (modules writing ``goal`` and limb targets), then the posture player
+    (``move_s`` per goal), then the muscle controller with ``last`` (observers); channels :data:`CHANNELS`."""
+    return [list(first), [PostureTargets(CLA.model, zero, move_s)], [control, *last]]

@@ -17,13 +17,16 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from shintai.core.interpolation import minimum_jerk
 from shintai.core.runtime import Module, Snapshot
+from shintai.scenarios.experiment import Rig
 from shintai.spine.actuators import tilt
 from shintai.spine.cla.body import ClaBody
-from shintai.spine.cla.control import spine_control, spine_loop
+from shintai.spine.cla.control import CHANNELS, spine_control, spine_stages
 from shintai.spine.geometry import whole_spine
 from shintai.spine.inverse_model import NeuralInverse
 
@@ -107,34 +110,47 @@ def shoulder_tilt(body) -> np.ndarray:
     return np.array([np.arctan2(up[1], up[2]), np.arctan2(-up[0], np.hypot(up[1], up[2]))])
 
 
-def run_levelling(p: dict, levelling: bool, inverse: NeuralInverse, camera=None) -> dict:
-    """One run on the seated Cla with a tilting seat (``p``: the scenario's parameters): the seat tilts to
-    (``tilt1_roll_deg``, 0) at ``TILT1_S`` and to (``tilt2_roll_deg``, ``tilt2_pitch_deg``) at ``tilt2_s``;
-    with ``levelling`` the :class:`Levelling` loop acts, without it the spine holds its basic posture. Returns
-    the time series (every 20 ms) and the adjustments. ``camera``: a function of the body returning a context
-    manager (a video recorder) or None."""
-    import contextlib
+@dataclass
+class LevellingRun:
+    """What a levelling rig leaves for its metrics: the law (its ``events``), whether it acted, the start time."""
 
+    law: Levelling
+    levelling: bool
+    t0: float
+
+
+def levelling_rig(levelling: bool, inverse: NeuralInverse, tilt1_roll_deg: float, tilt2_s: float,
+                  tilt2_roll_deg: float, tilt2_pitch_deg: float, settle_s: float, window_s: float, move_s: float,
+                  deadband_deg: float, duration_s: float, calibration_s: float = 1.0, view=None) -> Rig:
+    """One run on the seated Cla with a tilting seat: the seat tilts to (``tilt1_roll_deg``, 0) at ``TILT1_S`` and
+    to (``tilt2_roll_deg``, ``tilt2_pitch_deg``) at ``tilt2_s``; with ``levelling`` the :class:`Levelling` loop
+    acts, without it the spine holds its basic posture. Records every 20 ms (:func:`levelling_series`)."""
     body = ClaBody("seated", desk=False, seat_tilt=True)
-    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
-    seat = SeatTilt([(TILT1_S, np.radians(p["tilt1_roll_deg"]), 0.0),
-                     (p["tilt2_s"], np.radians(p["tilt2_roll_deg"]), np.radians(p["tilt2_pitch_deg"]))], SEAT_MOVE_S)
-    law = Levelling(inverse, zero, p["settle_s"], p["window_s"], p["move_s"], p["deadband_deg"])
-    loop = spine_loop(body, control, zero, p["move_s"], first=[seat, law] if levelling else [seat])
-    rows, t0 = [], body.t  # times from the loop's start (after the 1-s encoder zeroing)
+    control, zero = spine_control(body, calibration_s=calibration_s)
+    seat = SeatTilt([(TILT1_S, np.radians(tilt1_roll_deg), 0.0),
+                     (tilt2_s, np.radians(tilt2_roll_deg), np.radians(tilt2_pitch_deg))], SEAT_MOVE_S)
+    law = Levelling(inverse, zero, settle_s, window_s, move_s, deadband_deg)
+    stages = spine_stages(control, zero, move_s, first=[seat, law] if levelling else [seat])
+    t0 = body.t  # times from the loop's start (after the encoder zeroing)
 
     def sample(snap):
-        t = snap["t"] - t0
-        rows.append([t, *np.degrees(shoulder_tilt(body)), *np.degrees(tilt(snap["acc_chest"])),
-                     *np.degrees(seat.target(t)), *np.degrees(whole_spine(snap["theta"]))])
+        return {"shoulder_deg": np.degrees(shoulder_tilt(body)), "acc_deg": np.degrees(tilt(snap["acc_chest"])),
+                "seat_deg": np.degrees(seat.target(snap["t"] - t0)), "spine_deg": np.degrees(whole_spine(snap["theta"]))}
 
-    with camera(body) if camera is not None else contextlib.nullcontext():
-        loop.run(p["duration_s"], every={max(1, round(0.02 / body.dt)): sample})
-    a = np.array(rows)
-    keys = ("t", "roll_deg", "pitch_deg", "acc_roll_deg", "acc_pitch_deg", "seat_roll_deg", "seat_pitch_deg",
-            "spine_roll_deg", "spine_pitch_deg", "spine_yaw_deg")
-    events = [{**e, "t": e["t"] - t0} for e in law.events] if levelling else []
-    return {**{k: a[:, i] for i, k in enumerate(keys)}, "events": events}
+    return Rig(body, stages=stages, channels=CHANNELS, duration=duration_s,
+               record={max(1, round(0.02 / body.dt)): sample}, view=view or {}, state=LevellingRun(law, levelling, t0))
+
+
+def levelling_series(log, run: LevellingRun) -> dict:
+    """The recorded series (``t`` from the loop's start) and the adjustments (``events``)."""
+    s = {"t": log.times("shoulder_deg") - run.t0}
+    for signal, names in (("shoulder_deg", ("roll_deg", "pitch_deg")), ("acc_deg", ("acc_roll_deg", "acc_pitch_deg")),
+                          ("seat_deg", ("seat_roll_deg", "seat_pitch_deg")),
+                          ("spine_deg", ("spine_roll_deg", "spine_pitch_deg", "spine_yaw_deg"))):
+        values = log.values(signal)
+        s |= {name: values[:, i] for i, name in enumerate(names)}
+    s["events"] = [{**e, "t": e["t"] - run.t0} for e in run.law.events] if run.levelling else []
+    return s
 
 
 def settled(series: dict, t0: float, t1: float) -> float:

@@ -1,9 +1,13 @@
-"""Pictures of ``spine.posture-database`` (seed 003 §5.9): the node graph in a 2-D projection of muscle-length
-space (cf. Fig. 5.29), the history replay against the taught history (cf. Fig. 5.30), the push triggers."""
+"""Cla's pictures: ``spine.posture-database`` (seed 003 §5.9: the node graph in a 2-D projection of muscle-length
+space, cf. Fig. 5.29, the history replay against the taught history, cf. Fig. 5.30, the push triggers) and the
+chapter-5 behaviours (§5.2: the pull, the throw, the levelling, the balance, the pick-and-place, the roll-over)."""
 
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.patches import Rectangle
+
+from shintai.spine.robots import CLA_DESK_HEIGHT_M, CLA_OBJECT_HALF_M
 
 TAG_COLOUR = {"hold": "tab:gray", "move": "tab:blue", "limp": "tab:red", "play": "tab:green"}
 TAG_LABEL = {"hold": "holding", "move": "weak-push nudge", "limp": "strong push: taught limp (T mode)",
@@ -96,3 +100,90 @@ def triggers(ctx, log, levels) -> None:
             ax2.set_ylabel("person's push on the shoulders [N] (grey)")
         ax.legend(fontsize=7, loc="upper right")
         ax.set_title("push teaching triggers (§5.9.3): W = weak (nudge), S = strong (T mode)", fontsize=9)
+
+
+def pull(ctx, runs: dict, labels: dict) -> None:
+    """Figs. 5.5–5.6: the hand and the object's near face against time, and the hand's path seen from the side."""
+    with ctx.figure("pull") as (fig, ax):
+        for variant, s in runs.items():
+            line, = ax.plot(s["t"], s["hand_x_m"], label=f"hand x, {labels[variant]}")
+            ax.plot(s["t"], s["object_x_m"] + s["object_dx_m"] - CLA_OBJECT_HALF_M, ls="--", color=line.get_color(),
+                    label=f"object's near face x, {variant}")
+        s = runs["with_spine"]
+        ax.axhline(s["reach_straight_m"], color="0.6", lw=0.7, ls=":", label="reach at the desk, spine straight")
+        ax.axhline(s["reach_leaning_m"], color="0.3", lw=0.7, ls=":", label="reach at the desk, spine leaning")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("x (forward) [m]")
+        ax.set_title("Cla pulls an object on the desk (Figs. 5.5–5.6)", fontsize=9)
+        ax.legend(fontsize=6)
+    with ctx.figure("side_view") as (fig, ax):
+        for variant, s in runs.items():
+            ax.plot(s["hand_x_m"], s["hand_z_m"], label=f"hand path, {labels[variant]}")
+        x0 = runs["with_spine"]["object_x_m"]
+        h = CLA_OBJECT_HALF_M
+        z = CLA_DESK_HEIGHT_M
+        ax.add_patch(Rectangle((x0 - h, z), 2 * h, 2 * h, color="tab:red", alpha=0.4, label="object at start"))
+        ax.axhline(z, color="0.5", lw=1.0, label="desk top")
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (forward) [m]")
+        ax.set_ylabel("z [m]")
+        ax.legend(fontsize=6)
+
+
+def throw(ctx, runs: dict, labels: dict) -> None:
+    """Figs. 5.3–5.4: the hand's speed of each throw, and the parts' rates of the throw with the spine."""
+    with ctx.figure("hand_speed") as (fig, ax):
+        for variant, s in runs.items():
+            ax.plot(s["t"], s["hand_speed_mps"], label=labels[variant])
+        at = s["pattern"].throw_at
+        ax.axvline(at, color="0.7", lw=0.6)
+        ax.set_xlim(at - 0.2, s["t"][-1])
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("hand speed [m/s]")
+        ax.set_title("Cla's throw (Figs. 5.3–5.4): hand speed with and without the spine", fontsize=9)
+        ax.legend(fontsize=7)
+    with ctx.figure("sequence") as (fig, ax):
+        s = runs["with_spine"]
+        dt = np.gradient(s["t"])
+        for key, label in (("spine_yaw_deg", "spine yaw rate [rad/s]"), ("shoulder_rad", "shoulder rate [rad/s]"),
+                           ("elbow_rad", "elbow rate [rad/s]")):
+            rate = np.gradient(s[key]) / dt
+            ax.plot(s["t"], np.abs(np.radians(rate) if key.endswith("deg") else rate), label=label)
+        ax.plot(s["t"], s["hand_speed_mps"], "k", lw=1.2, label="hand speed [m/s]")
+        ax.set_xlim(s["pattern"].throw_at - 0.1, s["pattern"].throw_at + 0.8)
+        ax.set_xlabel("time [s]")
+        ax.set_title("with the spine: spine, shoulder, elbow started in that order, their speed peaks together",
+                     fontsize=9)
+        ax.legend(fontsize=7)
+
+
+def levelling(ctx, runs: dict) -> None:
+    """Fig. 5.2: the shoulders' tilt with and without the levelling against the seat, and the spine's posture."""
+    with ctx.figure("shoulder_tilt") as (fig, ax):
+        for variant, s in runs.items():
+            ax.plot(s["t"], s["roll_deg"], label=f"shoulder roll, {variant} levelling")
+            ax.plot(s["t"], s["pitch_deg"], ls="--", label=f"shoulder pitch, {variant} levelling")
+        ax.plot(runs["with"]["t"], runs["with"]["seat_roll_deg"], "k:", lw=0.8, label="seat roll")
+        ax.plot(runs["with"]["t"], runs["with"]["seat_pitch_deg"], "k-.", lw=0.8, label="seat pitch")
+        for e in runs["with"]["events"]:
+            ax.axvline(e["t"], color="0.8", lw=0.6)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("tilt [deg] (roll +: right side down; pitch +: forward)")
+        ax.set_title("Cla levels its shoulders (Fig. 5.2); grey: sense → compute → move", fontsize=9)
+        ax.legend(fontsize=6, ncol=2)
+    with ctx.figure("spine_posture") as (fig, ax):
+        s = runs["with"]
+        for key in ("spine_roll_deg", "spine_pitch_deg"):
+            ax.plot(s["t"], s[key], label=f"true {key.split('_')[1]}")
+        events = s["events"]
+        if events:
+            t = [e["t"] for e in events]
+            ax.plot(t, [e["nn_whole_deg"][0] for e in events], "o", label="NN estimate, roll")
+            ax.plot(t, [e["nn_whole_deg"][1] for e in events], "s", label="NN estimate, pitch")
+            ax.plot(t, [e["goal_deg"][0] for e in events], "x", label="goal sent, roll")
+            ax.plot(t, [e["goal_deg"][1] for e in events], "+", label="goal sent, pitch")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("whole-spine angle [deg]")
+        ax.set_title("the spine's posture: true, the network's estimate from the muscle lengths, the goals",
+                     fontsize=9)
+        ax.legend(fontsize=7)

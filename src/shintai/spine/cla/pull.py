@@ -19,14 +19,15 @@ spine" (Fig. 5.6) is the same module, the same targets and controller, the spine
 
 from __future__ import annotations
 
-import contextlib
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
+from shintai.scenarios.experiment import Rig
 from shintai.spine.cla.body import ClaBody
-from shintai.spine.cla.control import spine_control, spine_loop
+from shintai.spine.cla.control import CHANNELS, spine_control, spine_stages
 from shintai.spine.cla.keyframes import Key, KeyframePlayer
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
@@ -164,37 +165,57 @@ class PullPattern(Module):
         return out
 
 
-def run_pull(p: dict, with_spine: bool, camera=None) -> dict:
-    """One pull on the seated Cla before the desk (``p``: ``lean_deg``, ``beyond_reach_m``, ``move_s``): the spine
-    free, or locked upright from the start. Returns the time series (every 10 ms) and the set-up."""
+@dataclass
+class Pull:
+    """What a pull rig leaves for its metrics: the set-up, the keyframes, the start time and object position."""
+
+    object_x_m: float
+    reach_straight_m: float
+    reach_leaning_m: float
+    keyframes: list
+    t0: float
+    x0: np.ndarray
+
+
+def pull_rig(with_spine: bool, lean_deg: float, beyond_reach_m: float, move_s: float, calibration_s: float = 1.0,
+             view=None) -> Rig:
+    """One pull on the seated Cla before the desk: the spine free, or locked upright from the start, leaning
+    ``lean_deg`` toward an object ``beyond_reach_m`` past the straight arm's reach. Records every 10 ms the hand,
+    the object's displacement, the hand's gap to it and the whole spine (:func:`pull_series`)."""
     body = ClaBody("seated")
     m = body.model
-    lean = np.radians(p["lean_deg"])
-    x_obj = object_x(m, p["beyond_reach_m"])
+    lean = np.radians(lean_deg)
+    x_obj = object_x(m, beyond_reach_m)
     start = [body.joint_qpos(j) for j in ARM]
     keys = arm_keyframes(m, lean, x_obj)
-    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
+    control, zero = spine_control(body, calibration_s=calibration_s)
     body.place("desk_object", [x_obj, -CLA_SHOULDER_M[1], CLA_DESK_HEIGHT_M + CLA_OBJECT_HALF_M])
     if not with_spine:
         body.lock_spine(True)
     pattern = PullPattern(keys, lean, start)
-    loop = spine_loop(body, control, zero, p["move_s"], first=[pattern])
-    rows, t0 = [], body.t
-    x0 = body.object_pos("desk_object").copy()
+    stages = spine_stages(control, zero, move_s, first=[pattern])
+    run = Pull(x_obj, reach_at_desk(m), reach_at_desk(m, lean), keys, body.t, body.object_pos("desk_object").copy())
 
     def sample(snap):
         hand, obj = snap["hand_r_pos"], body.object_pos("desk_object")
         gap = np.abs(hand - obj) - CLA_OBJECT_HALF_M
-        rows.append([snap["t"] - t0, *hand, *(obj - x0), float(np.linalg.norm(np.maximum(gap, 0.0)) -
-                     CLA_HAND_RADIUS_M), *np.degrees(whole_spine(snap["theta"]))])
+        return {"hand_m": hand, "object_d_m": obj - run.x0,
+                "hand_gap_m": float(np.linalg.norm(np.maximum(gap, 0.0)) - CLA_HAND_RADIUS_M),
+                "spine_deg": np.degrees(whole_spine(snap["theta"]))}
 
-    with camera(body) if camera is not None else contextlib.nullcontext():
-        loop.run(END_S, every={10: sample})
-    a = np.array(rows)
-    keys_out = ("t", "hand_x_m", "hand_y_m", "hand_z_m", "object_dx_m", "object_dy_m", "object_dz_m", "hand_gap_m",
-                "spine_roll_deg", "spine_pitch_deg", "spine_yaw_deg")
-    return {**{k: a[:, i] for i, k in enumerate(keys_out)}, "object_x_m": x_obj, "reach_straight_m": reach_at_desk(m),
-            "reach_leaning_m": reach_at_desk(m, lean), "keyframes": keys}
+    return Rig(body, stages=stages, channels=CHANNELS, duration=END_S, record={10: sample}, view=view or {},
+               state=run)
+
+
+def pull_series(log, run: Pull) -> dict:
+    """The recorded time series (``t`` from the pull's start) and the set-up."""
+    hand, obj, spine = log.values("hand_m"), log.values("object_d_m"), log.values("spine_deg")
+    s = {"t": log.times("hand_m") - run.t0, "hand_gap_m": log.values("hand_gap_m")}
+    s |= {f"hand_{a}_m": hand[:, i] for i, a in enumerate("xyz")}
+    s |= {f"object_d{a}_m": obj[:, i] for i, a in enumerate("xyz")}
+    s |= {f"spine_{a}_deg": spine[:, i] for i, a in enumerate(("roll", "pitch", "yaw"))}
+    return s | {"object_x_m": run.object_x_m, "reach_straight_m": run.reach_straight_m,
+                "reach_leaning_m": run.reach_leaning_m, "keyframes": run.keyframes}
 
 
 def pull_summary(s: dict) -> dict[str, float]:

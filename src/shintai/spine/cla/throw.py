@@ -16,17 +16,18 @@ Figs. 5.3–5.4), on the seated whole-body Cla (:mod:`~shintai.spine.cla.body`).
 
 The spine's postures are whole-spine uniform bends whose muscle lengths (eq. 4.25) become the L-mode targets each
 tick, as :class:`~shintai.spine.cla.postures.PostureTargets` does. "Without the spine" (Fig. 5.4) is the same module
-and controller with the spine locked at the wind-up posture (:meth:`ClaBody.lock_spine` when the throw starts).
+and controller with the spine locked at the wind-up posture when the throw starts (:class:`LockAtThrow`).
 """
 
 from __future__ import annotations
 
-import contextlib
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Loop, Module, Snapshot
+from shintai.core.runtime import Module, Snapshot
+from shintai.scenarios.experiment import Rig
 from shintai.spine.cla.body import ClaBody
 from shintai.spine.cla.control import spine_control
 from shintai.spine.cla.keyframes import SPINE_AXES, Key, KeyframePlayer
@@ -83,32 +84,58 @@ class ThrowPattern(Module):
         return {"l_r": l_r, "l_0": l_r, **arm}
 
 
-def run_throw(p: dict, with_spine: bool, camera=None, sequenced: bool = True) -> dict:
+class LockAtThrow(Module):
+    """Writes ``spine_lock`` from the ``at_tick``-th tick on: the spine locked at the wind-up when the throw starts
+    ("without the spine", Fig. 5.4)."""
+
+    def __init__(self, at_tick: int):
+        super().__init__("lock")
+        self.at_tick, self.tick = at_tick, 0
+
+    def update(self, snapshot: Snapshot):
+        self.tick += 1
+        return {"spine_lock": 1.0} if self.tick > self.at_tick else None
+
+
+@dataclass
+class Throw:
+    """What a throw rig leaves for its metrics: the pattern and the start time."""
+
+    pattern: ThrowPattern
+    t0: float
+
+
+def throw_rig(with_spine: bool, spine_s: float, shoulder_s: float, elbow_s: float, windup_s: float = 1.5,
+              calibration_s: float = 1.0, sequenced: bool = True, view=None) -> Rig:
     """One throw on the seated Cla (no desk): the spine free (``with_spine``) or locked at the wind-up posture
-    when the throw starts; ``sequenced`` False starts the three parts together (the ablation). Returns the time
-    series (every ms): the hand's speed [m/s], the spine's whole-body
-    angles [deg] and the shoulder and elbow angles [rad], and the pattern."""
+    when the throw starts; ``sequenced`` False starts the three parts together (the ablation). Records every ms
+    the hand's speed [m/s], the spine's whole-body angles [deg] and the shoulder and elbow angles [rad]
+    (:func:`throw_series`); runs ``FOLLOW_S`` past the throw's start."""
     body = ClaBody("seated", desk=False)
-    control, zero = spine_control(body, calibration_s=p.get("calibration_s", 1.0))
-    pattern = ThrowPattern(zero, p["spine_s"], p["shoulder_s"], p["elbow_s"], sequenced, p.get("windup_s", 1.5))
-    loop = Loop(body, stages=[[pattern], [control]], channels=SETPOINTS)
-    rows, t0 = [], body.t
+    control, zero = spine_control(body, calibration_s=calibration_s)
+    pattern = ThrowPattern(zero, spine_s, shoulder_s, elbow_s, sequenced, windup_s)
+    at_throw = round(pattern.throw_at / body.dt)
+    first = [pattern] if with_spine else [pattern, LockAtThrow(at_throw)]
     hand = body.id("site", "hand_r")
 
     def sample(snap):
         v = np.zeros(6)
         mujoco.mj_objectVelocity(body.model, body.data, mujoco.mjtObj.mjOBJ_SITE, hand, v, 0)
-        rows.append([snap["t"] - t0, float(np.linalg.norm(v[3:])), *np.degrees(whole_spine(snap["theta"])),
-                     body.joint_qpos("shoulder_pitch_r"), body.joint_qpos("elbow_r")])
+        return {"hand_speed_mps": float(np.linalg.norm(v[3:])), "spine_deg": np.degrees(whole_spine(snap["theta"])),
+                "shoulder_rad": body.joint_qpos("shoulder_pitch_r"), "elbow_rad": body.joint_qpos("elbow_r")}
 
-    with camera(body) if camera is not None else contextlib.nullcontext():
-        loop.run(pattern.throw_at, every={1: sample})
-        if not with_spine:
-            body.lock_spine(True)
-        loop.run(FOLLOW_S, every={1: sample})
-    a = np.array(rows)
-    keys = ("t", "hand_speed_mps", "spine_roll_deg", "spine_pitch_deg", "spine_yaw_deg", "shoulder_rad", "elbow_rad")
-    return {**{k: a[:, i] for i, k in enumerate(keys)}, "pattern": pattern}
+    steps = at_throw + round(FOLLOW_S / body.dt)
+    return Rig(body, stages=[first, [control]], channels=SETPOINTS, duration=steps * body.dt, record={1: sample},
+               view=view or {}, state=Throw(pattern, body.t))
+
+
+def throw_series(log, run: Throw) -> dict:
+    """The recorded series, ``t`` from the throw rig's start, and the pattern."""
+    spine = log.values("spine_deg")
+    s = {"t": log.times("hand_speed_mps") - run.t0, "hand_speed_mps": log.values("hand_speed_mps")}
+    s |= {f"spine_{a}_deg": spine[:, i] for i, a in enumerate(("roll", "pitch", "yaw"))}
+    return s | {"shoulder_rad": log.values("shoulder_rad"), "elbow_rad": log.values("elbow_rad"),
+                "pattern": run.pattern}
 
 
 def throw_summary(s: dict) -> dict[str, float]:
