@@ -178,3 +178,63 @@ def test_tests_mirror_src():
     flat = [p.name for p in (TESTS / "spine").glob("test_*.py")
             if any(p.stem == f"test_{u}" or p.stem.startswith(f"test_{u}_") for u in SPINE_UNITS)]
     assert not flat, f"spine unit tests outside their unit's folder: {flat}"
+
+
+# drawing calls an experiment file must not make (figures are the unit's plots.py); bodies whose experiments
+# still draw are not listed yet
+PLOTTING = {"figure", "plot", "bar", "scatter", "imshow", "hist", "axhline", "axvline", "add_patch", "set_xlabel",
+            "set_ylabel", "set_title", "legend", "subplots", "savefig", "twinx", "fill_between"}
+NO_DRAWING_BODIES = ("spine", "snake")
+
+
+def test_experiments_draw_nothing():
+    drawing = {}
+    for body in NO_DRAWING_BODIES:
+        for path in sorted((SRC / body / "experiments").glob("*.py")):
+            calls = {n.func.attr for n in ast.walk(ast.parse(path.read_text())) if isinstance(n, ast.Call)
+                     and isinstance(n.func, ast.Attribute) and n.func.attr in PLOTTING}
+            if calls:
+                drawing[str(path.relative_to(SRC))] = sorted(calls)
+    assert not drawing, f"experiments drawing their own figures: {drawing}"
+
+
+NO_PARAMS_BODIES = ("spine",)  # bodies whose libraries take named arguments only
+
+
+def reads_params(tree: ast.AST) -> bool:
+    """``params[...]``, ``ctx.params`` or ``params.get(...)``: the experiment's parameter dict read."""
+    for n in ast.walk(tree):
+        if isinstance(n, ast.Attribute) and n.attr == "params":
+            return True
+        if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == "params":
+            return True
+        if (isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute) and n.func.attr == "get"
+                and isinstance(n.func.value, ast.Name) and n.func.value.id == "params"):
+            return True
+    return False
+
+
+def test_no_library_reads_params():
+    readers = [str(p.relative_to(SRC)) for body in NO_PARAMS_BODIES for p in sorted((SRC / body).rglob("*.py"))
+               if "experiments" not in p.parts and reads_params(ast.parse(p.read_text()))]
+    assert not readers, f"library files reading the experiment's params: {readers}"
+
+
+# who may build a Loop in the spine: the runner builds every rig's; these own a loop a rig or a compute runs inside
+SPINE_LOOP_OWNERS = {
+    "shintai.spine.teaching": "§4.6.4's encoder zeroing, the prelude every spine rig runs when it is built",
+    "shintai.spine.kenta.body": "Kenta's zeroing prelude (calibrated_kenta)",
+    "shintai.spine.kenta.postures": "teach three postures, lock, replay: a chain of loops (a compute)",
+    "shintai.spine.cla.teach_runs": "E9's teaching, then replays of its recording: a chain of loops (a compute)",
+    "shintai.spine.bebe.body": "BeBe's calibration settles and tracking runs: a chain of loops (a compute)",
+}
+
+
+def builds_loop(tree: ast.AST) -> bool:
+    return any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "Loop" for n in ast.walk(tree))
+
+
+def test_only_the_runner_and_named_owners_build_a_spine_loop():
+    builders = {module_name(p) for p in sorted((SRC / "spine").rglob("*.py")) if builds_loop(ast.parse(p.read_text()))}
+    assert builders <= set(SPINE_LOOP_OWNERS), f"Loop built outside the runner: {sorted(builders - set(SPINE_LOOP_OWNERS))}"
+    assert set(SPINE_LOOP_OWNERS) <= builders, f"owners that no longer build one: {sorted(set(SPINE_LOOP_OWNERS) - builders)}"

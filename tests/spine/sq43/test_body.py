@@ -85,20 +85,20 @@ FIT = G.TrotFitness(duration_s=1.0)
 
 @pytest.fixture(scope="module")
 def serial(tmp_path_factory):
-    return ga_run.evolve(_ctx(tmp_path_factory.mktemp("serial")), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    return _evolve(_ctx(tmp_path_factory.mktemp("serial")), "trot", FIT, G.GENE_LO, G.GENE_HI)
 
 
 @pytest.mark.parametrize("kind", ["process", "ray"])
 def test_executors_give_identical_generations(tmp_path, serial, kind):
-    result = ga_run.evolve(_ctx(tmp_path, executor=kind, workers=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    result = _evolve(_ctx(tmp_path, executor=kind, workers=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
     np.testing.assert_array_equal(result.history.best, serial.history.best)
     np.testing.assert_array_equal(result.best_genome, serial.best_genome)
 
 
 def test_killed_run_resumes_to_the_same_result(tmp_path):
-    straight = ga_run.evolve(_ctx(tmp_path / "a", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
-    ga_run.evolve(_ctx(tmp_path / "b", generations=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
-    resumed = ga_run.evolve(_ctx(tmp_path / "b", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    straight = _evolve(_ctx(tmp_path / "a", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    _evolve(_ctx(tmp_path / "b", generations=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    resumed = _evolve(_ctx(tmp_path / "b", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
     np.testing.assert_array_equal(resumed.history.best, straight.history.best)
     np.testing.assert_array_equal(resumed.best_genome, straight.best_genome)
 
@@ -106,3 +106,8 @@ def test_killed_run_resumes_to_the_same_result(tmp_path):
 def test_executor_names():
     with make_executor("serial") as ex:
         assert ex.map(FIT, [G.GENE_LO]) == [FIT(G.GENE_LO)]
+
+
+def _evolve(ctx, *args, **kw):
+    """ga_run.evolve with the GA's parameters of ``ctx`` as named arguments (as the experiments pass them)."""
+    return ga_run.evolve(ctx, *args, ga=ga_run.GARun(**{k: ctx.params[k] for k in ga_run.GA_KEYS}), **kw)

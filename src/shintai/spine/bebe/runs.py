@@ -49,38 +49,42 @@ def push_profile(force_n: float, start_s: float = 1.0):
     return push
 
 
-def run_bebe(p: dict, seed: int, recorder: Recorder, progress=lambda fraction, what: None) -> BeBeResults:
-    """Every run of the experiment with the parameters ``p`` (see ``spine.bebe-tracking``); the plants
-    share one seed (the same muscle strengths), the rule's signals go to ``recorder``."""
+def run_bebe(seed: int, recorder: Recorder, *, dead_zone_px: float, cos_threshold: float, target_amplitude_m: float,
+             target_period_s: float, tracking_s: float, disturbance_s: float, push_n: float, forced_s: float,
+             progress=lambda fraction, what: None) -> BeBeResults:
+    """Every run of ``spine.bebe-tracking``: calibration, superposition, hysteresis, tracking a target moving by
+    ``target_amplitude_m`` over ``target_period_s`` for ``tracking_s``, pushes of ``push_n`` for ``disturbance_s``
+    and forced-on muscles for ``forced_s``. The plants share one seed (the same muscle strengths), the rule's
+    signals go to ``recorder``."""
     prm = bebe.BeBeParams()
 
     def make(target=None):
         return bebe.BeBePlant(prm, target, np.random.default_rng(seed))
 
     names = list(make().model.muscles.names)
-    kw = {"dead_zone_px": p["dead_zone_px"], "cos_threshold": p["cos_threshold"], "recorder": recorder}
+    kw = {"dead_zone_px": dead_zone_px, "cos_threshold": cos_threshold, "recorder": recorder}
     shifts = bebe.calibrate(make)
     progress(0.1, "calibrated")
-    pairs = bebe.cooperating_pairs(shifts, len(bebe.SPANS), p["cos_threshold"])
+    pairs = bebe.cooperating_pairs(shifts, len(bebe.SPANS), cos_threshold)
     superposition = bebe.superposition_error(make, shifts, pairs)
     kinds = len(bebe.MUSCLE_KINDS)  # for comparison: the same kind on the two lower spans (other joints)
     cross_span = bebe.superposition_error(make, shifts, [(k, k + kinds) for k in range(kinds)])
     hysteresis = np.array([bebe.hysteresis_residual(make, i, 0.5) for i in range(len(names))])
     progress(0.25, "superposition and hysteresis")
-    moving = target_path(p["target_amplitude_m"], p["target_period_s"])
-    tracking = bebe.track(make(moving), shifts, p["tracking_s"], name="tracking", **kw)
-    on_first = bebe.track(make(moving), shifts, p["tracking_s"], off_first=False, name="on_first", **kw)
+    moving = target_path(target_amplitude_m, target_period_s)
+    tracking = bebe.track(make(moving), shifts, tracking_s, name="tracking", **kw)
+    on_first = bebe.track(make(moving), shifts, tracking_s, off_first=False, name="on_first", **kw)
     progress(0.6, "tracking")
-    disturbed = bebe.track(make(), shifts, p["disturbance_s"], push=push_profile(p["push_n"]), name="disturbed", **kw)
-    events = np.arange(1.0, p["disturbance_s"], BEBE_PUSH_PERIOD_S)
+    disturbed = bebe.track(make(), shifts, disturbance_s, push=push_profile(push_n), name="disturbed", **kw)
+    events = np.arange(1.0, disturbance_s, BEBE_PUSH_PERIOD_S)
     forced = {}
     for case, muscles in FORCED_CASES.items():
         idx = [names.index(n) for n in muscles]
-        forced[case] = bebe.track(make(), shifts, p["forced_s"], name=f"forced_{case}",
+        forced[case] = bebe.track(make(), shifts, forced_s, name=f"forced_{case}",
                                   forced=lambda t, idx=idx: idx if t >= BEBE_FORCE_AT_S else (), **kw)
     progress(1.0, "disturbances and forced-on muscles")
-    sim_time = (len(names) * (1.0 + 1.0) + len(pairs) + kinds + 2 * p["tracking_s"] + p["disturbance_s"]
-                + len(FORCED_CASES) * p["forced_s"])
+    sim_time = (len(names) * (1.0 + 1.0) + len(pairs) + kinds + 2 * tracking_s + disturbance_s
+                + len(FORCED_CASES) * forced_s)
     still = make(moving)
     untracked = np.array([still.image_at(t) for t in tracking.t])
     return BeBeResults(shifts, tracking, on_first, disturbed, events, forced, superposition, cross_span,

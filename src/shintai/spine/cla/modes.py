@@ -86,20 +86,24 @@ SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_d
                 "t47_postures_held_roll")
 
 
-def mode_rig(config: str, axis_name: str, p: dict, log: bool = True, picture: bool = False) -> Rig:
-    """One axis of §4.7.2 for one mode configuration (module doc); ``p`` holds the experiment's
-    parameters. ``picture``: keep :func:`~shintai.spine.plots.spine_state` at the largest angle."""
+def mode_rig(config: str, axis_name: str, *, max_angle_deg: float, hold_s: float, move_s: float, window_s: float,
+             interference: bool, k_s: dict[str, float], spring_law: str, T_l_kgf: float, T_r_kgf: float,
+             log: bool = True, picture: bool = False) -> Rig:
+    """One axis of §4.7.2 for one mode configuration (module doc): postures up to ``max_angle_deg``, each moved to
+    in ``move_s``, held ``hold_s`` and measured over its last ``window_s``; ``k_s`` the software springs by level
+    (``mid``, ``high``, thesis units of ``spring_law``). ``picture``: keep
+    :func:`~shintai.spine.plots.spine_state` at the largest angle."""
     shortening, lengthening, spring = MODE_CONFIGS[config]
-    body = SpineBody(CLA, interference=p["interference"])
-    control = MuscleControl(CLA.m, cla_gains(p["T_l_kgf"], p["T_r_kgf"]), spring=cla_spring(p["spring_law"]))
+    body = SpineBody(CLA, interference=interference)
+    control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf), spring=cla_spring(spring_law))
     if spring:
-        control.set_gains(k_s=k_s_gain(p[f"k_s_{spring}"], p["spring_law"]))
+        control.set_gains(k_s=k_s_gain(k_s[spring], spring_law))
     calibrated(body, control)
     dt, axis = body.dt, AXES[axis_name]
     settle = int(round(E11_SETTLE_S / dt))
-    moving = int(round((p["move_s"] + p["hold_s"] - p["window_s"]) / dt))
-    window = max(1, int(round(p["window_s"] / dt)))
-    targets_deg = axis_sequence(p["max_angle_deg"])[1:]
+    moving = int(round((move_s + hold_s - window_s) / dt))
+    window = max(1, int(round(window_s / dt)))
+    targets_deg = axis_sequence(max_angle_deg)[1:]
     events = {0: {"mode": shortening}}
     previous = zero = CLA.model.lengths(np.zeros(3 * CLA.n))
     for j, target in enumerate(targets_deg):
@@ -111,13 +115,13 @@ def mode_rig(config: str, axis_name: str, p: dict, log: bool = True, picture: bo
         previous = lengths
     observer = PostureObserver(axis, targets_deg, settle, moving, window,
                                max(1, int(round(E11_LOG_S / dt))) if log else None,
-                               p["max_angle_deg"] if picture else None, limits_rad=CLA.model.chain.upper)
+                               max_angle_deg if picture else None, limits_rad=CLA.model.chain.upper)
     if picture:  # the spine as the posture's window ends, after the step (a body after-step hook, like a video)
         def capture():
             if observer.picture_due:
                 observer.picture_due, observer.picture = False, spine_state(body)
         body.after_step.append(capture)
-    return Rig(body, stages=[[Schedule(events)], [PostureTargets(CLA.model, zero, p["move_s"])], [control, observer]],
+    return Rig(body, stages=[[Schedule(events)], [PostureTargets(CLA.model, zero, move_s)], [control, observer]],
                channels=(*SETPOINTS, GOAL, WHOLE_REF),
                duration=(settle + len(targets_deg) * (moving + window)) * dt, until=lambda snap: observer.stopped,
                view=dict(CLA_VIEW, azimuth=210.0 if axis_name == "pitch" else 180.0), state=observer)

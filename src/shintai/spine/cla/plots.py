@@ -7,7 +7,10 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from shintai.spine.robots import CLA_DESK_HEIGHT_M, CLA_OBJECT_HALF_M
+from shintai.spine.cla import cop
+from shintai.spine.cla import crawl as CC
+from shintai.spine.cla import roll_over as roll_over_
+from shintai.spine.robots import CLA_DESK_HALF_M, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_OBJECT_HALF_M
 
 TAG_COLOUR = {"hold": "tab:gray", "move": "tab:blue", "limp": "tab:red", "play": "tab:green"}
 TAG_LABEL = {"hold": "holding", "move": "weak-push nudge", "limp": "strong push: taught limp (T mode)",
@@ -187,3 +190,109 @@ def levelling(ctx, runs: dict) -> None:
         ax.set_title("the spine's posture: true, the network's estimate from the muscle lengths, the goals",
                      fontsize=9)
         ax.legend(fontsize=7)
+
+
+def cop_balance(ctx, runs, params):
+    """Fig. 5.8: the centre of pressure, the arms' offset and the spine's roll, with and without the swing."""
+    colours = {"swing": "tab:blue", "no_swing": "0.4"}
+    with ctx.figure("cop_balance", nrows=3, ncols=1, figsize=(9, 8), sharex=True) as (_fig, (ax_x, ax_arm, ax_roll)):
+        for v, run in runs.items():
+            t = run.log.times("cop")
+            err = 1e3 * (run.log.values("cop")[:, 0] - run.log.values("sole_centre_x"))
+            ax_x.plot(t, err, color=colours[v], label=v.replace("_", " "))
+            ax_arm.plot(t, run.log.values("arm_offset_deg"), color=colours[v])
+            ax_roll.plot(t, run.log.values("roll_deg"), color=colours[v])
+        for b in (cop.COP_BAND_M, -cop.COP_BAND_M):
+            ax_x.axhline(1e3 * b, color="tab:green", lw=0.6, ls="--")
+        ax_x.set_ylabel("CoP − sole centre,\nfront–back [mm]")
+        ax_x.set_title("centre of pressure (eq. 3.5, 8 FSRs); dashed: the reflex's rest band", fontsize=9)
+        ax_x.legend(fontsize=8)
+        ax_arm.set_ylabel("arms' pitch offset [deg]\n(+ forward)")
+        ax_roll.set_ylabel("whole-spine roll [deg]")
+        ax_roll.set_xlabel("t [s]")
+
+
+def pick_place(ctx, runs, params):
+    """Fig. 5.7: the hand and the object seen from the front and from above, and the spine's roll and yaw."""
+    colours = {"spine": "tab:blue", "locked": "0.4"}
+    with ctx.figure("pick_place", nrows=1, ncols=3, figsize=(14, 4)) as (_fig, (ax_side, ax_top, ax_t)):
+        for v, run in runs.items():
+            hand, obj, t = run.log.values("hand"), run.log.values("object"), run.log.times("hand")
+            scene = run.state["scene"]
+            ax_side.plot(hand[:, 1], hand[:, 2], color=colours[v], label=f"hand, {v}")
+            ax_side.plot(obj[:, 1], obj[:, 2], "--", color=colours[v], label=f"object, {v}")
+            ax_top.plot(hand[:, 0], hand[:, 1], color=colours[v], label=f"hand, {v}")
+            ax_top.plot(obj[:, 0], obj[:, 1], "--", color=colours[v])
+            ax_t.plot(t, run.log.values("whole_deg")[:, 0], color=colours[v], label=f"roll, {v}")
+            ax_t.plot(t, run.log.values("whole_deg")[:, 2], ":", color=colours[v], label=f"yaw, {v}")
+        ax_side.axhline(scene["floor_z"], color="k", lw=0.8)
+        ax_side.axhline(CLA_DESK_HEIGHT_M, color="tab:brown", lw=0.8)
+        ax_side.set_xlabel("y (− = Cla's right) [m]")
+        ax_side.set_ylabel("z [m]")
+        ax_side.set_title("front view: floor (black) and desk top (brown)", fontsize=9)
+        ax_top.add_patch(Rectangle(
+            (CLA_DESK_NEAR_M, -CLA_DESK_HALF_M[1]), 2 * CLA_DESK_HALF_M[0], 2 * CLA_DESK_HALF_M[1], color="tab:brown",
+            alpha=0.2))
+        ax_top.plot(*scene["spot"][:2], "x", color="tab:red", label="place spot")
+        ax_top.set_aspect("equal", adjustable="datalim")
+        ax_top.set_xlabel("x (forward) [m]")
+        ax_top.set_ylabel("y [m]")
+        ax_top.set_title("top view: desk and place spot", fontsize=9)
+        ax_t.set_xlabel("t [s]")
+        ax_t.set_ylabel("whole-spine angle [deg]")
+        ax_t.set_title("spine roll (side bend) and yaw (twist) reached", fontsize=9)
+        for ax in (ax_side, ax_top, ax_t):
+            ax.legend(fontsize=7)
+
+
+def roll_over(ctx, runs, params):
+    """Fig. 5.9: how far each half of Cla turned over, and the spine's yaw."""
+    colours = {"spine": "tab:blue", "locked": "0.4"}
+    with ctx.figure("roll_over", nrows=2, ncols=1, figsize=(9, 6), sharex=True) as (_fig, (ax_turn, ax_yaw)):
+        for v, run in runs.items():
+            t = run.log.times("pelvis_turn_deg")
+            ax_turn.plot(t, run.log.values("shoulder_turn_deg"), color=colours[v], label=f"shoulders, {v}")
+            ax_turn.plot(t, run.log.values("pelvis_turn_deg"), "--", color=colours[v], label=f"pelvis, {v}")
+            ax_yaw.plot(t, run.log.values("whole_deg")[:, 2], color=colours[v], label=v)
+        ax_turn.axhline(90, color="k", lw=0.6, ls=":")
+        ax_turn.axhline(roll_over_.ROLLED_DEG, color="tab:green", lw=0.6, ls="--")
+        ax_turn.set_ylabel("turn from lying on the back [deg]\n(90 = on a side, 180 = on the front)")
+        ax_turn.set_title("how far each half of Cla turned over; dashed green: 'rolled over'", fontsize=9)
+        ax_turn.legend(fontsize=7)
+        ax_yaw.set_ylabel("whole-spine yaw [deg]")
+        ax_yaw.set_xlabel("t [s]")
+        ax_yaw.legend(fontsize=7)
+
+
+def crawl_ga(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float, labels: dict) -> None:
+    """Figs. 5.10–5.11: the three crawls' distance, torques and drift, their paths and spine rolls."""
+    with ctx.figure("crawl_comparison", nrows=1, ncols=4, figsize=(13, 3.6)) as (_fig, axes):
+        for ax, (key, label) in zip(axes, (("distance_m", "forward distance [m]"),
+                                           ("torque_integral_nms", "torque integral [N m s]"),
+                                           ("peak_torque_nm", "peak torque [N m]"),
+                                           ("heading_drift_deg", "heading drift [deg]"))):
+            values = [metrics[f"{v}.{key}"] for v in list(labels)]
+            ax.bar(range(len(list(labels))), values, color=["0.5", "tab:orange", "tab:blue"])
+            if key == "torque_integral_nms":  # the limbs' share
+                ax.bar(range(len(list(labels))), [metrics[f"{v}.limb_torque_integral_nms"] for v in list(labels)],
+                       color="none", edgecolor="k", hatch="//", label="limbs")
+                ax.legend(fontsize=7)
+            ax.set_xticks(range(len(list(labels))), ["rigid", "hand-made", "GA"])
+            ax.set_title(label, fontsize=9)
+    with ctx.figure("crawl_paths", nrows=1, ncols=2, figsize=(11, 4)) as (_fig, (ax_path, ax_roll)):
+        t = np.arange(sensors["rigid"].shape[0]) * CC.CRAWL_TIMESTEP_S
+        for v in list(labels):
+            mid = 0.5 * (sensors[v][:, CC.S_PELVIS] + sensors[v][:, CC.S_CLAVICLE])
+            ax_path.plot(mid[:, 0], mid[:, 1], label=labels[v])
+            ax_roll.plot(t, np.degrees(CC.schedule(genomes[v], t)["roll"]) * CC.CLA_JOINTS, "--", lw=0.8)
+            ax_roll.plot(t, np.degrees(sensors[v][:, CC.ROLL_COLUMNS].sum(axis=1)), label=labels[v],
+                         color=ax_roll.lines[-1].get_color())
+        ax_path.set_aspect("equal", adjustable="datalim")
+        ax_path.set_xlabel("x (start heading) [m]")
+        ax_path.set_ylabel("y [m]")
+        ax_path.set_title(f"trunk midpoint over {eval_s:g} s (top view)", fontsize=9)
+        ax_path.legend(fontsize=7)
+        ax_roll.set_xlabel("t [s]")
+        ax_roll.set_ylabel("spine roll, 5 joints summed [deg]")
+        ax_roll.set_title("roll commanded (dashed) and reached; + = head end to the right", fontsize=9)
+        ax_roll.set_xlim(0, min(eval_s, 6.0))

@@ -10,12 +10,10 @@ nearest nodes (Fig. 5.29's "動作生成への利用").
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Callable
-
 import numpy as np
 
-from shintai.core.runtime import Loop
+from shintai.scenarios.experiment import Rig
+from shintai.spine.cla.teach_runs import teaching_body
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.posture_database import PostureDatabase
@@ -23,7 +21,6 @@ from shintai.spine.posture_person import EXEC_DWELL_S, Action, Experimenter
 from shintai.spine.posture_session import LIMP, MOVE, PLAY, SETTLE_S, Supervisor
 from shintai.spine.robots import CLA, SAMPLE_PERIOD_S
 from shintai.spine.tactile import STRONG, WEAK, TriggerLevels
-from shintai.spine.cla.teach_runs import teaching_body
 
 # The postures the hand teaches (whole-spine roll, pitch, yaw [deg]) and Fig. 5.29's model motion A → B (chosen)
 TEACH_FORWARD_DEG = (0.0, 20.0, 0.0)
@@ -54,11 +51,11 @@ def session_actions(weak_n: float, strong_n: float, execute: bool = True, size: 
     return acts
 
 
-def run_session(actions: list[Action], nn, d_len_mm: float, d_sensor_deg: float | None, levels: TriggerLevels,
-                teach_kgf: float, max_s: float = 120.0,
-                film: Callable | None = None) -> dict:
-    """Cla (arms down, encoders zeroed, §4.6.4) through ``actions``; returns the database, the log and the
-    sim time. A pushing hand is an external force on the top link (a body hook, every physics step)."""
+def session_rig(actions: list[Action], nn, d_len_mm: float, d_sensor_deg: float | None, levels: TriggerLevels,
+                teach_kgf: float, max_s: float = 120.0) -> Rig:
+    """Cla (arms down, encoders zeroed, §4.6.4) through ``actions``, until the person is done or ``max_s``; the
+    state (:func:`session_result`) holds the database and the log. A pushing hand is an external force on the
+    top link (a body hook, every physics step)."""
     body, control = teaching_body(teach_kgf)
     db = PostureDatabase(d_len_mm * 1e-3, None if d_sensor_deg is None else np.radians(d_sensor_deg))
     sup = Supervisor(CLA.model, db, nn, levels, teach_kgf * 9.80665, use_sensor=d_sensor_deg is not None)
@@ -69,11 +66,17 @@ def run_session(actions: list[Action], nn, d_len_mm: float, d_sensor_deg: float 
         body.data.xfrc_applied[top, :3] = person.force
 
     body.before_physics.append(push)
-    loop = Loop(body, stages=[[person], [sup], [control]], channels=SETPOINTS)
-    t0 = body.t
-    with film(body) if film is not None else contextlib.nullcontext():
-        loop.run(max_s, until=lambda snap: person.done)
-    return {"db": db, "log": sup.log, "sim_time_s": body.t - t0 + 1.0, "actions": actions, "finished": person.done}
+    return Rig(body, stages=[[person], [sup], [control]], channels=SETPOINTS, duration=max_s,
+               until=lambda snap: person.done, state={"db": db, "log": sup.log, "actions": actions, "person": person,
+                                                      "t0": body.t})
+
+
+def session_result(rig: Rig) -> dict:
+    """What a session rig's run left: the database, the log, the actions, the sim time (+ the 1-s zeroing) and
+    whether every action finished."""
+    s = rig.state
+    return {"db": s["db"], "log": s["log"], "sim_time_s": rig.body.t - s["t0"] + 1.0, "actions": s["actions"],
+            "finished": s["person"].done}
 
 
 def _at(log, t: float) -> int:

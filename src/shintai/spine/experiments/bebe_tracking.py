@@ -14,6 +14,9 @@ from shintai.spine.bebe.plots import (
     plot_bebe_calibration, plot_bebe_disturbances, plot_bebe_image, plot_bebe_tracking,
 )
 
+RUN_KEYS = ("dead_zone_px", "cos_threshold", "target_amplitude_m", "target_period_s", "tracking_s", "disturbance_s",
+            "push_n", "forced_s")  # the parameters run_bebe takes
+
 
 @scenario(
     "spine.bebe-tracking",
@@ -70,7 +73,7 @@ from shintai.spine.bebe.plots import (
 )
 def bebe_tracking(ctx) -> dict:
     p = ctx.params
-    res = run_bebe(p, int(ctx.rng.integers(2**32)), ctx.recorder, ctx.progress)
+    res = run_bebe(int(ctx.rng.integers(2**32)), ctx.recorder, **{k: p[k] for k in RUN_KEYS}, progress=ctx.progress)
     ctx.sim_time_s = res.sim_time_s
     err = np.linalg.norm(res.tracking.target_px, axis=1)
     recovery = bebe.recovery_times(res.disturbed, res.push_events)

@@ -30,9 +30,12 @@ def filmed(params) -> list[str]:
 
 def rig(params, variant, seed):
     mode, axis = variant.rsplit(".", 1)
+    kw = {k: params[k] for k in ("max_angle_deg", "hold_s", "move_s", "window_s", "interference", "spring_law",
+                                 "T_l_kgf", "T_r_kgf")}
+    kw["k_s"] = {"mid": params["k_s_mid"], "high": params["k_s_high"]}
     if mode == ABLATION:
-        return mode_rig("all_l", axis, dict(params, interference=False), log=False)
-    return mode_rig(mode, axis, params, picture=mode == "all_l")
+        return mode_rig("all_l", axis, **(kw | {"interference": False}), log=False)
+    return mode_rig(mode, axis, **kw, picture=mode == "all_l")
 
 
 def rows_by_mode(runs) -> dict:

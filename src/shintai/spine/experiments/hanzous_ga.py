@@ -35,6 +35,7 @@ def compute(ctx):
     out, genomes, curves = {}, {}, {}
     for i, policy in enumerate(POLICIES):  # independent GAs: seeds seed, seed + 1, seed + 2
         result = ga_run.evolve(ctx, f"ga_{policy}", BrachiationFitness(policy), lo, hi, seed=ctx.seed + i,
+                               ga=ga_run.GARun(**{k: p[k] for k in ga_run.GA_KEYS}),
                                initial=np.zeros((1, N_GENES)), title=f"HanzouS brachiation GA, trunk {policy}")
         best = result.best_genome
         body = MujocoBody(build_spec()) if ctx.video else None

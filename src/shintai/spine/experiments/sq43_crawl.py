@@ -12,32 +12,12 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
+from shintai.spine.sq43 import plots as P
 from shintai.spine.sq43.body import BODY
 from shintai.spine.sq43.gaits import CRAWL_ORDER, CrawlPlan, simulate_crawl
 
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 135.0,
         "elevation": -20}
-
-
-def plot(ctx, tests: dict, crawl: dict, lift_mm: float) -> None:
-    with ctx.figure("lift_tests") as (fig, ax):
-        for name, (r, legs) in tests.items():
-            for leg in legs:
-                ax.plot(r["t"], r["feet_z_mm"][leg], label=f"{name}: {leg}")
-        ax.axhline(lift_mm, color="k", ls="--", lw=0.7, label="commanded lift")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("foot tip above floor [mm]")
-        ax.set_title("SQ43 lift tests (§3.2.4–3.2.5): swing-foot clearance", fontsize=9)
-        ax.legend(fontsize=6)
-    with ctx.figure("crawl") as (fig, ax):
-        for leg in CRAWL_ORDER:
-            ax.plot(crawl["t"], crawl["feet_z_mm"][leg], label=leg)
-        ax.plot(crawl["t"], crawl["twist_deg"], "k", lw=0.6, label="spine twist [deg]")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("foot tip above floor [mm]")
-        ax.set_title(f"SQ43 crawl (Fig. 3.7), order {' '.join(CRAWL_ORDER)}: forward {crawl['forward_mm']:.0f} mm",
-                     fontsize=9)
-        ax.legend(fontsize=7)
 
 
 @scenario(
@@ -114,7 +94,7 @@ def sq43_crawl(ctx):
     for k in range(0, len(crawl["t"]), 2):
         ctx.recorder.record(float(crawl["t"][k]), twist_deg=float(crawl["twist_deg"][k]),
                             **{f"{leg}_z_mm": float(crawl["feet_z_mm"][leg][k]) for leg in CRAWL_ORDER})
-    plot(ctx, {"standing": (results["standing"], ("RF",)), "CoM shifted": (results["shifted"], ("RF",)),
+    P.crawl(ctx, {"standing": (results["standing"], ("RF",)), "CoM shifted": (results["shifted"], ("RF",)),
                "shifted, held": (results["held"], ("RF",)), "diagonal": (results["diagonal"], ("RF", "LH"))},
          crawl, lift)
     return m

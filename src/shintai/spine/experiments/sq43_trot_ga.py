@@ -13,22 +13,12 @@ import numpy as np
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import ga_run
+from shintai.spine.sq43 import plots as P
 from shintai.spine.sq43.gaits import GENE_HI, GENE_LO, GENES, TROT_DURATION_S, TrotFitness, trot_body
 
 THESIS_SECONDS_PER_INDIVIDUAL = 30 * 60.0  # §5.6.2 '1 個体の数秒間の運動の解析に約 30 分程度'
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 120.0,
         "elevation": -20}
-
-
-def plot_replay(ctx, replay: dict) -> None:
-    s = replay["series"]
-    with ctx.figure("best_trot") as (fig, ax):
-        ax.plot(s["t"], 1e3 * (s["trunk"][:, 0] - s["trunk"][0, 0]), label="trunk forward [mm]")
-        ax.plot(s["t"], 1e3 * (s["trunk"][:, 1] - s["trunk"][0, 1]), label="trunk sideways [mm]")
-        ax.plot(s["t"], s["twist_deg"] * 10, lw=0.7, label="spine twist [deg × 10]")
-        ax.set_xlabel("gait time [s]")
-        ax.set_title("SQ43: the GA's best trot replayed on the body", fontsize=9)
-        ax.legend(fontsize=7)
 
 
 @scenario(
@@ -64,7 +54,8 @@ def sq43_trot_ga(ctx):
     p = ctx.params
     fitness = TrotFitness(duration_s=float(p["duration_s"]))
     t0 = time.perf_counter()
-    result = ga_run.evolve(ctx, "trot", fitness, GENE_LO, GENE_HI, title="SQ43 trot GA (Fig. 5.21)")
+    ga = ga_run.GARun(**{k: p[k] for k in ga_run.GA_KEYS})
+    result = ga_run.evolve(ctx, "trot", fitness, GENE_LO, GENE_HI, ga=ga, title="SQ43 trot GA (Fig. 5.21)")
     wall = time.perf_counter() - t0
     ctx.progress(0.95, "replaying the best gait")
     best = np.asarray(result.best_genome, dtype=float)
@@ -72,8 +63,8 @@ def sq43_trot_ga(ctx):
     fitness(best)  # one individual, timed on its own (the GA's wall time includes start-up and the pool)
     one = time.perf_counter() - t1
     replay = trot_body(best, float(p["duration_s"]), camera=lambda body: film(ctx, body, **VIEW))
-    ctx.sim_time_s += (ga_run.evaluations(p, len(result.history)) + 1) * float(p["duration_s"])
-    plot_replay(ctx, replay)
+    ctx.sim_time_s += (ga_run.evaluations(p["population"], len(result.history)) + 1) * float(p["duration_s"])
+    P.trot(ctx, replay)
     history = result.history
     gens = len(history)
     ctx.extra["best_genome"] = dict(zip(GENES, best.tolist()))

@@ -7,6 +7,7 @@ import numpy as np
 
 from shintai.spine.robots import SQ43_GRID_CHECK_DEG
 from shintai.spine.sq43 import design as sq43
+from shintai.spine.sq43.gaits import CRAWL_ORDER
 
 
 def plot_sq43(ctx, paths: list, prm: sq43.SQ43Params, grid_best: float) -> None:
@@ -67,4 +68,38 @@ def levelling(ctx, runs: dict, rise_mm: float) -> None:
                 label="accelerometer roll [deg] (offset)")
         ax.set_xlabel("time [s]")
         ax.set_ylabel("[mm]")
+        ax.legend(fontsize=7)
+
+
+def crawl(ctx, tests: dict, crawl: dict, lift_mm: float) -> None:
+    """Fig. 3.7: the lift tests' swing-foot clearance, and the crawl's feet and spine twist."""
+    with ctx.figure("lift_tests") as (fig, ax):
+        for name, (r, legs) in tests.items():
+            for leg in legs:
+                ax.plot(r["t"], r["feet_z_mm"][leg], label=f"{name}: {leg}")
+        ax.axhline(lift_mm, color="k", ls="--", lw=0.7, label="commanded lift")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("foot tip above floor [mm]")
+        ax.set_title("SQ43 lift tests (§3.2.4–3.2.5): swing-foot clearance", fontsize=9)
+        ax.legend(fontsize=6)
+    with ctx.figure("crawl") as (fig, ax):
+        for leg in CRAWL_ORDER:
+            ax.plot(crawl["t"], crawl["feet_z_mm"][leg], label=leg)
+        ax.plot(crawl["t"], crawl["twist_deg"], "k", lw=0.6, label="spine twist [deg]")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("foot tip above floor [mm]")
+        ax.set_title(f"SQ43 crawl (Fig. 3.7), order {' '.join(CRAWL_ORDER)}: forward {crawl['forward_mm']:.0f} mm",
+                     fontsize=9)
+        ax.legend(fontsize=7)
+
+
+def trot(ctx, replay: dict) -> None:
+    """Fig. 5.21: the GA's best trot replayed on the body."""
+    s = replay["series"]
+    with ctx.figure("best_trot") as (fig, ax):
+        ax.plot(s["t"], 1e3 * (s["trunk"][:, 0] - s["trunk"][0, 0]), label="trunk forward [mm]")
+        ax.plot(s["t"], 1e3 * (s["trunk"][:, 1] - s["trunk"][0, 1]), label="trunk sideways [mm]")
+        ax.plot(s["t"], s["twist_deg"] * 10, lw=0.7, label="spine twist [deg × 10]")
+        ax.set_xlabel("gait time [s]")
+        ax.set_title("SQ43: the GA's best trot replayed on the body", fontsize=9)
         ax.legend(fontsize=7)
