@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from shintai.evolve import make_executor
+from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.runner import RunContext
 from shintai.spine import ga_run
 from shintai.spine.sq43 import design as sq43
@@ -70,7 +71,7 @@ def test_trot_foot_path_follows_the_genes():
 
 def test_trot_rollout_equals_the_body_replay():
     genome = np.array([3.0, 60.0, 218.0, 15.0, 0.0, 0.0])
-    assert G.simulate_trot(genome, 1.0)["fitness"] == G.trot_body(genome, 1.0)["fitness"]
+    assert G.simulate_trot(genome, 1.0)["fitness"] == G.trot_result(run_rig(G.trot_rig(genome, 1.0)).log, genome)["fitness"]
 
 
 def _ctx(tmp_path, **params):

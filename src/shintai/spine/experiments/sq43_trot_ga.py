@@ -10,11 +10,11 @@ import time
 
 import numpy as np
 
-from shintai.scenarios.experiment import film
+from shintai.scenarios.experiment import film, run_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import ga_run
 from shintai.spine.sq43 import plots as P
-from shintai.spine.sq43.gaits import GENE_HI, GENE_LO, GENES, TROT_DURATION_S, TrotFitness, trot_body
+from shintai.spine.sq43.gaits import GENE_HI, GENE_LO, GENES, TROT_DURATION_S, TrotFitness, trot_result, trot_rig
 
 THESIS_SECONDS_PER_INDIVIDUAL = 30 * 60.0  # §5.6.2 '1 個体の数秒間の運動の解析に約 30 分程度'
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 120.0,
@@ -62,7 +62,9 @@ def sq43_trot_ga(ctx):
     t1 = time.perf_counter()
     fitness(best)  # one individual, timed on its own (the GA's wall time includes start-up and the pool)
     one = time.perf_counter() - t1
-    replay = trot_body(best, float(p["duration_s"]), camera=lambda body: film(ctx, body, **VIEW))
+    rig = trot_rig(best, float(p["duration_s"]))
+    with film(ctx, rig.body, **VIEW):
+        replay = trot_result(run_rig(rig).log, best)
     ctx.sim_time_s += (ga_run.evaluations(p["population"], len(result.history)) + 1) * float(p["duration_s"])
     P.trot(ctx, replay)
     history = result.history

@@ -31,6 +31,8 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
+from shintai.core.runtime import Module, Snapshot
+from shintai.scenarios.experiment import Rig
 from shintai.spine.sq43.body import (
     BODY, LEGS, SQ43Body, SQ43BodySpec, build_spec, leg_ik, leg_root, relative_twist,
     servo_ctrl, standing_angles,
@@ -154,28 +156,32 @@ class TrotFitness:
         return value if math.isfinite(value) else -math.inf
 
 
-def trot_body(genome, duration: float = TROT_DURATION_S, spec: SQ43BodySpec = BODY, camera=None) -> dict:
-    """Replay a trot on an :class:`SQ43Body` (the filmed replay; identical physics to :func:`simulate_trot`:
-    same model, same initial state, the same ctrl row per physics step)."""
+def trot_rig(genome, duration: float = TROT_DURATION_S, spec: SQ43BodySpec = BODY, view=None) -> Rig:
+    """A trot replayed on an :class:`SQ43Body` (the filmed replay; identical physics to :func:`simulate_trot`: same
+    model, same initial state, the same ctrl row per physics step); the sensors recorded after every step."""
     body = SQ43Body(spec)
-    model, data = body.model, body.data
-    ctrl = trot_ctrl(model, genome, duration, spec)
-    _, _, _, sl = _sim(spec)
-    sensors = np.zeros((len(ctrl), model.nsensordata))
-    with camera(body) if camera is not None else _null():
-        for k in range(len(ctrl)):
-            data.ctrl[:] = ctrl[k]
-            body.step()
-            sensors[k] = data.sensordata
-    return trot_metrics(genome, sensors[round(RAMP_S / model.opt.timestep) - 1:], sl, model.opt.timestep)
+    ctrl = trot_ctrl(body.model, genome, duration, spec)
+    return Rig(body, [CtrlSchedule(ctrl)], duration=len(ctrl) * body.dt,
+               record={1: lambda snap: {"sensors": body.data.sensordata}}, view=view or {}, state=np.asarray(genome))
 
 
-class _null:
-    def __enter__(self):
-        return self
+def trot_result(log, genome, spec: SQ43BodySpec = BODY) -> dict:
+    """:func:`trot_metrics` of a replayed trot (after the ramp)."""
+    model, _, _, sl = _sim(spec)
+    return trot_metrics(genome, log.values("sensors")[round(RAMP_S / model.opt.timestep) - 1:], sl, model.opt.timestep)
 
-    def __exit__(self, *exc):
-        return False
+
+class CtrlSchedule(Module):
+    """Writes row ``k`` of a ctrl sequence (one row per body step) at the ``k``-th tick: an open-loop replay."""
+
+    def __init__(self, ctrl: np.ndarray, name: str = "schedule"):
+        super().__init__(name)
+        self.ctrl, self.k = ctrl, 0
+
+    def update(self, snapshot: Snapshot):
+        row = self.ctrl[self.k]
+        self.k += 1
+        return {"ctrl": row}
 
 
 # ----------------------------------------------------------------------------------------------- crawl
@@ -258,27 +264,34 @@ def crawl_schedule(plan: CrawlPlan, legs: tuple[str, ...], spec: SQ43BodySpec = 
     return np.array(times), {leg: np.array([r[leg] for r in rows]) for leg in LEGS}, windows
 
 
-def simulate_crawl(plan: CrawlPlan, legs, shift: bool = True, hold_s: float = 0.0, spec: SQ43BodySpec = BODY,
-                   camera=None) -> dict:
-    """Run a crawl schedule on the body (targets every 10 ms). Returns the clearance each swing reached
-    (peak foot-tip height above the floor in its window) [mm], the trunk's forward travel [mm], the peak
-    twist [deg] and the series."""
-    body = SQ43Body(spec)
+@dataclass
+class Crawl:
+    """What a crawl rig leaves for :func:`crawl_result`: the plan, the swing windows, the sensor slices."""
+
+    plan: CrawlPlan
+    windows: dict
+    slices: dict
+
+
+def crawl_rig(plan: CrawlPlan, legs, shift: bool = True, hold_s: float = 0.0, spec: SQ43BodySpec = BODY,
+              view=None) -> Rig:
+    """A crawl schedule replayed on the body, its targets every 10 ms (one body step of 5 physics steps); the
+    sensors recorded after every step (``sensors``)."""
+    body = SQ43Body(spec, substeps=round(0.01 / spec.timestep))
     model, data = body.model, body.data
     t, targets, windows = crawl_schedule(plan, tuple(legs), spec, shift, hold_s)
     angles = {leg: leg_ik(leg, targets[leg], spec) for leg in LEGS}
-    ctrl = servo_ctrl(model, angles)
-    sub = round(0.01 / model.opt.timestep)
     sl = {n: slice(model.sensor(n).adr[0], model.sensor(n).adr[0] + model.sensor(n).dim[0])
           for n in ("shoulder_pos", "hip_pos", "shoulder_quat", "hip_quat", *[f"{leg}_foot" for leg in LEGS])}
-    rec = np.zeros((len(t), model.nsensordata))
-    with camera(body) if camera is not None else _null():
-        for k in range(len(t)):
-            data.ctrl[:] = ctrl[k]
-            for _ in range(sub):
-                body.step()
-            rec[k] = data.sensordata
-    ts = np.arange(1, len(t) + 1) * 0.01
+    return Rig(body, [CtrlSchedule(servo_ctrl(model, angles))], duration=len(t) * body.dt,
+               record={1: lambda snap: {"sensors": data.sensordata}}, view=view or {}, state=Crawl(plan, windows, sl))
+
+
+def crawl_result(log, run: Crawl) -> dict:
+    """The clearance each swing reached (peak foot-tip height above the floor in its window) [mm], the height held
+    in the hold test, the trunk's forward travel [mm], the peak twist [deg] and the series."""
+    rec, sl, plan, windows = log.values("sensors"), run.slices, run.plan, run.windows
+    ts = np.arange(1, len(rec) + 1) * 0.01
     feet_z = {leg: 1e3 * rec[:, sl[f"{leg}_foot"]][:, 2] for leg in LEGS}
     clear = {leg: [float(feet_z[leg][(ts >= a) & (ts <= b)].max()) for a, b in windows[leg]] for leg in LEGS}
     held = {leg: [float(feet_z[leg][(ts >= b - 0.1 - plan.down_s) & (ts <= b - plan.down_s)].mean())
