@@ -38,10 +38,7 @@ stands on its base and its inertia is not what the rule is about). A head camera
 target point in the world; a push on the middle of the spine (Fig. 4.55) enters as an external
 force; forced-on muscles (Fig. 4.56) are held on outside the rule.
 
-The 24-joint geometry of :data:`shintai.spine.robots.BEBE` was tried first: its 150-N muscles
-(20-joint waist–shoulder muscles among them) move the target 20–350 px per muscle, more than the
-image is wide, and the one-switch-per-cycle rule lost the target; hence the lumped regions and
-weaker (30 N) muscles here.
+Why regions and not BeBe's 24 joints: ``notes/bebe-tracking.md``.
 """
 
 from __future__ import annotations

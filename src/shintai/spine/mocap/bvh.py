@@ -4,13 +4,7 @@
 displacement of adjacent links), ``CHANNELS n …`` (the DOFs between links, in any order, e.g. ``Zrotation
 Xrotation Yrotation``), then "MOTION" with the frame count, the frame time and one line of values per frame.
 
-Why a reader of our own (issue 17 item 5 asked for a maintained one, checked 2026-11-27): ``pybvh`` 0.9.0
-(2026-09, pure Python, numpy + matplotlib) parses the usual files but rejects position channels on non-root
-joints (files exported with 6 channels per joint) and reports motion-data errors without the file or its line
-("the number of columns changed from 9 to 8 at row 2"); ``bvhio`` 1.5.4 (2025-10) pins ``pyglm==2.8.2`` (a
-compiled extension), loops forever on a file that ends early (its ``readline`` loop never sees the end) and
-reports wrong line numbers. The grammar is small: this reader takes every channel layout and ends every
-malformed file with one :class:`BvhError` line naming the file, the line and what was expected.
+Why a reader of our own, not ``pybvh`` or ``bvhio``: ``notes/bvh-retarget.md``.
 
 Conventions (the de-facto BVH ones): angles in degrees in the file, rotation channels composed in the order
 listed (``Zrotation Xrotation Yrotation`` → R = Rz·Rx·Ry, intrinsic), a joint's position in its parent's frame
