@@ -11,7 +11,7 @@ ga_run — chapter 5's GA inside a scenario: shared parameters, the checkpointed
 geometry — the geometric model (§4.3–4.5): rpy vertebra chain, eq. 4.25 muscle lengths, J_m, statics
 inverse_model — muscle length → posture, f of eq. 4.3, by NN or Jacobian integration (§4.4.3)
 models — the spine robots' MuJoCo models for export (``shintai model``)
-plots — shared pictures: the 3D spine, Tables 4.7/4.8, E9–E11 traces, the inverse model, the tracking loops
+plots — shared pictures: the 3D spine, the inverse model's learning and errors, the tracking loops
 posture_database — the posture database of §5.9.1–5.9.2 (Fig. 5.29), robot-independent
 posture_person — the person of a posture-database session: pushes and commands as the Loop's first stage (§5.9)
 posture_session — the robot's side of a posture-database session: teaching, replay, nearest node (§5.9)

@@ -1,18 +1,12 @@
-"""Pictures of the spine scenarios: the 3D spine with its muscle paths coloured by tension (cf.
-Fig. 4.10, ``general-wire :bodies``), Tables 4.7/4.8 side by side, posture errors and time series
-(cf. Figs. 4.21–4.27), the teaching replay and the software-spring traces (cf. Figs. 4.14–4.17).
-"""
+"""The spine's shared pictures: the 3D spine with its muscle paths coloured by tension (cf. Fig. 4.10,
+``general-wire :bodies``), the inverse model's learning curves and errors (cf. Figs. 4.2–4.9, Table 4.2) and the
+tracking loops of Cla and Kenta (Figs. 5.12, 5.14)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from shintai.core.constants import KGF_N
 from shintai.spine.tracking_loops import tracking_series
-
-MODE_LABEL = {"all_l": "1. all L", "all_ll": "2. all LL", "all_s_mid": "3. all S (mid)", "all_s_high": "4. all S (high)",
-              "l_ll": "5. L + LL", "l_t": "6. L + T", "l_s_mid": "7. L + S (mid)", "l_s_high": "8. L + S (high)",
-              "all_l_no_interference": "all L, no interference"}
 
 
 def spine_state(body) -> dict:
@@ -64,147 +58,6 @@ def spine_3d(ctx, states: dict) -> None:
             ax.set_xlabel("x (front) [m]")
             ax.set_ylabel("y (left) [m]")
             ax.view_init(elev=12, azim=-60)
-
-
-def _cell(value, digits=2) -> str:
-    if value is None or (isinstance(value, float) and not np.isfinite(value)):
-        return "—"
-    return f"{value:.{digits}f}" if isinstance(value, float) else str(value)
-
-
-def table_4_8(ctx, ours: dict, thesis: dict, columns) -> None:
-    """Table 4.8 side by side: for every mode and column, 'ours / thesis'."""
-    headers = ["err θ [°]", "err φ [°]", "held θ [°]", "held φ [°]", "T θ [kgf]", "T φ [kgf]", "I θ [A]", "I φ [A]"]
-    cells, labels = [], []
-    for mode, row in ours.items():
-        labels.append(MODE_LABEL[mode])
-        cells.append([f"{_cell(row.get(c), 0 if 'held' in c else 2)} / {_cell(t)}"
-                      for c, t in zip(columns, thesis[mode])])
-    with ctx.figure("table_4_8", 1, 1, figsize=(13, 0.5 * len(cells) + 1.6)) as (fig, ax):
-        ax.axis("off")
-        table = ax.table(cellText=cells, rowLabels=labels, colLabels=headers, loc="center", cellLoc="center")
-        table.auto_set_font_size(False)
-        table.set_fontsize(8)
-        table.scale(1.0, 1.4)
-        ax.set_title("Table 4.8 side by side — each cell: ours / thesis (held 30 = '30 or more'; — = not held)",
-                     fontsize=9)
-
-
-def posture_errors(ctx, rows_all: dict, names, table_4_7: dict, columns) -> None:
-    """Table 4.7 as plots: |error| at each posture of the pitch and roll sequences, per mode —
-    ours (top; × = posture lost) and the thesis's (bottom; gaps = "—"; ``table_4_7`` as printed, its
-    ``columns`` the modes)."""
-    colour = {m: f"C{i % 10}" for i, m in enumerate(MODE_LABEL)}
-    with ctx.figure("posture_errors", 2, 2, figsize=(13, 7.5)) as (fig, axes):
-        for col, axis_name in enumerate(("pitch", "roll")):
-            ax = axes[0, col]
-            for mode in list(names) + [n for n in rows_all if n not in names]:
-                rows = rows_all.get(mode, {}).get(axis_name)
-                if not rows:
-                    continue
-                ax.plot(np.arange(len(rows)), [r.error_deg if r.held else np.nan for r in rows], "-o", ms=3,
-                        color=colour[mode], label=MODE_LABEL[mode])
-                lost = [k for k, r in enumerate(rows) if not r.held]
-                ax.plot(lost, [20] * len(lost), "x", color=colour[mode], ms=9, mew=2)
-            seq = [r.target_deg for r in max((rows_all[m].get(axis_name, []) for m in rows_all), key=len)]
-            ax.set_xticks(np.arange(len(seq)), [f"{t:+.0f}" for t in seq], fontsize=7)
-            ax.set_title(f"ours — {axis_name} sequence", fontsize=9)
-            thesis = axes[1, col]
-            rows = table_4_7[axis_name]
-            for j, mode in enumerate(columns):
-                thesis.plot(np.arange(len(rows)), [np.nan if r[j] is None else r[j] for r in rows], "-o", ms=3,
-                            color=colour[mode], label=MODE_LABEL[mode])
-            printed = [-10, -20, -30, -20, -10, 0, 10, 20, 30, 20, 10, 0] if axis_name == "pitch" else \
-                [10, 20, 30, 20, 10, 0, -10, -20, -30, -20, -10]
-            thesis.set_xticks(np.arange(len(printed)), [f"{t:+d}" for t in printed], fontsize=7)
-            thesis.set_title(f"thesis Table 4.7 — {axis_name} rows as printed", fontsize=9)
-            for a in (ax, thesis):
-                a.set_ylim(0, 21)
-                a.set_ylabel("|measured − model| [deg]")
-                a.set_xlabel(f"commanded whole-spine {axis_name} [deg]")
-        axes[0, 0].legend(fontsize=7, ncol=2)
-
-
-def mode_time_series(ctx, names) -> None:
-    """Measured (accelerometers, eq. 3.4) vs reference whole-spine angle for every mode (Figs. 4.21–4.27)."""
-    rec = ctx.recorder
-    cols = 4
-    nrows = int(np.ceil(len(names) / cols))
-    with ctx.figure("posture_time_series", nrows, cols, figsize=(15, 3.1 * nrows + 0.6), squeeze=False) as (fig, axes):
-        for ax, mode in zip(axes.flat, names):
-            offset = 0.0
-            for axis_name, color in (("pitch", "C0"), ("roll", "C3")):
-                key = f"{mode}.{axis_name}"
-                if f"{key}.measured_deg" not in rec:
-                    continue
-                t = rec.times(f"{key}.measured_deg")
-                t = t - t[0] + offset
-                ax.plot(t, rec.values(f"{key}.reference_deg"), "--", color=color, lw=1)
-                ax.plot(t, rec.values(f"{key}.measured_deg"), color=color, lw=0.8, label=axis_name)
-                offset = t[-1] + 1.0
-            ax.set_title(MODE_LABEL[mode], fontsize=9)
-            ax.set_ylim(-45, 45)
-            ax.set_xlabel("time [s] (pitch sequence, then roll)")
-            ax.legend(fontsize=7)
-        for ax in axes.flat[len(names):]:
-            ax.axis("off")
-        axes[0, 0].set_ylabel("whole-spine angle [deg] (dashed: model)")
-
-
-def teach_playback(ctx, recording, results: dict) -> None:
-    """Recorded encoder traces and the tracking error / saturation per speed-up factor."""
-    samples = 1e3 * recording.samples
-    t = np.arange(len(samples)) * recording.period
-    factors = sorted(results)
-    with ctx.figure("teach_playback", 1, 2, figsize=(12, 4)) as (fig, (ax0, ax1)):
-        ax0.plot(t, samples, lw=1)
-        ax0.set_xlabel("teaching time [s]")
-        ax0.set_ylabel("encoder (wire wound in) [mm]")
-        ax0.set_title("taught motion: 8 muscles, 1 kgf tension hold, 20 ms samples", fontsize=9)
-        ax1.plot(factors, [results[k]["relative_length_error"] for k in factors], "-o", label="RMS error / RMS motion")
-        ax1.plot(factors, [results[k]["saturated_fraction"] for k in factors], "-s", label="fraction of ticks saturated")
-        ax1.set_xlabel("speed-up factor (decimation)")
-        ax1.set_xticks(factors)
-        ax1.axhline(0.1, color="0.5", ls=":", lw=1)
-        ax1.legend(fontsize=8)
-        ax1.set_title("replay in L mode (§4.2.2: 2–4× follow, 8× exceeds the motors)", fontsize=9)
-
-
-def software_spring(ctx, k_list, trials: dict) -> None:
-    """Per k_s, each muscle's encoder change and tension over time (Figs. 4.14–4.17), and the
-    tension change per length change."""
-    rec = ctx.recorder
-    with ctx.figure("software_spring", 2, len(k_list) + 1, figsize=(4 * (len(k_list) + 1), 6.5),
-                    squeeze=False) as (fig, axes):
-        for col, k in enumerate(k_list):
-            key = f"k{int(k)}."
-            t = rec.times(f"{key}length_error_mm")
-            axes[0, col].plot(t - t[0], rec.values(f"{key}length_error_mm"), lw=0.8)
-            axes[1, col].plot(t - t[0], rec.values(f"{key}tension_n") / KGF_N, lw=0.8)
-            axes[0, col].set_title(f"k_s = {k:g}", fontsize=9)
-            axes[1, col].set_xlabel("time [s]")
-        axes[0, 0].set_ylabel("length from l_0 (encoder) [mm]")
-        axes[1, 0].set_ylabel("tension [kgf]")
-        ax = axes[0, -1]
-        ax.plot(k_list, [trials[k]["tension_change_n"] / KGF_N for k in k_list], "-o")
-        ax.set_xscale("log")
-        ax.set_xlabel("k_s (thesis units)")
-        ax.set_ylabel("Σ|ΔT| while bent [kgf]")
-        ax = axes[1, -1]
-        ax.plot(k_list, [trials[k]["return_error_deg"] for k in k_list], "-o")
-        ax.set_xscale("log")
-        ax.set_xlabel("k_s (thesis units)")
-        ax.set_ylabel("posture error after release [deg]")
-
-
-def rabbit(ctx, levels, curves: dict) -> None:
-    with ctx.figure("rabbit_stiffness", 1, 1, figsize=(6.4, 4.2)) as (fig, ax):
-        for label, stiff in curves.items():
-            ax.plot(levels, stiff, "-o", label=label.rstrip(".").replace("_", " "))
-        ax.set_xlabel("disc pre-compression the muscle lengths are computed for [mm]")
-        ax.set_ylabel("lateral stiffness at the top [N/mm]")
-        ax.set_yscale("log")
-        ax.legend(fontsize=8)
 
 
 def plot_learning_curves(ctx, nets: dict) -> None:

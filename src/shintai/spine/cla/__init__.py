@@ -8,7 +8,7 @@ keyframes — hand-made behaviours as posture sequences (§5.2, §6.5)
 levelling — shoulder levelling by the accelerometer on a tilting seat (§5.2.2, Fig. 5.2)
 modes — E11: the muscle-mode combinations with arms raised, Table 4.8 (§4.7.2–4.7.3)
 pick_place — seated pick-up from the floor and placing on the desk (§5.2.5–5.2.6, Fig. 5.7)
-plots — Cla's pictures: the posture database session (§5.9) and the chapter-5 behaviours
+plots — Cla's pictures: E9–E11, the posture database session (§5.9) and the chapter-5 behaviours
 posture_runs — a posture-database session on the MuJoCo Cla and its metrics (§5.9)
 postures — E11's posture protocol: uniform-bend postures played to the muscle controller (§4.7.2, A.1.3)
 pull — pulling an object on the desk by leaning with the spine (§5.2.4, Figs. 5.5–5.6)

@@ -5,7 +5,8 @@
 from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import plots as pictures
+from shintai.spine import plots as shared
+from shintai.spine.cla import plots as pictures
 from shintai.spine.cla.setup import SPRING_LAWS
 from shintai.spine.cla.modes import (
     ABLATION, AXES, MODE_CONFIGS, TABLE_4_7, TABLE_4_7_COLUMNS, TABLE_4_7_TOLERANCE_DEG, TABLE_4_8, TABLE_COLUMNS,
@@ -65,7 +66,7 @@ def plots(ctx, runs, params):
     pictures.mode_time_series(ctx, modes)
     states = {v: run.state.picture for v, run in runs.items() if run.state.picture is not None}
     if states:
-        pictures.spine_3d(ctx, states)
+        shared.spine_3d(ctx, states)
 
 
 T48 = "003:table4.8"

@@ -5,7 +5,7 @@ and with ``ablation`` the same with a linear disc."""
 from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import plots as pictures
+from shintai.spine.rabbit import plots as pictures
 from shintai.spine.rabbit.stiffening import linear_disc, stiffening_rig, stiffness_metrics
 from shintai.spine.robots import RABBIT
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from shintai.core.constants import KGF_N
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import plots as pictures
+from shintai.spine.cla import plots as pictures
 from shintai.spine.cla.setup import SPRING_LAWS
 from shintai.spine.cla.spring_trial import spring_rig, trial_metrics
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import plots as pictures
+from shintai.spine.cla import plots as pictures
 from shintai.spine.cla.setup import CLA_VIEW
 from shintai.spine.robots import CLA
 from shintai.spine.cla.teach_runs import demonstration, key_postures, peak_muscle_speed, replay, teach
