@@ -135,7 +135,8 @@ def levelling_rig(levelling: bool, inverse: NeuralInverse, tilt1_roll_deg: float
 
     def sample(snap):
         return {"shoulder_deg": np.degrees(shoulder_tilt(body)), "acc_deg": np.degrees(tilt(snap["acc_chest"])),
-                "seat_deg": np.degrees(seat.target(snap["t"] - t0)), "spine_deg": np.degrees(whole_spine(snap["theta"]))}
+                "seat_deg": np.degrees(seat.target(snap["t"] - t0)),
+                "spine_deg": np.degrees(whole_spine(snap["theta"]))}
 
     return Rig(body, stages=stages, channels=CHANNELS, duration=duration_s,
                record={max(1, round(0.02 / body.dt)): sample}, view=view or {}, state=LevellingRun(law, levelling, t0))
