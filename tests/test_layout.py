@@ -224,7 +224,7 @@ def test_no_library_reads_params():
 SPINE_LOOP_OWNERS = {
     "shintai.spine.teaching": "§4.6.4's encoder zeroing, the prelude every spine rig runs when it is built",
     "shintai.spine.kenta.body": "Kenta's zeroing prelude (calibrated_kenta)",
-    "shintai.spine.kenta.postures": "teach three postures, lock, replay: a chain of loops (a compute)",
+    "shintai.spine.kenta.postures": "the teaching prelude of its rigs: each posture held by the hands, one loop each",
     "shintai.spine.cla.teach_runs": "E9's teaching, then replays of its recording: a chain of loops (a compute)",
     "shintai.spine.bebe.body": "BeBe's calibration settles and tracking runs: a chain of loops (a compute)",
 }
