@@ -21,7 +21,7 @@ def _ctx(tmp_path, **params):
 
 def test_evolve_records_checkpoints_and_draws(tmp_path):
     ctx = _ctx(tmp_path)
-    result = ga_run.evolve(ctx, "peak", _peak, [-1, -1], [1, 1])
+    result = _evolve(ctx, "peak", _peak, [-1, -1], [1, 1])
     assert len(result.history) == 6
     assert result.history.best_so_far[-1] >= result.history.best_so_far[0]
     assert (tmp_path / "peak.ga.npz").exists() and (tmp_path / "peak_curve.png").exists()
@@ -29,9 +29,9 @@ def test_evolve_records_checkpoints_and_draws(tmp_path):
 
 
 def test_evolve_resume_extends_to_the_uninterrupted_result(tmp_path):
-    whole = ga_run.evolve(_ctx(tmp_path / "a"), "peak", _peak, [-1, -1], [1, 1])
-    ga_run.evolve(_ctx(tmp_path / "b", generations=3), "peak", _peak, [-1, -1], [1, 1])
-    resumed = ga_run.evolve(_ctx(tmp_path / "b"), "peak", _peak, [-1, -1], [1, 1])
+    whole = _evolve(_ctx(tmp_path / "a"), "peak", _peak, [-1, -1], [1, 1])
+    _evolve(_ctx(tmp_path / "b", generations=3), "peak", _peak, [-1, -1], [1, 1])
+    resumed = _evolve(_ctx(tmp_path / "b"), "peak", _peak, [-1, -1], [1, 1])
     np.testing.assert_array_equal(whole.history.best, resumed.history.best)
     np.testing.assert_array_equal(whole.best_genome, resumed.best_genome)
 
@@ -39,3 +39,8 @@ def test_evolve_resume_extends_to_the_uninterrupted_result(tmp_path):
 def test_generations_to_converge():
     assert ga_run.generations_to_converge(np.array([1.0, 5.0, 9.6, 10.0])) == 2
     assert ga_run.generations_to_converge(np.array([1.0, 1.0])) == 0
+
+
+def _evolve(ctx, *args, **kw):
+    """ga_run.evolve with the GA's parameters of ``ctx`` as named arguments (as the experiments pass them)."""
+    return ga_run.evolve(ctx, *args, ga=ga_run.GARun(**{k: ctx.params[k] for k in ga_run.GA_KEYS}), **kw)

@@ -23,7 +23,7 @@ import numpy as np
 
 from shintai.gym.loop_env import LoopEnv
 from shintai.spine.bodies_mujoco import SpineBody
-from shintai.spine.cla import CLA_VIEW, calibrated, cla_gains
+from shintai.spine.cla.setup import CLA_VIEW, calibrated, cla_gains
 from shintai.spine.control import SETPOINTS, Mode, MuscleControl
 from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA

@@ -1,7 +1,7 @@
-"""MjSpec building blocks shared by the bodies: a limited hinge and a capsule limb segment.
+"""MjSpec building blocks shared by the bodies: a limited hinge, a capsule limb segment and a joint's position servo.
 
 The humanoid's models (:mod:`shintai.humanoid`, which re-exports :func:`add_hinge`) and the spine's whole
-bodies (:mod:`shintai.spine.cla_body`, :mod:`shintai.spine.cla_crawl`) build their joints and limbs with these.
+bodies (:mod:`shintai.spine.cla.body`, :mod:`shintai.spine.cla.crawl`) build their joints and limbs with these.
 """
 
 from __future__ import annotations
@@ -25,3 +25,13 @@ def add_capsule(body, to, radius: float, mass: float, rgba, contype: int = 0, co
     ``contype``/``conaffinity`` its contact bits (0: it collides with nothing), ``kw`` further geom fields."""
     return body.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, fromto=[0, 0, 0, *to], size=[radius, 0, 0], mass=mass,
                          rgba=rgba, contype=contype, conaffinity=conaffinity, **kw)
+
+
+def add_position_actuator(spec, joint: str, kp: float, kv: float, limit: float):
+    """A position servo on ``joint`` named after it: force kp·(target − q) − kv·q̇, limited to ±``limit``."""
+    act = spec.add_actuator(name=joint, target=joint, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+    act.gaintype, act.biastype = mujoco.mjtGain.mjGAIN_FIXED, mujoco.mjtBias.mjBIAS_AFFINE
+    act.gainprm[0] = kp
+    act.biasprm[:3] = [0.0, -kp, -kv]
+    act.forcelimited, act.forcerange = True, [-limit, limit]
+    return act

@@ -130,7 +130,7 @@ ROWS = (
         what="Cla takes twist and lateral-bend postures",
         result="§3.6.3: 'ねじりや側屈の稼働範囲により，脊椎が無ければ不可能であるような姿勢を可能にしている'. "
                "Photographs only, no number",
-        not_built="no open issue: a posing scenario on the whole-body Cla (spine/cla_body.py, issue 17) would show it; "
+        not_built="no open issue: a posing scenario on the whole-body Cla (spine/cla/body.py, issue 17) would show it; "
                   "issue 17 named its behaviours, not these photographs",
     ),
     Row(
@@ -139,7 +139,7 @@ ROWS = (
         what="Kenta (tendon-driven humanoid, 10-segment spine with muscles to middle vertebrae) moves its spine",
         result="§3.7.6: '全身の動きを利用した人間の動きに近づいた動きを可能にしている様子が見られる'. Photographs "
                "only, no number",
-        difference="our whole-body Kenta (spine/kenta_body.py: the 40 muscles and ligaments of robots.py with chosen "
+        difference="our whole-body Kenta (spine/kenta/body.py: the 40 muscles and ligaments of robots.py with chosen "
                    "attachment points, servoed arms, a wire-sum neck, pan/tilt eyes; no legs, pelvis fixed) moves its "
                    "spine into three taught postures (spine.kenta-taught-postures) and back, within 2° of them; discs "
                    "280 N m/rad = 2 × the stiffness that makes upright stable under gravity with all muscles at 1 kgf "
@@ -428,7 +428,7 @@ ROWS = (
         what="Cla tracks a coloured target with neck (pan/tilt) and spine (pitch/yaw from the NN posture) "
              "routines run in parallel",
         result="§5.2.10: realised by tuning the two routines' gains. No number",
-        difference="the whole-body Cla (spine/cla_body.py) seated; the colour-region detection replaced by the ball's "
+        difference="the whole-body Cla (spine/cla/body.py) seated; the colour-region detection replaced by the ball's "
                    "centre projected into the head camera; the spine's posture from the muscle lengths by Jacobian "
                    "integration (eqs. 4.26–4.28) instead of the NN; neck loop 66 ms, spine loop 198 ms, gains chosen: "
                    "over an 8 s ±18° sweep the ball stays in view, RMS 4.0° off axis (max 5.9°), neck 71 % / spine "

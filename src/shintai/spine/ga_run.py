@@ -3,7 +3,8 @@
 Chapter 5's three generated motions (SQ43's trot §5.6, HanzouS's brachiation §5.7, Cla's crawl §5.2.9)
 all evolve genes with the §5.5 parallel GA (population 20 or 105, crossover 0.2, mutation 0.02, culling
 0.4, fitness maximised: :meth:`shintai.evolve.GAConfig.seed003`). Each scenario declares ``GA_PARAMS``
-(with its own generation count and population), calls :func:`evolve` with a picklable fitness, and gets
+(with its own generation count and population), calls :func:`evolve` with a picklable fitness and those
+parameters as a :class:`GARun`, and gets
 the result, the per-generation record (``<name>.best``/``<name>.mean``) and the curve picture. The GA
 state is checkpointed to ``<out>/<name>.ga.npz`` after every generation; ``resume`` continues a killed
 run to the identical result. Serial, process and Ray executors give identical generations for one seed
@@ -13,6 +14,7 @@ run to the identical result. Serial, process and Ray executors give identical ge
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -35,38 +37,52 @@ def ga_params(generations: int, population: int) -> list[Param]:
     ]
 
 
-def config(params) -> GAConfig:
-    """Seed 003's GA (§5.6.2) with the scenario's generation count and population."""
-    return GAConfig.seed003(generations=int(params["generations"]), population=int(params["population"]))
+@dataclass(frozen=True)
+class GARun:
+    """The values of :func:`ga_params` for one run: how many generations of which population, where fitness
+    runs, and whether to resume from the checkpoint."""
+
+    generations: int
+    population: int
+    executor: str = "process"
+    workers: int = 0
+    address: str = ""
+    resume: bool = True
+
+    @property
+    def config(self) -> GAConfig:
+        """Seed 003's GA (§5.6.2) with this generation count and population."""
+        return GAConfig.seed003(generations=int(self.generations), population=int(self.population))
 
 
-def evaluations(params, generations: int) -> int:
+GA_KEYS = tuple(f.name for f in fields(GARun))  # the parameter names of ga_params, in GARun's order
+
+
+def evaluations(population: int, generations: int) -> int:
     """How many fitness runs a GA of ``generations`` made: the first population whole, then only the offspring
     that replace the culled (the survivors are carried with their fitness)."""
-    c = config(params)
+    c = GAConfig.seed003(generations=int(generations), population=int(population))
     return c.population + (generations - 1) * (c.population - c.carried())
 
 
-def evolve(ctx, name: str, fitness: Callable, lo, hi, batch: bool = False, initial: np.ndarray | None = None,
-           title: str = "", seed: int | None = None) -> GAResult:
-    """Run the GA for ``ctx.params`` on ``fitness`` (maximised) in the box ``[lo, hi]``.
+def evolve(ctx, name: str, fitness: Callable, lo, hi, *, ga: GARun, batch: bool = False,
+           initial: np.ndarray | None = None, title: str = "", seed: int | None = None) -> GAResult:
+    """Run the GA ``ga`` on ``fitness`` (maximised) in the box ``[lo, hi]``.
 
     Reports progress, checkpoints to ``<out>/<name>.ga.npz``, records ``<name>.best``/``<name>.mean`` per
     generation, and draws ``<name>_curve.png``. ``fitness`` must be picklable for the process and Ray
     executors (a module-level function or a frozen dataclass instance). ``seed``: the GA's seed (default the
     run's, ``ctx.seed``; a scenario running several independent GAs gives each its own).
     """
-    p = ctx.params
-    ga = GeneticAlgorithm(fitness, lo, hi, config(p), seed=ctx.seed if seed is None else seed,
-                          checkpoint=ctx.out / f"{name}.ga.npz",
-                          batch=batch, initial=initial)
+    algorithm = GeneticAlgorithm(fitness, lo, hi, ga.config, seed=ctx.seed if seed is None else seed,
+                                 checkpoint=ctx.out / f"{name}.ga.npz", batch=batch, initial=initial)
 
     def progress(done: int, total: int, best: float) -> None:
         ctx.progress(done / total, f"{name} generation {done}/{total}, best {best:.4g}")
 
-    with make_executor(p["executor"], p["workers"] or None, p["address"] or None) as executor:
-        ga.executor = executor
-        result = ga.run(progress, resume=bool(p["resume"]))
+    with make_executor(ga.executor, ga.workers or None, ga.address or None) as executor:
+        algorithm.executor = executor
+        result = algorithm.run(progress, resume=bool(ga.resume))
     history = result.history
     for g in range(len(history)):
         ctx.recorder.record(g, **{f"{name}.best": history.best[g], f"{name}.mean": history.mean[g]})

@@ -3,12 +3,12 @@ its ring discs are modelled quasi-statically (:mod:`shintai.spine.bodies`)."""
 
 from shintai.sim.export import model
 from shintai.spine.bodies_mujoco import build_spec
-from shintai.spine.cla_body import build_spec as build_cla_body
-from shintai.spine.cla_crawl import kneeling_spec
-from shintai.spine.hanzous_body import build_spec as build_hanzous
-from shintai.spine.kenta_body import SPINE_ARMATURE_KGM2, kenta_spec
+from shintai.spine.cla.body import build_spec as build_cla_body
+from shintai.spine.cla.crawl import kneeling_spec
+from shintai.spine.hanzous.body import build_spec as build_hanzous
+from shintai.spine.kenta.body import SPINE_ARMATURE_KGM2, kenta_spec
 from shintai.spine.robots import CLA, KENTA
-from shintai.spine.sq43_body import build_spec as build_sq43
+from shintai.spine.sq43.body import build_spec as build_sq43
 
 
 @model("spine.cla", "Cla's muscle spine: five vertebrae, eight wire muscles on reels, raised arms (seed 003 §3.6)")
@@ -57,7 +57,7 @@ def cla_standing():
 @model("spine.cla-lying", "Whole-body Cla for rolling over: the standing Cla with its trunk, head and limbs touching "
        "the floor (placed on its back by spine.cla-roll-over; seed 003 §5.2.8)")
 def cla_lying():
-    from shintai.spine.cla_roll_over import lying_spec
+    from shintai.spine.cla.roll_over import lying_spec
 
     return lying_spec()
 

@@ -560,7 +560,7 @@ def _kenta() -> tuple[SpineRobot, LigamentSpec, tuple[str, ...]]:
 
 KENTA, KENTA_LIGAMENTS, KENTA_MOTOR_GROUPS = _kenta()
 
-# Kenta's whole body beyond the spine (§3.7.4, Figs. 3.49–3.52; the MuJoCo model is spine/kenta_body.py). The
+# Kenta's whole body beyond the spine (§3.7.4, Figs. 3.49–3.52; the MuJoCo model is spine/kenta/body.py). The
 # text gives the DOF: each arm a ball joint near the chest centre and one at the upper-arm root (6 DOF), a 1-DOF
 # elbow and a 3-DOF wrist; the neck "a reduced spine", 5 ball joints (15 DOF) driven by 6 wires through guides
 # on silicone-rubber spacers, so "each joint angle cannot be set individually, but the whole posture can";
@@ -600,7 +600,7 @@ class SQ43Spec:
     """SQ43 (§3.2): rigid parts A and memory-foam parts B; 2 bending DOF (servo A: styrene rods,
     lateral; servo B: wires, vertical), flexibility 3 variables / 0 DOF; the §3.2.3 design search.
     The whole-body MuJoCo model's dimensions, masses and servo constants (each with its source) are
-    :class:`shintai.spine.sq43_body.SQ43BodySpec` (``sq43_body.BODY``)."""
+    :class:`shintai.spine.sq43.body.SQ43BodySpec` (``sq43_body.BODY``)."""
 
     parts_a: int = 4  # Fig. 3.3
     foam_length_m: float = 0.010  # part B, y direction (§3.2.3)
@@ -741,7 +741,7 @@ SHUNT_OHM = 0.1  # §3.6.2, JSK-D02
 PWM_STEPS = 255  # chosen: an 8-bit PWM timer on the H8 (the resolution is not in text)
 
 # ---------------------------------------------------------------------------------------------
-# Cla on the floor, crawling on hands and knees (§3.6.2, §5.2.9; the model is shintai.spine.cla_crawl)
+# Cla on the floor, crawling on hands and knees (§3.6.2, §5.2.9; the model is shintai.spine.cla.crawl)
 # ---------------------------------------------------------------------------------------------
 # The spine reuses CLA_* above (5 joints, CLA_FIRST_BALL_M, CLA_SEGMENT_M, ±CLA_LIMIT_RAD per axis, the pelvis
 # and vertebra masses of CLA.link_mass_kg, the clavicle and head loads of CLA_TRUNK_LOADS, 0.25 kg arms whose
@@ -792,7 +792,7 @@ CRAWL_EVAL_S = 8.0  # chosen: each crawl is evaluated over 8 s (the distance is 
 
 # ---------------------------------------------------------------------------------------------
 # Whole-body Cla: the muscle spine with arms, neck/head and legs, seated or standing (§3.6.2, §5.2;
-# the model is shintai.spine.cla_body)
+# the model is shintai.spine.cla.body)
 # ---------------------------------------------------------------------------------------------
 # The spine is CLA's (bodies_mujoco: 8 tendon muscles on reels, 0.5 ms steps). §3.6.2 gives the limbs' DOF
 # ("脚は股関節・膝関節が pitch 軸のみで足首関節が pitch・roll 軸、腕は肩関節が roll・pitch 軸で肘および手首関節が

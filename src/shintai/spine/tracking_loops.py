@@ -25,6 +25,7 @@ Each loop records when it ran (``times``), so the measured periods come from the
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -32,14 +33,31 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
 from shintai.spine.inverse_model import jacobian_integration
+from shintai.spine.robots import KENTA_CAMERA_FOVY_DEG
 
 # Chosen, because §5.2.12 gives no period: the eyes at the video frame rate of the CCD cameras (NTSC, 30 Hz),
 # the neck at BeBe's image-feedback period (66 ms, §4.8.3), the spine slower again (its muscles move it at
 # tens of mm/s, Table 3.3), so the three periods differ as the thesis says.
 TRACKING_PERIODS_S = {"eyes": 0.033, "neck": 0.066, "spine": 0.198}
+TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
+# chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
+CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
 # Chosen: the fraction of the image offset each loop corrects per period (the thesis tuned its gains by hand)
 TRACKING_GAINS = {"eyes": 0.3, "neck": 0.12, "spine": 0.15}
 TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
+
+
+def image_offset(cam_pos, cam_mat, point, fovy_deg: float = KENTA_CAMERA_FOVY_DEG, aspect: float = 4 / 3):
+    """The point's (horizontal, vertical) angles from a MuJoCo camera's optical axis [rad] (positive: to the
+    camera's left, up) and whether it is inside the field of view."""
+    R = np.asarray(cam_mat, dtype=float).reshape(3, 3)  # columns: camera x (right), y (up), z (backward)
+    v = R.T @ (np.asarray(point, dtype=float) - np.asarray(cam_pos, dtype=float))
+    depth = -v[2]
+    h, vert = math.atan2(-v[0], depth), math.atan2(v[1], depth)
+    half_v = math.radians(fovy_deg) / 2
+    half_h = math.atan(math.tan(half_v) * aspect)
+    visible = depth > 0 and abs(h) <= half_h and abs(vert) <= half_v
+    return np.array([h, vert]), visible
 
 
 class TargetPath(Module):
@@ -154,3 +172,71 @@ def shares(parts) -> np.ndarray:
     """Each part's share of the gaze's pan: mean |pan_k| / Σ_k mean |pan_k| over the run; ``parts`` (k, P, 2)."""
     pan = np.abs(np.asarray(parts)[:, :, 0]).mean(axis=0)
     return pan / max(pan.sum(), 1e-12)
+
+
+@dataclass
+class Tracking:
+    """One tracking run as its rig left it: the visual loops, the arm swing (or None) with the indices of its
+    joints in the snapshot's ``arms``, and the body time the tracking started at."""
+
+    loops: list
+    arms: ArmSwing | None
+    swung: list[int]
+    t0: float
+
+
+def tracking_stages(body, control, eye, loops: list, amplitude_m: float, path_period_s: float,
+                    arms: ArmSwing | None = None, swung=()) -> tuple[list, Tracking]:
+    """The stages of a tracking run — the experimenter moving the ball ``TARGET_DISTANCE_M`` in front of ``eye``,
+    the visual ``loops`` (and ``arms``), then the muscle controller — and its :class:`Tracking`."""
+    modules = list(loops)
+    if arms is not None:
+        arms.t0 = body.t
+        modules.append(arms)
+    path = TargetPath(eye + np.array([TARGET_DISTANCE_M, 0.0, 0.0]), amplitude_m, path_period_s)
+    path.t0 = body.t
+    body.apply({"target": path.at(body.t)})
+    return [[path, *modules], [control]], Tracking(list(loops), arms, list(swung), body.t)
+
+
+def tracking_signals(snap: Snapshot, run: Tracking) -> dict:
+    """What a tracking run records: the target's image offset and visibility, the parts' gaze, the swung joints."""
+    out = {"image": snap["target_image"], "visible": snap["target_visible"], "gaze": snap["gaze"]}
+    if run.arms is not None:
+        out["arms"] = snap["arms"][run.swung]
+    return out
+
+
+def tracking_series(log, run: Tracking) -> dict:
+    """The recorded signals as arrays, ``t`` from the tracking's start."""
+    s = {k: log.values(k) for k in ("image", "visible", "gaze", *(("arms",) if run.arms is not None else ()))}
+    s["t"] = log.times("image") - run.t0
+    return s
+
+
+def tracking_metrics(log, run: Tracking, duration_s: float, amplitude_m: float, swung_names=()) -> dict:
+    """The tracking error after the first second, the visible fraction, each part's share of the pan and each
+    loop's measured period; with the arms swung, their swing, following error and the concurrent fraction."""
+    s = tracking_series(log, run)
+    err = np.degrees(np.linalg.norm(s["image"], axis=1))
+    settled = s["t"] >= min(1.0, 0.5 * duration_s)  # chosen: the first second acquires the target
+    out = {"rms_tracking_error_deg": float(np.sqrt(np.mean(err[settled] ** 2))),
+           "max_tracking_error_deg": float(err[settled].max()),
+           "visible_fraction": float(s["visible"][settled].mean()),
+           "target_sweep_deg": float(np.degrees(2 * np.arctan(amplitude_m / TARGET_DISTANCE_M)))}
+    names = ("spine", "neck", "eyes")[:s["gaze"].shape[1]]
+    for name, value in zip(names, shares(s["gaze"])):
+        out[f"{name}_share"] = float(value)
+    for m in run.loops:
+        out[f"{m.name}_period_s"] = measured_period(m.times)
+    arms = run.arms
+    if arms is not None:
+        q = np.degrees(s["arms"][settled])
+        wanted = np.degrees([[arms.at(t)[nm] for nm in swung_names] for t in s["t"][settled] + run.t0])
+        out["arm_swing_deg"] = float(np.ptp(q[:, 0]))
+        out["arm_following_error_deg"] = float(np.sqrt(np.mean((q - wanted) ** 2)))
+        gaze = np.degrees(s["gaze"][settled])
+        out["concurrent_fraction"] = concurrent_fraction(s["t"][settled], [gaze[:, 0], gaze[:, 1], q[:, [0, 2]],
+                                                                            q[:, [1, 3]]],
+                                                         CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG)
+    return out

@@ -1,18 +1,21 @@
 """``spine.bebe-tracking``: BeBe's 36 on/off muscles track a target by the cos > 0.2, off-before-on rule
 (seed 003 §4.8.3–4.8.4), with pushes and forced-on muscles. Calibration, the superposition and
 hysteresis tests and five tracking runs are separate simulations that build on the calibration: a
-compute experiment (:mod:`shintai.spine.bebe_runs`)."""
+compute experiment (:mod:`shintai.spine.bebe.runs`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import bebe
-from shintai.spine.bebe_runs import forced_metrics, run_bebe
-from shintai.spine.pictures_learning import (
+from shintai.spine.bebe import body as bebe
+from shintai.spine.bebe.runs import forced_metrics, run_bebe
+from shintai.spine.bebe.plots import (
     plot_bebe_calibration, plot_bebe_disturbances, plot_bebe_image, plot_bebe_tracking,
 )
+
+RUN_KEYS = ("dead_zone_px", "cos_threshold", "target_amplitude_m", "target_period_s", "tracking_s", "disturbance_s",
+            "push_n", "forced_s")  # the parameters run_bebe takes
 
 
 @scenario(
@@ -70,7 +73,7 @@ from shintai.spine.pictures_learning import (
 )
 def bebe_tracking(ctx) -> dict:
     p = ctx.params
-    res = run_bebe(p, int(ctx.rng.integers(2**32)), ctx.recorder, ctx.progress)
+    res = run_bebe(int(ctx.rng.integers(2**32)), ctx.recorder, **{k: p[k] for k in RUN_KEYS}, progress=ctx.progress)
     ctx.sim_time_s = res.sim_time_s
     err = np.linalg.norm(res.tracking.target_px, axis=1)
     recovery = bebe.recovery_times(res.disturbed, res.push_events)

@@ -1,5 +1,5 @@
 """``spine.bvh-retarget``: one BVH clip played on Cla, Kenta, the HRP2 humanoid and a rigid-trunk humanoid (seed
-003 §5.8, Fig. 5.28): the trunk twist each robot reaches against the human's (:mod:`shintai.spine.mocap`)."""
+003 §5.8, Fig. 5.28): the trunk twist each robot reaches against the human's (:mod:`shintai.spine.mocap.retarget`)."""
 
 from __future__ import annotations
 
@@ -12,8 +12,9 @@ from shintai.scenarios.registry import (
     ThesisValue,
     experiment,
 )
-from shintai.spine import mocap, pictures_mocap
-from shintai.spine.bvh import BvhError
+from shintai.spine.mocap import retarget as mocap
+from shintai.spine.mocap import plots as pictures_mocap
+from shintai.spine.mocap.bvh import BvhError
 
 MAPPINGS = ("uniform", "by_joint")
 
@@ -86,7 +87,7 @@ experiment(
     summary="a BVH clip (a trunk wind-up before a back flip, written by shintai; or --set bvh=FILE) retargeted to "
             "Cla's 5 and Kenta's 10 spine joints, the HRP2's waist and arms and a rigid-trunk humanoid: twist reached",
     params=(
-        Param("bvh", "", "a BVH file to play instead of the shipped clip (spine/twist_clip.bvh)"),
+        Param("bvh", "", "a BVH file to play instead of the shipped clip (spine/mocap/twist_clip.bvh)"),
         Param("mapping", "uniform", "uniform: the trunk rotation shared equally by the spine joints (§4.4.4); "
               "by_joint: BVH spine joint k drives robot joint k, the rest stay still (§5.8.2's DOF matching)",
               choices=MAPPINGS),

@@ -1,6 +1,6 @@
 """``spine.cla-cop-balance``: Cla standing bends its spine slowly from side to side while an arm-swing reflex keeps
 the soles' centre of pressure (eq. 3.5, four FSRs per foot) near their front–back centre; the same bends without
-the reflex (seed 003 §5.2.7, Fig. 5.8). Reflex and bends: :mod:`shintai.spine.cla_cop`."""
+the reflex (seed 003 §5.2.7, Fig. 5.8). Reflex and bends: :mod:`shintai.spine.cla.cop`."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_cop as CB
+from shintai.spine.cla import plots as P
+from shintai.spine.cla import cop as CB
 from shintai.spine.control import SETPOINTS
 
 Q_REFLEX = ("§5.2.7 '常に足裏の前後方向の中心付近に重心の投影点が来るように, 両腕を前後にゆっくりと動かしながらバランス"
@@ -48,25 +49,6 @@ def metrics(runs, params):
     return per_variant({v: _one(r) for v, r in runs.items()})
 
 
-def plots(ctx, runs, params):
-    colours = {"swing": "tab:blue", "no_swing": "0.4"}
-    with ctx.figure("cop_balance", nrows=3, ncols=1, figsize=(9, 8), sharex=True) as (_fig, (ax_x, ax_arm, ax_roll)):
-        for v, run in runs.items():
-            t = run.log.times("cop")
-            err = 1e3 * (run.log.values("cop")[:, 0] - run.log.values("sole_centre_x"))
-            ax_x.plot(t, err, color=colours[v], label=v.replace("_", " "))
-            ax_arm.plot(t, run.log.values("arm_offset_deg"), color=colours[v])
-            ax_roll.plot(t, run.log.values("roll_deg"), color=colours[v])
-        for b in (CB.COP_BAND_M, -CB.COP_BAND_M):
-            ax_x.axhline(1e3 * b, color="tab:green", lw=0.6, ls="--")
-        ax_x.set_ylabel("CoP − sole centre,\nfront–back [mm]")
-        ax_x.set_title("centre of pressure (eq. 3.5, 8 FSRs); dashed: the reflex's rest band", fontsize=9)
-        ax_x.legend(fontsize=8)
-        ax_arm.set_ylabel("arms' pitch offset [deg]\n(+ forward)")
-        ax_roll.set_ylabel("whole-spine roll [deg]")
-        ax_roll.set_xlabel("t [s]")
-
-
 experiment(
     "spine.cla-cop-balance",
     source="seed 003 §5.2.7, Fig. 5.8, eq. 3.5",
@@ -87,5 +69,5 @@ experiment(
                                    "cop_excursion_swing_m")},
     covers=("003:fig5.8",),
     video=True,
-    rig=rig, variants=CB.VARIANTS, metrics=metrics, plots=plots,
+    rig=rig, variants=CB.VARIANTS, metrics=metrics, plots=P.cop_balance,
 )

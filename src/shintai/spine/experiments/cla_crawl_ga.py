@@ -1,6 +1,6 @@
 """``spine.cla-crawl-ga``: Cla crawling on hands and knees, its spine's roll evolved by seed 003's GA, against
 the same crawl with the spine locked straight and the hand-made roll pattern (seed 003 §5.2.9, Figs. 5.10–5.11;
-model, genes and fitness: :mod:`shintai.spine.cla_crawl`). A GA, not a loop over time: a compute scenario."""
+model, genes and fitness: :mod:`shintai.spine.cla.crawl`). A GA, not a loop over time: a compute scenario."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ import numpy as np
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import cla_crawl as CC
+from shintai.spine.cla import crawl as CC
+from shintai.spine.cla import plots as P
 from shintai.spine import ga_run
 from shintai.spine.robots import CRAWL_EVAL_S
 
@@ -29,39 +30,6 @@ def _variant_metrics(name: str, genes, sensors: np.ndarray, eval_s: float) -> di
     m["speed_mm_s"] = 1e3 * m["distance_m"] / eval_s
     m["abs_heading_drift_deg"] = abs(m["heading_drift_deg"])
     return {f"{name}.{k}": v for k, v in m.items()}
-
-
-def _pictures(ctx, genomes: dict, sensors: dict, metrics: dict, eval_s: float) -> None:
-    with ctx.figure("crawl_comparison", nrows=1, ncols=4, figsize=(13, 3.6)) as (_fig, axes):
-        for ax, (key, label) in zip(axes, (("distance_m", "forward distance [m]"),
-                                           ("torque_integral_nms", "torque integral [N m s]"),
-                                           ("peak_torque_nm", "peak torque [N m]"),
-                                           ("heading_drift_deg", "heading drift [deg]"))):
-            values = [metrics[f"{v}.{key}"] for v in VARIANTS]
-            ax.bar(range(len(VARIANTS)), values, color=["0.5", "tab:orange", "tab:blue"])
-            if key == "torque_integral_nms":  # the limbs' share
-                ax.bar(range(len(VARIANTS)), [metrics[f"{v}.limb_torque_integral_nms"] for v in VARIANTS],
-                       color="none", edgecolor="k", hatch="//", label="limbs")
-                ax.legend(fontsize=7)
-            ax.set_xticks(range(len(VARIANTS)), ["rigid", "hand-made", "GA"])
-            ax.set_title(label, fontsize=9)
-    with ctx.figure("crawl_paths", nrows=1, ncols=2, figsize=(11, 4)) as (_fig, (ax_path, ax_roll)):
-        t = np.arange(sensors["rigid"].shape[0]) * CC.CRAWL_TIMESTEP_S
-        for v in VARIANTS:
-            mid = 0.5 * (sensors[v][:, CC.S_PELVIS] + sensors[v][:, CC.S_CLAVICLE])
-            ax_path.plot(mid[:, 0], mid[:, 1], label=LABELS[v])
-            ax_roll.plot(t, np.degrees(CC.schedule(genomes[v], t)["roll"]) * CC.CLA_JOINTS, "--", lw=0.8)
-            ax_roll.plot(t, np.degrees(sensors[v][:, CC.ROLL_COLUMNS].sum(axis=1)), label=LABELS[v],
-                         color=ax_roll.lines[-1].get_color())
-        ax_path.set_aspect("equal", adjustable="datalim")
-        ax_path.set_xlabel("x (start heading) [m]")
-        ax_path.set_ylabel("y [m]")
-        ax_path.set_title(f"trunk midpoint over {eval_s:g} s (top view)", fontsize=9)
-        ax_path.legend(fontsize=7)
-        ax_roll.set_xlabel("t [s]")
-        ax_roll.set_ylabel("spine roll, 5 joints summed [deg]")
-        ax_roll.set_title("roll commanded (dashed) and reached; + = head end to the right", fontsize=9)
-        ax_roll.set_xlim(0, min(eval_s, 6.0))
 
 
 @scenario(
@@ -106,6 +74,7 @@ def cla_crawl_ga(ctx) -> dict:
     p = ctx.params
     eval_s = float(p["eval_s"])
     result = ga_run.evolve(ctx, "crawl", CC.CrawlFitness(eval_s), np.zeros(CC.N_GENES), np.ones(CC.N_GENES),
+                           ga=ga_run.GARun(**{k: p[k] for k in ga_run.GA_KEYS}),
                            batch=True, title="Cla crawl: spine roll amounts and timings (seed 003 §5.2.9)")
     genomes = {"rigid": CC.RIGID, "hand_made": CC.HAND_MADE, "evolved": result.best_genome}
     sensors, metrics = {}, {}
@@ -117,7 +86,7 @@ def cla_crawl_ga(ctx) -> dict:
     metrics["seconds_per_individual"] = seconds  # the evolved crawl's rollout, single thread
     metrics["realtime_factor"] = eval_s / seconds
     history = result.history
-    ctx.sim_time_s += (ga_run.evaluations(p, len(history)) + len(VARIANTS)) * eval_s
+    ctx.sim_time_s += (ga_run.evaluations(p["population"], len(history)) + len(VARIANTS)) * eval_s
     metrics |= {"generations": len(history), "crawl_best_fitness": float(history.best[-1]),
                 "crawl_initial_best": float(history.best[0]),
                 "crawl_improvement": float(history.best[-1] - history.best[0]),
@@ -126,7 +95,7 @@ def cla_crawl_ga(ctx) -> dict:
     metrics |= {f"evolved.roll{k}_deg": float(np.degrees(r)) for k, r in enumerate(roll)}
     metrics |= {f"evolved.phase{k}_s": float(d) for k, d in enumerate(dur)}
     ctx.extra["genomes"] = {v: np.asarray(g).tolist() for v, g in genomes.items()}
-    _pictures(ctx, genomes, sensors, metrics, eval_s)
+    P.crawl_ga(ctx, genomes, sensors, metrics, eval_s, LABELS)
     body = CC.crawl_body(lock_spine=False)
     with film(ctx, body, "evolved", track="pelvis", distance=0.9, azimuth=150.0, elevation=-50):
         if ctx.video or getattr(ctx, "view", False):

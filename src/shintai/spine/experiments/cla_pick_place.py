@@ -1,6 +1,6 @@
 """``spine.cla-pick-place``: Cla, seated, picks an object from the floor by bending its spine sideways and puts it
 on the desk by twisting it; the same keys solved for a locked spine (seed 003 §5.2.5–5.2.6, Fig. 5.7; Figs.
-2.1–2.2). Behaviour, scene and hand: :mod:`shintai.spine.cla_pick_place`."""
+2.1–2.2). Behaviour, scene and hand: :mod:`shintai.spine.cla.pick_place`."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_pick_place as PP
+from shintai.spine.cla import plots as P
+from shintai.spine.cla import pick_place as PP
 from shintai.spine.control import SETPOINTS
 from shintai.spine.robots import CLA_DESK_HALF_M, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_OBJECT_HALF_M
 
@@ -54,38 +55,6 @@ def metrics(runs, params):
     return per_variant({v: _one(r) for v, r in runs.items()})
 
 
-def plots(ctx, runs, params):
-    colours = {"spine": "tab:blue", "locked": "0.4"}
-    with ctx.figure("pick_place", nrows=1, ncols=3, figsize=(14, 4)) as (_fig, (ax_side, ax_top, ax_t)):
-        for v, run in runs.items():
-            hand, obj, t = run.log.values("hand"), run.log.values("object"), run.log.times("hand")
-            scene = run.state["scene"]
-            ax_side.plot(hand[:, 1], hand[:, 2], color=colours[v], label=f"hand, {v}")
-            ax_side.plot(obj[:, 1], obj[:, 2], "--", color=colours[v], label=f"object, {v}")
-            ax_top.plot(hand[:, 0], hand[:, 1], color=colours[v], label=f"hand, {v}")
-            ax_top.plot(obj[:, 0], obj[:, 1], "--", color=colours[v])
-            ax_t.plot(t, run.log.values("whole_deg")[:, 0], color=colours[v], label=f"roll, {v}")
-            ax_t.plot(t, run.log.values("whole_deg")[:, 2], ":", color=colours[v], label=f"yaw, {v}")
-        ax_side.axhline(scene["floor_z"], color="k", lw=0.8)
-        ax_side.axhline(CLA_DESK_HEIGHT_M, color="tab:brown", lw=0.8)
-        ax_side.set_xlabel("y (− = Cla's right) [m]")
-        ax_side.set_ylabel("z [m]")
-        ax_side.set_title("front view: floor (black) and desk top (brown)", fontsize=9)
-        ax_top.add_patch(__import__("matplotlib.patches").patches.Rectangle(
-            (CLA_DESK_NEAR_M, -CLA_DESK_HALF_M[1]), 2 * CLA_DESK_HALF_M[0], 2 * CLA_DESK_HALF_M[1], color="tab:brown",
-            alpha=0.2))
-        ax_top.plot(*scene["spot"][:2], "x", color="tab:red", label="place spot")
-        ax_top.set_aspect("equal", adjustable="datalim")
-        ax_top.set_xlabel("x (forward) [m]")
-        ax_top.set_ylabel("y [m]")
-        ax_top.set_title("top view: desk and place spot", fontsize=9)
-        ax_t.set_xlabel("t [s]")
-        ax_t.set_ylabel("whole-spine angle [deg]")
-        ax_t.set_title("spine roll (side bend) and yaw (twist) reached", fontsize=9)
-        for ax in (ax_side, ax_top, ax_t):
-            ax.legend(fontsize=7)
-
-
 experiment(
     "spine.cla-pick-place",
     source="seed 003 §5.2.5–5.2.6, Fig. 5.7 (Figs. 2.1–2.2)",
@@ -116,5 +85,5 @@ experiment(
                                  "じることで…物を机の上に置くことができた'", "placed_spine")},
     covers=("003:fig5.7",),
     video=True,
-    rig=rig, variants=PP.VARIANTS, metrics=metrics, plots=plots,
+    rig=rig, variants=PP.VARIANTS, metrics=metrics, plots=P.pick_place,
 )

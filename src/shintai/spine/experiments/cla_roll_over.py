@@ -1,6 +1,6 @@
 """``spine.cla-roll-over``: Cla lying on its back tries to roll onto its front by yawing its spine together with
 its shoulder and hip, and the same keys with the spine locked (seed 003 §5.2.8, Fig. 5.9). Model, keys and the
-turn measure: :mod:`shintai.spine.cla_roll_over`."""
+turn measure: :mod:`shintai.spine.cla.roll_over`."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import cla_roll_over as RO
+from shintai.spine.cla import plots as P
+from shintai.spine.cla import roll_over as RO
 from shintai.spine.control import SETPOINTS
 
 Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身を起こすことができない。脊椎を yaw 軸回りに回転させる動きと"
@@ -39,24 +40,6 @@ def metrics(runs, params):
     return per_variant({v: _one(r) for v, r in runs.items()})
 
 
-def plots(ctx, runs, params):
-    colours = {"spine": "tab:blue", "locked": "0.4"}
-    with ctx.figure("roll_over", nrows=2, ncols=1, figsize=(9, 6), sharex=True) as (_fig, (ax_turn, ax_yaw)):
-        for v, run in runs.items():
-            t = run.log.times("pelvis_turn_deg")
-            ax_turn.plot(t, run.log.values("shoulder_turn_deg"), color=colours[v], label=f"shoulders, {v}")
-            ax_turn.plot(t, run.log.values("pelvis_turn_deg"), "--", color=colours[v], label=f"pelvis, {v}")
-            ax_yaw.plot(t, run.log.values("whole_deg")[:, 2], color=colours[v], label=v)
-        ax_turn.axhline(90, color="k", lw=0.6, ls=":")
-        ax_turn.axhline(RO.ROLLED_DEG, color="tab:green", lw=0.6, ls="--")
-        ax_turn.set_ylabel("turn from lying on the back [deg]\n(90 = on a side, 180 = on the front)")
-        ax_turn.set_title("how far each half of Cla turned over; dashed green: 'rolled over'", fontsize=9)
-        ax_turn.legend(fontsize=7)
-        ax_yaw.set_ylabel("whole-spine yaw [deg]")
-        ax_yaw.set_xlabel("t [s]")
-        ax_yaw.legend(fontsize=7)
-
-
 experiment(
     "spine.cla-roll-over",
     source="seed 003 §5.2.8, Fig. 5.9",
@@ -80,5 +63,5 @@ experiment(
                                 "になった'", "rolled_spine")},
     covers=("003:fig5.9",),
     video=True,
-    rig=rig, variants=RO.VARIANTS, metrics=metrics, plots=plots,
+    rig=rig, variants=RO.VARIANTS, metrics=metrics, plots=P.roll_over,
 )

@@ -1,13 +1,14 @@
 """``spine.control-modes``: E11 on a MuJoCo Cla with arms raised — the eight L/T/S/LL combinations over
 ±30° pitch and roll (seed 003 §4.7.2–4.7.3, Tables 4.7–4.8). One run per mode configuration and axis
-(:func:`shintai.spine.modes.mode_rig`), plus all-L without interference."""
+(:func:`shintai.spine.cla.modes.mode_rig`), plus all-L without interference."""
 
 from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import pictures
-from shintai.spine.cla import SPRING_LAWS
-from shintai.spine.modes import (
+from shintai.spine import plots as shared
+from shintai.spine.cla import plots as pictures
+from shintai.spine.cla.setup import SPRING_LAWS
+from shintai.spine.cla.modes import (
     ABLATION, AXES, MODE_CONFIGS, TABLE_4_7, TABLE_4_7_COLUMNS, TABLE_4_7_TOLERANCE_DEG, TABLE_4_8, TABLE_COLUMNS,
     THESIS_ROW, mode_metrics, mode_rig, rows_until_lost, table_4_7_held,
 )
@@ -30,9 +31,12 @@ def filmed(params) -> list[str]:
 
 def rig(params, variant, seed):
     mode, axis = variant.rsplit(".", 1)
+    kw = {k: params[k] for k in ("max_angle_deg", "hold_s", "move_s", "window_s", "interference", "spring_law",
+                                 "T_l_kgf", "T_r_kgf")}
+    kw["k_s"] = {"mid": params["k_s_mid"], "high": params["k_s_high"]}
     if mode == ABLATION:
-        return mode_rig("all_l", axis, dict(params, interference=False), log=False)
-    return mode_rig(mode, axis, params, picture=mode == "all_l")
+        return mode_rig("all_l", axis, **(kw | {"interference": False}), log=False)
+    return mode_rig(mode, axis, **kw, picture=mode == "all_l")
 
 
 def rows_by_mode(runs) -> dict:
@@ -62,7 +66,7 @@ def plots(ctx, runs, params):
     pictures.mode_time_series(ctx, modes)
     states = {v: run.state.picture for v, run in runs.items() if run.state.picture is not None}
     if states:
-        pictures.spine_3d(ctx, states)
+        shared.spine_3d(ctx, states)
 
 
 T48 = "003:table4.8"

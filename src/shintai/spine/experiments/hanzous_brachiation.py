@@ -9,9 +9,9 @@ import contextlib
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.sim.body import MujocoBody
-from shintai.spine import pictures_hanzous as pictures
-from shintai.spine.brachiation import POLICIES, Brachiator, shipped_genome
-from shintai.spine.hanzous_body import VIDEO_VIEW, build_spec
+from shintai.spine.hanzous import plots as pictures
+from shintai.spine.hanzous.brachiation import POLICIES, Brachiator, shipped_genome
+from shintai.spine.hanzous.body import VIDEO_VIEW, build_spec
 
 SEQUENCES = ("real", "stiff", "soft", "designed")  # shipped GA bests by the policy they were evolved under; ours
 
@@ -49,7 +49,7 @@ def measured(outcomes: dict) -> dict:
 def compute(ctx):
     """The chosen sequence under each stiffness policy, then (``all_sequences``) the other shipped sequences,
     to show whether the stiff-against-soft directions hold beyond one sequence. Compute, not a rig: each run is
-    the rollout the GA's fitness uses (:class:`~shintai.spine.brachiation.Brachiator`)."""
+    the rollout the GA's fitness uses (:class:`~shintai.spine.hanzous.brachiation.Brachiator`)."""
     p = ctx.params
     ctx.runs = play(ctx, p["sequence"], main=True)  # handed to plots()
     out = measured(ctx.runs)
@@ -79,7 +79,7 @@ experiment(
             "softest from release to grasp) leaf-spring trunk: trunk-root internal force, grasp, distance",
     params=(
         Param("sequence", "real", "the motion: the GA's best (spine.hanzous-ga, 10 generations, shipped in "
-              "trained/hanzous_brachiation.npz) evolved under the real/stiff/soft policy, or our 8 designed "
+              "hanzous/trained/hanzous_brachiation.npz) evolved under the real/stiff/soft policy, or our 8 designed "
               "postures unadjusted", choices=SEQUENCES),
         Param("all_sequences", True, "also play the other two shipped sequences (metrics seq_<name>.*)"),
     ),

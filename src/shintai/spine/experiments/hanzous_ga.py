@@ -13,15 +13,15 @@ from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, ThesisValue, experiment
 from shintai.sim.body import MujocoBody
 from shintai.spine import ga_run
-from shintai.spine import pictures_hanzous as pictures
-from shintai.spine.brachiation import (
+from shintai.spine.hanzous import plots as pictures
+from shintai.spine.hanzous.brachiation import (
     N_GENES,
     POLICIES,
     BrachiationFitness,
     Brachiator,
     gene_bounds,
 )
-from shintai.spine.hanzous_body import VIDEO_VIEW, build_spec
+from shintai.spine.hanzous.body import VIDEO_VIEW, build_spec
 
 GENERATIONS = 3  # short default; the thesis prints no generation count (§5.7.3): --set generations=N
 
@@ -30,11 +30,13 @@ def compute(ctx):
     """One GA per stiffness policy (the designed sequence, genome 0, is one of the initial individuals, as the
     thesis starts from the real robot's sequence), then the best genome replayed under its policy. Compute: a
     GA, not one loop per run."""
+    ga = ga_run.GARun(**{k: ctx.params[k] for k in ga_run.GA_KEYS})
     lo, hi = gene_bounds()
     designed = Brachiator()
     out, genomes, curves = {}, {}, {}
     for i, policy in enumerate(POLICIES):  # independent GAs: seeds seed, seed + 1, seed + 2
         result = ga_run.evolve(ctx, f"ga_{policy}", BrachiationFitness(policy), lo, hi, seed=ctx.seed + i,
+                               ga=ga,
                                initial=np.zeros((1, N_GENES)), title=f"HanzouS brachiation GA, trunk {policy}")
         best = result.best_genome
         body = MujocoBody(build_spec()) if ctx.video else None

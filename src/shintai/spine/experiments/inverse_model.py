@@ -10,7 +10,7 @@ import numpy as np
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import inverse_model
-from shintai.spine.pictures_learning import plot_inverse_errors, plot_learning_curves
+from shintai.spine.plots import plot_inverse_errors, plot_learning_curves
 from shintai.spine.robots import CLA, TABLE_4_2_DEG
 
 TABLE_4_2_AXES = ("φ", "θ", "ψ")

@@ -1,20 +1,51 @@
 """``spine.kenta-taught-postures``: Fig. 4.1 on the whole-body Kenta (seed 003 §4.2.1–4.2.2): three postures taught
-with every muscle tension-controlled, replayed in turn with minimum-jerk interpolation, cycled. Teaching comes
-before the replay on the same body: a compute experiment (:mod:`shintai.spine.kenta_postures`)."""
+with every muscle tension-controlled, replayed in turn with minimum-jerk interpolation, cycled; and the locked-reel probe. Two rigs (:mod:`shintai.spine.kenta.postures`), each with its teaching as the
+prelude: the replay, and one taught posture held with its reels locked."""
 
 from __future__ import annotations
 
 import math
 
-from shintai.scenarios.experiment import film
-from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.kenta_postures import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S, locked_hold, replay, teach
-from shintai.spine.pictures_kenta import taught_postures
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine.kenta.plots import taught_postures
+from shintai.spine.kenta.postures import (
+    KENTA_KEY_POSTURES_DEG,
+    KENTA_TAUGHT_S,
+    lock_result,
+    lock_rig,
+    replay_result,
+    replay_rig,
+)
 
 VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.8, "azimuth": 150.0, "elevation": -10}
 
 
-@scenario(
+VARIANTS = ("replay", "lock")  # the replay of Fig. 4.1, then the locked-reel probe
+
+
+def rig(params, variant, seed):
+    if variant == "replay":
+        return replay_rig(params["teach_kgf"], int(params["cycles"]), params["period_s"], params["move_s"],
+                          params["hold_s"], params["zeroing_s"], view=VIEW)
+    return lock_rig(params["teach_kgf"], params["hold_s"], params["lock_s"], params["zeroing_s"])
+
+
+def _replay(runs):
+    run = runs["replay"]
+    return run.log, run.state, run.body
+
+
+def metrics(runs, params):
+    out = replay_result(*_replay(runs))
+    series = out.pop("series")
+    out["cycle_timing_error_s"] = (abs(out["measured_cycle_period_s"] - out["cycle_period_s"])
+                                   if math.isfinite(out["measured_cycle_period_s"]) else float("nan"))
+    for k, (wanted, taught) in enumerate(zip(KENTA_KEY_POSTURES_DEG, series["taught"])):
+        out[f"posture_{k + 1}_taught_offset_deg"] = float(sum((a - b) ** 2 for a, b in zip(wanted, taught)) ** 0.5)
+    return out | lock_result(runs["lock"].body, runs["lock"].state)
+
+
+experiment(
     "spine.kenta-taught-postures",
     source="seed 003 §4.2.2, Fig. 4.1",
     covers=("003:fig4.1", "003:fig3.53"),
@@ -50,24 +81,6 @@ VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.
         "nearest_taught_fraction")},
     constraints=[(lambda p: p["move_s"] <= p["period_s"], "move_s must not exceed period_s")],
     video=True,
+    rig=rig, variants=VARIANTS, filmed=("replay",), metrics=metrics,
+    plots=lambda ctx, runs, params: taught_postures(ctx, replay_result(*_replay(runs))["series"]),
 )
-def kenta_taught_postures(ctx):
-    p = ctx.params
-    ctx.progress(0.05, "teaching")
-    body, control, encoders, truth = teach(p["teach_kgf"], hold_s=p["hold_s"], zeroing_s=p["zeroing_s"])
-    ctx.sim_time_s += p["zeroing_s"] + len(encoders) * p["hold_s"]
-    ctx.progress(0.4, "replaying")
-    out = replay(body, control, encoders, truth, int(p["cycles"]), p["period_s"], p["move_s"],
-                 film=lambda b: film(ctx, b, **VIEW))
-    series = out.pop("series")
-    ctx.sim_time_s += series["t"][-1]
-    out["cycle_timing_error_s"] = (abs(out["measured_cycle_period_s"] - out["cycle_period_s"])
-                                   if math.isfinite(out["measured_cycle_period_s"]) else float("nan"))
-    for k, (wanted, taught) in enumerate(zip(KENTA_KEY_POSTURES_DEG, series["taught"])):
-        out[f"posture_{k + 1}_taught_offset_deg"] = float(sum((a - b) ** 2 for a, b in zip(wanted, taught)) ** 0.5)
-    taught_postures(ctx, series)
-    ctx.progress(0.9, "locked-reel probe")
-    probe = locked_hold(p["teach_kgf"], p["hold_s"], p["lock_s"], p["zeroing_s"])
-    ctx.sim_time_s += probe.pop("sim_time_s")
-    out.update(probe)
-    return out

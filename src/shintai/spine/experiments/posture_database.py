@@ -1,17 +1,18 @@
 """``spine.posture-database``: the posture database of seed 003 §5.9 on the MuJoCo Cla — pushes taught by hand,
-weak-push nudges, the history replayed, a model motion executed by nearest nodes. One session, a chain of
-dependent events in one Loop, so a compute scenario (:mod:`shintai.spine.posture_runs`). The thesis ran it on
+weak-push nudges, the history replayed, a model motion executed by nearest nodes. Compute, not a rig: the §4.4.3
+network is trained first, then one session rig runs on it (:mod:`shintai.spine.cla.posture_runs`). The thesis ran it on
 Kenta (§5.9.2–5.9.3, Fig. 5.30); our Kenta spine has no validated controller set-up, so Cla's (E9's) is used."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from shintai.scenarios.experiment import film
+from shintai.scenarios.experiment import film, run_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import inverse_model, pictures_posturedb
-from shintai.spine.cla import CLA_VIEW
-from shintai.spine.posture_runs import run_session, session_actions, session_metrics
+from shintai.spine import inverse_model
+from shintai.spine.cla import plots as P
+from shintai.spine.cla.posture_runs import session_actions, session_metrics, session_result, session_rig
+from shintai.spine.cla.setup import CLA_VIEW
 from shintai.spine.posture_session import D_LEN_MM
 from shintai.spine.robots import CLA
 from shintai.spine.tactile import TriggerLevels
@@ -87,12 +88,14 @@ def posture_database_scenario(ctx):
     levels = TriggerLevels(weak_nm=p["weak_nm"], strong_nm=p["strong_nm"])
     actions = session_actions(p["weak_push_n"], p["strong_push_n"], p["execute"], p["session"])
     ctx.progress(0.1, "session")
-    run = run_session(actions, nn, p["d_len_mm"], p["d_sensor_deg"] or None, levels, p["teach_kgf"],
-                      film=lambda body: film(ctx, body, **CLA_VIEW))
+    rig = session_rig(actions, nn, p["d_len_mm"], p["d_sensor_deg"] or None, levels, p["teach_kgf"])
+    with film(ctx, rig.body, **CLA_VIEW):
+        run_rig(rig)
+    run = session_result(rig)
     ctx.sim_time_s += run["sim_time_s"]
     metrics = session_metrics(run, levels)
     metrics["nn_train_error_norm_deg"] = nn.curve.best_train_deg
-    pictures_posturedb.node_graph(ctx, run["db"], run["log"])
-    pictures_posturedb.replay_vs_history(ctx, run["db"], run["log"])
-    pictures_posturedb.triggers(ctx, run["log"], levels)
+    P.node_graph(ctx, run["db"], run["log"])
+    P.replay_vs_history(ctx, run["db"], run["log"])
+    P.triggers(ctx, run["log"], levels)
     return metrics

@@ -1,12 +1,12 @@
 """``spine.rabbit-stiffening``: E6 on a quasi-static Rabbit (seed 003 §3.5.3–3.5.4, Figs. 3.26, 3.28): the
-lateral stiffness at each disc pre-compression (one run each, :func:`shintai.spine.rabbit.stiffening_rig`),
+lateral stiffness at each disc pre-compression (one run each, :func:`shintai.spine.rabbit.stiffening.stiffening_rig`),
 and with ``ablation`` the same with a linear disc."""
 
 from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import pictures
-from shintai.spine.rabbit import linear_disc, stiffening_rig, stiffness_metrics
+from shintai.spine.rabbit import plots as pictures
+from shintai.spine.rabbit.stiffening import linear_disc, stiffening_rig, stiffness_metrics
 from shintai.spine.robots import RABBIT
 
 ABLATION = "linear_disc."

@@ -1,14 +1,14 @@
 """``spine.software-spring``: E10 on the MuJoCo Cla, arms down (seed 003 §4.5.2, eq. 4.36, Figs. 4.13–4.17).
-One trial per k_s (:func:`shintai.spine.spring_trial.spring_rig`), and with ``compare`` the same under the
+One trial per k_s (:func:`shintai.spine.cla.spring_trial.spring_rig`), and with ``compare`` the same under the
 other spring law."""
 
 from __future__ import annotations
 
 from shintai.core.constants import KGF_N
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine import pictures
-from shintai.spine.cla import SPRING_LAWS
-from shintai.spine.spring_trial import spring_rig, trial_metrics
+from shintai.spine.cla import plots as pictures
+from shintai.spine.cla.setup import SPRING_LAWS
+from shintai.spine.cla.spring_trial import spring_rig, trial_metrics
 
 
 def k_list(params) -> list[float]:

@@ -1,8 +1,7 @@
 """``spine.sq43-crawl``: SQ43's statically planned crawl and the lift tests behind it (seed 003 §3.2.4, §3.2.5,
-Fig. 3.7) on the MuJoCo SQ43 (:mod:`shintai.spine.sq43_body`): lift the right front leg from four-leg standing,
+Fig. 3.7) on the MuJoCo SQ43 (:mod:`shintai.spine.sq43.body`): lift the right front leg from four-leg standing,
 with and without first shifting the centre of mass toward the left hind foot, hold it, lift a diagonal pair,
-then crawl. Several dependent scripted runs, each a planned schedule played on the body: a compute experiment
-(:func:`shintai.spine.sq43_gaits.simulate_crawl`)."""
+then crawl. One rig per run, each a planned schedule played on the body (:func:`shintai.spine.sq43.gaits.crawl_rig`)."""
 
 from __future__ import annotations
 
@@ -10,37 +9,61 @@ from dataclasses import replace
 
 import numpy as np
 
-from shintai.scenarios.experiment import film
-from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.sq43_body import BODY
-from shintai.spine.sq43_gaits import CRAWL_ORDER, CrawlPlan, simulate_crawl
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine.sq43 import plots as P
+from shintai.spine.sq43.body import BODY
+from shintai.spine.sq43.gaits import CRAWL_ORDER, CrawlPlan, crawl_result, crawl_rig
 
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 135.0,
         "elevation": -20}
 
 
-def plot(ctx, tests: dict, crawl: dict, lift_mm: float) -> None:
-    with ctx.figure("lift_tests") as (fig, ax):
-        for name, (r, legs) in tests.items():
-            for leg in legs:
-                ax.plot(r["t"], r["feet_z_mm"][leg], label=f"{name}: {leg}")
-        ax.axhline(lift_mm, color="k", ls="--", lw=0.7, label="commanded lift")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("foot tip above floor [mm]")
-        ax.set_title("SQ43 lift tests (§3.2.4–3.2.5): swing-foot clearance", fontsize=9)
-        ax.legend(fontsize=6)
-    with ctx.figure("crawl") as (fig, ax):
-        for leg in CRAWL_ORDER:
-            ax.plot(crawl["t"], crawl["feet_z_mm"][leg], label=leg)
-        ax.plot(crawl["t"], crawl["twist_deg"], "k", lw=0.6, label="spine twist [deg]")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("foot tip above floor [mm]")
-        ax.set_title(f"SQ43 crawl (Fig. 3.7), order {' '.join(CRAWL_ORDER)}: forward {crawl['forward_mm']:.0f} mm",
-                     fontsize=9)
-        ax.legend(fontsize=7)
+RIGID = replace(BODY, twist_free=False)  # ablation: no torsion hinges
+TESTS = {"standing": {"legs": ("RF",), "shift": False}, "shifted": {"legs": ("RF",), "shift": True},
+         "held": {"legs": ("RF",), "shift": True, "hold": True},
+         "diagonal": {"legs": (("RF", "LH"),), "shift": False},
+         "standing_rigid": {"legs": ("RF",), "shift": False, "spec": RIGID},
+         "diagonal_rigid": {"legs": (("RF", "LH"),), "shift": False, "spec": RIGID}}
+VARIANTS = (*TESTS, "crawl")
 
 
-@scenario(
+def rig(params, variant, seed):
+    plan = replace(CrawlPlan(), lift_mm=params["lift_mm"], shift_fraction=params["shift_fraction"])
+    if variant == "crawl":
+        return crawl_rig(plan, CRAWL_ORDER * int(params["cycles"]), view=VIEW)
+    kw = dict(TESTS[variant])
+    hold = kw.pop("hold", False)
+    return crawl_rig(plan, **kw, **({"hold_s": params["hold_s"]} if hold else {}))
+
+
+def metrics(runs, params):
+    results = {v: crawl_result(r.log, r.state) for v, r in runs.items()}
+    crawl = results["crawl"]
+    lift = params["lift_mm"]
+    m = {"lift_mm": lift}
+    for name in ("standing", "shifted", "standing_rigid"):
+        m[f"lift_clearance_{name}_mm"] = results[name]["clearance_mm"]["RF"][0]
+        m[f"max_twist_{name}_deg"] = results[name]["max_twist_deg"]
+    m["lift_sink_standing_mm"] = lift - m["lift_clearance_standing_mm"]
+    m["held_clearance_shifted_mm"] = results["held"]["held_mm"]["RF"][0]
+    for name in ("diagonal", "diagonal_rigid"):
+        m[f"{name}_clearance_mm"] = float(np.mean([results[name]["clearance_mm"][leg][0] for leg in ("RF", "LH")]))
+    m["diagonal_sink_mm"] = lift - m["diagonal_clearance_mm"]
+    swings = [c for leg in CRAWL_ORDER for c in crawl["clearance_mm"][leg]]
+    m |= {"crawl_forward_mm": crawl["forward_mm"], "crawl_min_clearance_mm": float(min(swings)),
+          "crawl_max_clearance_mm": float(max(swings)), "crawl_max_twist_deg": crawl["max_twist_deg"],
+          "crawl_fell": int(max(swings) > 3 * lift)}
+    return m
+
+
+def plots(ctx, runs, params):
+    results = {v: crawl_result(r.log, r.state) for v, r in runs.items()}
+    P.crawl(ctx, {"standing": (results["standing"], ("RF",)), "CoM shifted": (results["shifted"], ("RF",)),
+                  "shifted, held": (results["held"], ("RF",)), "diagonal": (results["diagonal"], ("RF", "LH"))},
+            results["crawl"], params["lift_mm"])
+
+
+experiment(
     "spine.sq43-crawl",
     source="seed 003 §3.2.4 (crawl), §3.2.5, Fig. 3.7",
     covers=("003:fig3.7",),
@@ -79,42 +102,5 @@ def plot(ctx, tests: dict, crawl: dict, lift_mm: float) -> None:
             "crawl": ThesisValue("crawl realised one leg at a time (photographs)", "§3.2.4 Fig. 3.7",
                                  "crawl_forward_mm")},
     video=True,
+    rig=rig, variants=VARIANTS, filmed=("crawl",), metrics=metrics, plots=plots,
 )
-def sq43_crawl(ctx):
-    p = ctx.params
-    plan = replace(CrawlPlan(), lift_mm=p["lift_mm"], shift_fraction=p["shift_fraction"])
-    rigid = replace(BODY, twist_free=False)  # ablation: no torsion hinges
-    runs = {"standing": {"legs": ("RF",), "shift": False}, "shifted": {"legs": ("RF",), "shift": True},
-            "held": {"legs": ("RF",), "shift": True, "hold_s": p["hold_s"]},
-            "diagonal": {"legs": (("RF", "LH"),), "shift": False},
-            "standing_rigid": {"legs": ("RF",), "shift": False, "spec": rigid},
-            "diagonal_rigid": {"legs": (("RF", "LH"),), "shift": False, "spec": rigid}}
-    results = {}
-    for i, (name, kw) in enumerate(runs.items()):
-        ctx.progress(i / (len(runs) + 1), name)
-        results[name] = simulate_crawl(plan, **kw)
-        ctx.sim_time_s += float(results[name]["t"][-1])
-    ctx.progress(len(runs) / (len(runs) + 1), "crawl")
-    crawl = simulate_crawl(plan, CRAWL_ORDER * int(p["cycles"]), camera=lambda body: film(ctx, body, **VIEW))
-    ctx.sim_time_s += float(crawl["t"][-1])
-    lift = p["lift_mm"]
-    m = {"lift_mm": lift}
-    for name in ("standing", "shifted", "standing_rigid"):
-        m[f"lift_clearance_{name}_mm"] = results[name]["clearance_mm"]["RF"][0]
-        m[f"max_twist_{name}_deg"] = results[name]["max_twist_deg"]
-    m["lift_sink_standing_mm"] = lift - m["lift_clearance_standing_mm"]
-    m["held_clearance_shifted_mm"] = results["held"]["held_mm"]["RF"][0]
-    for name in ("diagonal", "diagonal_rigid"):
-        m[f"{name}_clearance_mm"] = float(np.mean([results[name]["clearance_mm"][leg][0] for leg in ("RF", "LH")]))
-    m["diagonal_sink_mm"] = lift - m["diagonal_clearance_mm"]
-    swings = [c for leg in CRAWL_ORDER for c in crawl["clearance_mm"][leg]]
-    m |= {"crawl_forward_mm": crawl["forward_mm"], "crawl_min_clearance_mm": float(min(swings)),
-          "crawl_max_clearance_mm": float(max(swings)), "crawl_max_twist_deg": crawl["max_twist_deg"],
-          "crawl_fell": int(max(swings) > 3 * lift)}
-    for k in range(0, len(crawl["t"]), 2):
-        ctx.recorder.record(float(crawl["t"][k]), twist_deg=float(crawl["twist_deg"][k]),
-                            **{f"{leg}_z_mm": float(crawl["feet_z_mm"][leg][k]) for leg in CRAWL_ORDER})
-    plot(ctx, {"standing": (results["standing"], ("RF",)), "CoM shifted": (results["shifted"], ("RF",)),
-               "shifted, held": (results["held"], ("RF",)), "diagonal": (results["diagonal"], ("RF", "LH"))},
-         crawl, lift)
-    return m

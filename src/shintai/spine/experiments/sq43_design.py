@@ -1,5 +1,5 @@
 """``spine.sq43-design``: SQ43's compass search over (a1, a2, a3) from the four Table 3.1 starts, on a
-compliant spine model of ours (seed 003 §3.2.3, eqs. 3.1–3.2; :mod:`shintai.spine.sq43`). A search,
+compliant spine model of ours (seed 003 §3.2.3, eqs. 3.1–3.2; :mod:`shintai.spine.sq43.design`). A search,
 no body and no loop: a compute experiment."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from dataclasses import replace
 import numpy as np
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import sq43
-from shintai.spine.pictures_learning import plot_sq43, plot_sq43_shapes
+from shintai.spine.sq43 import design as sq43
+from shintai.spine.sq43.plots import plot_sq43, plot_sq43_shapes
 from shintai.spine.robots import SQ43_GRID_CHECK_DEG
 
 # "開始後すぐに極小値に陥っている" (§3.2.3) has no number and Fig. 3.4 is not in the text: "right after starting" is

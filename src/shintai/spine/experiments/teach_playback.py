@@ -1,15 +1,15 @@
 """``spine.teach-playback``: E9 on the MuJoCo Cla, arms down (seed 003 §4.2, §4.6.4, §5.9.2). The replays
 replay what the teaching run recorded, and the key postures are taught before they are replayed: a
-sequence of dependent simulations, so a compute experiment (:mod:`shintai.spine.teach_runs`)."""
+sequence of dependent simulations, so a compute experiment (:mod:`shintai.spine.cla.teach_runs`)."""
 
 from __future__ import annotations
 
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine import pictures
-from shintai.spine.cla import CLA_VIEW
+from shintai.spine.cla import plots as pictures
+from shintai.spine.cla.setup import CLA_VIEW
 from shintai.spine.robots import CLA
-from shintai.spine.teach_runs import demonstration, key_postures, peak_muscle_speed, replay, teach
+from shintai.spine.cla.teach_runs import demonstration, key_postures, peak_muscle_speed, replay, teach
 
 
 def speedups(params) -> list[int]:

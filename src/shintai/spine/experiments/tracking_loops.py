@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import math
 
-from shintai.scenarios.experiment import film
-from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.pictures_kenta import tracking
-from shintai.spine.tracking_loops import TRACKING_PERIODS_S
-from shintai.spine.tracking_runs import track
+from shintai.scenarios.experiment import Rig
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine.cla.tracking import cla_tracking
+from shintai.spine.control import SETPOINTS
+from shintai.spine.kenta.tracking import SWUNG, kenta_tracking
+from shintai.spine.plots import tracking
+from shintai.spine.tracking_loops import TRACKING_PERIODS_S, tracking_metrics, tracking_signals
 
 LOOPS = {"kenta": ("eyes", "neck", "spine"), "cla": ("neck", "spine")}
 ROWS = {"kenta": "003:fig5.14", "cla": "003:fig5.12"}
@@ -42,7 +44,29 @@ def _checks():
                 kind="consistency")
 
 
-@scenario(
+def rig(params, variant, seed):
+    """One robot's tracking run: its zeroing prelude, then the ball, the visual loops and the muscle controller."""
+    if variant == "kenta":
+        body, stages, run = kenta_tracking(LOOPS["kenta"], params["amplitude_m"], params["path_period_s"],
+                                           params["zeroing_s"], math.radians(params["arm_swing_deg"]),
+                                           params["arm_period_s"])
+    else:
+        body, stages, run = cla_tracking(LOOPS["cla"], params["amplitude_m"], params["path_period_s"])
+    return Rig(body, stages=stages, channels=SETPOINTS, duration=params["duration_s"],
+               record={10: lambda snap: tracking_signals(snap, run)}, view=VIEW[variant], state=run)
+
+
+def metrics(runs, params):
+    out = {}
+    for robot, r in runs.items():
+        m = tracking_metrics(r.log, r.state, params["duration_s"], params["amplitude_m"], SWUNG)
+        out |= {f"{robot}_{k}": v for k, v in m.items()}
+        for name in LOOPS[robot]:
+            out[f"{robot}_{name}_period_error_s"] = abs(m[f"{name}_period_s"] - TRACKING_PERIODS_S[name])
+    return out
+
+
+experiment(
     "spine.tracking-loops",
     source="seed 003 §5.2.10, §5.2.12, Figs. 5.12, 5.14",
     covers=("003:fig5.12", "003:fig5.13", "003:fig5.14"),
@@ -69,20 +93,5 @@ def _checks():
                                              "kenta_concurrent_fraction")},
     constraints=[(lambda p: _robots(p) and set(_robots(p)) <= set(LOOPS), "robots: a comma list of kenta, cla")],
     video=True,
+    rig=rig, variants=_robots, metrics=metrics, plots=lambda ctx, runs, p: tracking(ctx, runs),
 )
-def tracking_loops(ctx):
-    p = ctx.params
-    robots = _robots(p)
-    metrics, runs = {}, {}
-    for i, robot in enumerate(robots):
-        ctx.progress(0.05 + 0.9 * i / len(robots), robot)
-        run = track(robot, p["duration_s"], p["amplitude_m"], p["path_period_s"], LOOPS[robot], p["zeroing_s"],
-                    film=lambda b, r=robot: film(ctx, b, r, **VIEW[r]), arm_swing_rad=math.radians(p["arm_swing_deg"]),
-                    arm_period_s=p["arm_period_s"])
-        runs[robot] = run
-        ctx.sim_time_s += run.pop("sim_time_s")
-        metrics.update({f"{robot}_{k}": v for k, v in run.items() if k != "series"})
-        for name in LOOPS[robot]:
-            metrics[f"{robot}_{name}_period_error_s"] = abs(run[f"{name}_period_s"] - TRACKING_PERIODS_S[name])
-    tracking(ctx, runs)
-    return metrics
