@@ -71,5 +71,4 @@ experiment(
     },
     compute=compute, plots=plots,
     video=True,
-    smoke={"runs": 0},
 )
