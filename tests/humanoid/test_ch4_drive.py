@@ -33,7 +33,7 @@ def test_posture_steps_short(tmp_path):
 def test_lead_pedal_follows_commanded_crank_rate():
     """Eq. 4.22 from ω_c^ref: the target reaches θ_c + Δt ω_c^ref at the end of the sample (linearly),
     and stays at the measured angle when the command is 0 (the legs hold the crank)."""
-    from shintai.humanoid.ch4_drive import LEAD_DT, LeadPedal
+    from shintai.humanoid.tricycle.ch4_drive import LEAD_DT, LeadPedal
     angle = {"theta": 0.3}
     lead = LeadPedal("legs", lambda s: angle["theta"], None)
     lead.reset({"t": 0.0, "ref:crank_rate": 0.5})
@@ -46,7 +46,7 @@ def test_lead_pedal_follows_commanded_crank_rate():
     # a fixed ẋ^ref (the small obstacle) ignores the channel
     fixed = LeadPedal("drive", lambda s: 0.0, 0.3)
     fixed.reset({"t": 0.0})
-    from shintai.humanoid.navigation import crank_reference
+    from shintai.humanoid.tricycle.navigation import crank_reference
     end = 0.999 * LEAD_DT  # the end of the first sample (at LEAD_DT the next one starts)
     assert fixed.update({"t": end, "ref:crank_rate": 0.0})["ref:crank_target"] == pytest.approx(
         crank_reference(0.0, 0.3, LEAD_DT), rel=2e-3)

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import ChannelError, FunctionModule, Loop
-from shintai.humanoid import ch4_riding as cr
+from shintai.humanoid.tricycle import ch4_riding as cr
 from shintai.humanoid.constants import DEG, TRICYCLE
-from shintai.humanoid.navigation import crank_rate
+from shintai.humanoid.tricycle.navigation import crank_rate
 
 
 def test_reference_channels_are_seen_one_tick_later_and_unknown_ones_rejected():
@@ -105,7 +105,7 @@ def test_grip_grasp_holds_both_bar_points():
 
 def test_seat_slip_builds_with_driving_and_restarts_after_lift(monkeypatch):
     """SeatSlip: grows only while the crank turns and the hip sits; zero and restarted once the hip lifts."""
-    from shintai.humanoid.ch4_drive import SeatSlip
+    from shintai.humanoid.tricycle.ch4_drive import SeatSlip
     body = cr.build_ch4(hip="contact")
     seated = {"fz": 300.0}
     monkeypatch.setattr(body, "contact_force", lambda name: np.array([0.0, 0.0, seated["fz"]]))

@@ -6,7 +6,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.foot_attitude import (
+from shintai.humanoid.balance.foot_attitude import (
     CONTACT_FZ,
     feet_attitude,
     measured_zmp,
@@ -14,7 +14,7 @@ from shintai.humanoid.foot_attitude import (
     quat_to_rot,
     two_foot_zmp,
 )
-from shintai.humanoid.leg_ik import JOINT_NAMES
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES
 from shintai.humanoid.robots.hrp2 import build_hrp2
 
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from shintai.humanoid.foot_damping import (
+from shintai.humanoid.balance.foot_damping import (
     DAMPING_D_FLAT,
     DAMPING_T,
     DELTA_LIMIT,

@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.active import pedal_phase, v
+from shintai.humanoid.tricycle.active import pedal_phase, v
 from shintai.humanoid.constants import DEG, DELTA_C, KENSHIRO, KENSHIRO_RELAXED_TENDON, THETA_C_INIT
-from shintai.humanoid.kenshiro import (
+from shintai.humanoid.tricycle.kenshiro import (
     PITCH_GRID,
     PassiveLegUpdate,
     Tendons,

@@ -7,7 +7,7 @@ from scipy.integrate import solve_ivp
 
 from shintai.core.runtime import Body, Loop, declare
 from shintai.core.search_index import StabilityMonitor, estimate_sign_matrix, offline_index
-from shintai.humanoid.active import (
+from shintai.humanoid.tricycle.active import (
     R_y,
     crank_angle_of_phase,
     grip_plan,
@@ -32,9 +32,9 @@ from shintai.humanoid.constants import (
     THETA_H_MAX,
     TRICYCLE,
 )
-from shintai.humanoid.operation import LimbPair, OperationSchedule, role_switcher, travel_distance
-from shintai.humanoid.passive import PASSIVE_SGN, ActiveImpedance, PassiveFunction
-from shintai.humanoid.switching import (
+from shintai.humanoid.tricycle.operation import LimbPair, OperationSchedule, role_switcher, travel_distance
+from shintai.humanoid.tricycle.passive import PASSIVE_SGN, ActiveImpedance, PassiveFunction
+from shintai.humanoid.tricycle.switching import (
     SwitchingDiagnostic,
     active_arm,
     active_leg,
@@ -43,8 +43,8 @@ from shintai.humanoid.switching import (
     fit_angle,
     switching_angles,
 )
-from shintai.humanoid.vehicles.tricycle import crank_centre as tricycle_crank_centre
-from shintai.humanoid.vehicles.tricycle import grip_position, pedal_position, steer_axis, steer_point
+from shintai.humanoid.tricycle.vehicle import crank_centre as tricycle_crank_centre
+from shintai.humanoid.tricycle.vehicle import grip_position, pedal_position, steer_axis, steer_point
 
 PASSIVE_LEG = IMPEDANCE["passive_leg"]
 F_TRG = np.array(PASSIVE_LEG.f_trg)

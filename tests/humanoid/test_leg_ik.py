@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from shintai.humanoid.constants import HRP2_LINKS, STANDING_POSTURE
-from shintai.humanoid.leg_ik import (
+from shintai.humanoid.robots.leg_ik import (
     JOINT_NAMES,
     LIMITS,
     hip_point,

@@ -6,8 +6,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.ch4_riding import Rider, build_ch4
-from shintai.humanoid.load_monitor import LoadMonitor, recovery_windows, window_means
+from shintai.humanoid.tricycle.ch4_riding import Rider, build_ch4
+from shintai.humanoid.tricycle.load_monitor import LoadMonitor, recovery_windows, window_means
 
 
 @pytest.fixture(scope="module")

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.ch4_riding import Obstacle
-from shintai.humanoid.localisation import (
+from shintai.humanoid.tricycle.ch4_riding import Obstacle
+from shintai.humanoid.tricycle.localisation import (
     LOCALISATION,
     ParticleFilter,
     VisualOdometry,

@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from shintai.core.runtime import Loop
-from shintai.humanoid.mlc import (
+from shintai.humanoid.learning.mlc import (
     ETA_OMEGA,
     ETA_V,
     MLC,
@@ -18,7 +18,7 @@ from shintai.humanoid.mlc import (
     SpeedGovernor,
     recursion_coefficients,
 )
-from shintai.humanoid.speed_governing import (
+from shintai.humanoid.learning.speed_governing import (
     K_V,
     T_V,
     IdentifiedScooterPlant,

@@ -7,9 +7,10 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid import scene_spec
+from shintai.humanoid.constants import SCENE
+from shintai.sim.spec import scene_spec
 from shintai.humanoid.constants import NAVIGATION, THETA_H_MAX, TRICYCLE, WHEELBASE
-from shintai.humanoid.navigation import (OBSTACLE_GROUP, Costmap, DepthSensor, DynamicWindow, crank_rate,
+from shintai.humanoid.tricycle.navigation import (OBSTACLE_GROUP, Costmap, DepthSensor, DynamicWindow, crank_rate,
                                          crank_reference, footprint_points, global_path, handle_reference,
                                          integrate_pose, osi_references, tricycle_rates)
 
@@ -56,7 +57,7 @@ def test_integrate_pose_arc():
 
 
 def wall_scene(x=2.0):
-    spec = scene_spec("wall")
+    spec = scene_spec("wall", *SCENE)
     spec.worldbody.add_geom(name="wall", type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.05, 1.0, 0.6], pos=[x, 0, 0.6],
                             group=OBSTACLE_GROUP)
     spec.worldbody.add_site(name="head_camera", pos=[0, 0, 1.0])

@@ -8,11 +8,12 @@ import numpy as np
 import pytest
 
 from shintai.core.constants import GRAVITY
-from shintai.humanoid import SOLE, scene_spec
+from shintai.humanoid.constants import SOLE, SCENE
+from shintai.sim.spec import scene_spec
 from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_MASS
-from shintai.humanoid.ninebot_ride import K_TRAJ, MLC_TRAJ, T_TRAJ, ModifiedStabilizer, TrajectoryCorrection
-from shintai.humanoid.speed_governing import SpeedPlant
-from shintai.humanoid.vehicles.ninebot import (
+from shintai.humanoid.unicycle.ride import K_TRAJ, MLC_TRAJ, T_TRAJ, ModifiedStabilizer, TrajectoryCorrection
+from shintai.humanoid.learning.speed_governing import SpeedPlant
+from shintai.humanoid.unicycle.vehicle import (
     NINEBOT,
     NinebotSpec,
     add_ninebot,
@@ -49,7 +50,7 @@ def test_zmp_to_speed_law_eqs_a5_a9():
 def test_model_rides_at_eq_a8_speed_under_a_static_load():
     """Two 10 kg blocks standing 50 mm ahead of the axle, one on each footboard: the unicycle settles at
     v = r k W (p − p0) with W their weight (Eq. A.8 on the firmware's measured moment), within 3 %."""
-    spec = scene_spec("ninebot-load")
+    spec = scene_spec("ninebot-load", *SCENE)
     add_ninebot(spec, spec.worldbody, training_wheels=True)
     m, x = 10.0, 0.05
     for side, s in (("l", 1.0), ("r", -1.0)):
@@ -93,7 +94,7 @@ def test_trajectory_plant_eqs_7_3_to_7_5():
 
 def test_modified_stabilizer_adds_c_to_p_d_star():
     """'after_lip': p^{d**} = p^{d*} + c exactly (Eq. 7.2); the bad placement is one error line."""
-    from shintai.humanoid.ninebot_ride import build_ninebot_stand
+    from shintai.humanoid.unicycle.ride import build_ninebot_stand
 
     body = build_ninebot_stand()
     for _ in range(25):  # the soles take the load (the F/T sensors' ZMP exists: the LIP tracking is on)
@@ -117,7 +118,7 @@ def test_lip_tracking_reverses_a_static_correction_of_p_d_star():
     """Why ``humanoid.unicycle-learning``'s as-written variant runs away (its notes): at rest (p = x, ẋ = 0) the LIP law
     p* = p_ref + k1 (x_ref − x) + k3 (p_ref − p) + c with p* = x has x = c / (1 + k1 + k3), of the opposite sign for
     hrpsys's gains, while shifting both references by c ('reference') gives x = c."""
-    from shintai.humanoid.stabilizer import LIP_K
+    from shintai.humanoid.balance.stabilizer import LIP_K
 
     k1, _, k3 = LIP_K
     c = 0.01

@@ -7,7 +7,7 @@ import pytest
 
 from shintai.core.runtime import Loop, Module
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.preview import (
+from shintai.humanoid.balance.preview import (
     CHANNELS,
     PREVIEW_TIME,
     CartTable,

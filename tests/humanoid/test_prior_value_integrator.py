@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.prior_value_integrator import PID, PriorValueIntegrator
+from shintai.humanoid.learning.prior_value_integrator import PID, PriorValueIntegrator
 
 DT = 0.004
 

@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Body, Loop, declare
-from shintai.humanoid.foot_damping import (
+from shintai.humanoid.balance.foot_damping import (
     DAMPING_D_FLAT,
     FootDamping,
     FootDampingModule,
     damping_step,
 )
-from shintai.humanoid.slc import (
+from shintai.humanoid.learning.slc import (
     F_THRE,
     SLC,
     SLC_D0,

@@ -4,9 +4,9 @@
 import numpy as np
 import pytest
 
-from shintai.humanoid.foot_damping import FootDamping
-from shintai.humanoid.slc import SLC, SLCParams, slc_update
-from shintai.humanoid.solc import MLCPhase, solc_switcher, switch_times
+from shintai.humanoid.balance.foot_damping import FootDamping
+from shintai.humanoid.learning.slc import SLC, SLCParams, slc_update
+from shintai.humanoid.vboard.solc import MLCPhase, solc_switcher, switch_times
 from shintai.scenarios.registry import ParameterError, get
 
 DT = 0.004

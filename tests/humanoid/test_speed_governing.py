@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.speed_governing import (
+from shintai.humanoid.learning.speed_governing import (
     K_OMEGA,
     K_V,
     T_OMEGA,

@@ -6,8 +6,8 @@ import pytest
 
 from shintai.core.recorder import Recorder
 from shintai.core.runtime import Loop
-from shintai.humanoid.speed_governing import IdentifiedScooterPlant
-from shintai.humanoid.speed_governing_ride import (
+from shintai.humanoid.learning.speed_governing import IdentifiedScooterPlant
+from shintai.humanoid.vboard.governed_ride import (
     GatedGovernor,
     governed_ride,
     governor_series,
@@ -127,7 +127,7 @@ def test_integrator_comparison_runs_short(tmp_path):
 def test_a_fall_ends_the_run_and_keeps_what_was_computed(tmp_path, monkeypatch):
     """Issue 13's 'a fall ends the run with what was computed kept', on the ride's stop rule: a fall (here declared
     at 0.6 s, before the learning starts) stops the run there; metrics, pictures and the log are still written."""
-    from shintai.humanoid.standing import Standing
+    from shintai.humanoid.balance.standing import Standing
 
     monkeypatch.setattr(Standing, "fallen", lambda self: self.body.t >= 0.6)
     out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,

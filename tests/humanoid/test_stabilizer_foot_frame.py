@@ -6,9 +6,9 @@ import math
 import pytest
 
 from shintai.core.runtime import Loop
-from shintai.humanoid import stabilizer
-from shintai.humanoid.stabilizer import into_yawed, mean_yaw
-from shintai.humanoid.vboard_ride import VboardRide
+from shintai.humanoid.balance import stabilizer
+from shintai.humanoid.balance.stabilizer import into_yawed, mean_yaw
+from shintai.humanoid.vboard.ride import VboardRide
 
 
 def test_into_yawed_turns_a_world_vector_into_the_yawed_frame():

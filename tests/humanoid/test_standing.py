@@ -8,10 +8,10 @@ import pytest
 
 from shintai.core.runtime import FunctionModule
 from shintai.humanoid.constants import VBOARD
-from shintai.humanoid.foot_attitude import measured_zmp, two_foot_zmp
-from shintai.humanoid.preview import hrp2_com_height
+from shintai.humanoid.balance.foot_attitude import measured_zmp, two_foot_zmp
+from shintai.humanoid.balance.preview import hrp2_com_height
 from shintai.humanoid.robots.hrp2 import ft_reaction
-from shintai.humanoid.stabilizer import (
+from shintai.humanoid.balance.stabilizer import (
     LIP_K,
     StabilizerModule,
     closed_loop_poles,
@@ -19,7 +19,7 @@ from shintai.humanoid.stabilizer import (
     foot_wrenches,
     lip_feedback,
 )
-from shintai.humanoid.standing import (
+from shintai.humanoid.balance.standing import (
     BOARDING_CROUCH,
     BOARDING_STEP_X,
     PLATFORM_HEIGHT,
@@ -249,7 +249,7 @@ def test_the_rig_rejects_bad_parameters():
 
 def test_push_on_a_named_link_as_a_before_physics_hook():
     """Push on ``link`` (here "chest"), run before every physics step by body time: on over [t0, t0 + duration)."""
-    from shintai.humanoid.standing import Push
+    from shintai.humanoid.balance.standing import Push
     from shintai.sim.body import MujocoBody
 
     body = MujocoBody("""<mujoco><option timestep="0.001" gravity="0 0 0"/><worldbody>

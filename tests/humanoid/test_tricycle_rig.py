@@ -8,11 +8,11 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid import riding
+from shintai.humanoid.tricycle import riding
 from shintai.humanoid.constants import DEG, THETA_C_INIT
-from shintai.humanoid.hrp2_limbs import riding_limbs
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.robots.hrp2 import ft_reaction
-from shintai.humanoid.vehicles.tricycle import grip_position, pedal_position
+from shintai.humanoid.tricycle.vehicle import grip_position, pedal_position
 from shintai.scenarios.runner import run_scenario
 
 
@@ -123,7 +123,7 @@ def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force():
 def test_active_samples_take_the_active_foots_axis_after_the_swap_transient():
     """active_samples: only ticks where the foot is active and settled, f_z or f_x, with 1/|cos θ_c|."""
     from shintai.core.recorder import Recorder
-    from shintai.humanoid.tricycle_rig import active_samples
+    from shintai.humanoid.tricycle.rig import active_samples
 
     rec = Recorder()
     for k in range(6):  # left active for ticks 0-2, right for 3-5; wait = 1 tick

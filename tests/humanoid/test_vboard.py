@@ -10,10 +10,11 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid import SOLE, fill_keyframe, scene_spec
+from shintai.humanoid.constants import SOLE, SCENE
+from shintai.sim.spec import fill_keyframe, scene_spec
 from shintai.humanoid.constants import DEG, HRP2_MASS, VBOARD
-from shintai.humanoid.vboard_stand import build_vboard_stand
-from shintai.humanoid.vehicles import vboard as vb
+from shintai.humanoid.vboard.stand import build_vboard_stand
+from shintai.humanoid.vboard import vehicle as vb
 from shintai.sim.body import MujocoBody
 from shintai.sim.export import load_models
 
@@ -36,7 +37,7 @@ def dtheta_deg(snapshot) -> dict:
 def loaded(offset: float = 0.0, *, firmware: bool = True) -> MujocoBody:
     """The V-BOARD on the floor, boards at θ_O, with a box of half the rider's mass flat on each pad,
     its mass centre ``offset`` m ahead of the axle; the firmware installed unless ``firmware`` is False."""
-    spec = scene_spec("vboard-loaded")
+    spec = scene_spec("vboard-loaded", *SCENE)
     vb.add_vboard(spec, spec.worldbody)
     for s in vb.SIDES:
         box = spec.worldbody.add_body(name=f"load_{s}")
@@ -152,7 +153,7 @@ def test_tilted_boards_drive_the_scooter_at_eq_a4():
 
 def test_added_at_a_pose_it_drives_along_its_heading():
     """add_vboard's pose: placed at (1, 2) facing +y, boards tilted forward, it goes along +y."""
-    spec = scene_spec("vboard-pose")
+    spec = scene_spec("vboard-pose", *SCENE)
     vb.add_vboard(spec, spec.worldbody, pos=(1.0, 2.0, 0.0), yaw=math.pi / 2, hold=True)
     spec.add_key(name="park")
     model = spec.compile()

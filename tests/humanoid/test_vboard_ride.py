@@ -8,7 +8,7 @@ import pytest
 from shintai.core.constants import GRAVITY
 from shintai.core.recorder import Recorder
 from shintai.core.runtime import Loop
-from shintai.humanoid.vboard_ride import (
+from shintai.humanoid.vboard.ride import (
     V_PERIOD,
     VO_LATENCY,
     ScooterSensors,

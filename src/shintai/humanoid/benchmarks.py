@@ -3,8 +3,8 @@
 Two configurations of the riding body, each run for the same simulated time:
 
 * ``pedaling`` — the legs' role switcher (E2/E4: Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19) with the
-  experiment's per-tick recording (:func:`~shintai.humanoid.tricycle_rig.pedal_rig`);
-* ``driving`` — arms and legs together on the E3 slalom script (:class:`~shintai.humanoid.ride.Ride`),
+  experiment's per-tick recording (:func:`~shintai.humanoid.tricycle.rig.pedal_rig`);
+* ``driving`` — arms and legs together on the E3 slalom script (:class:`~shintai.humanoid.tricycle.ride.Ride`),
   Δt scaled so that steering, pedalling and role swaps all happen.
 
 Each is compared with bare ``mujoco.mj_step`` on the same model for the same number of physics
@@ -40,7 +40,7 @@ vehicle frame once per waist pose, the handle model's zero directions once per m
 IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
 Both the controller runs and bare mj_step are the faster of two runs.
 
-Issue 13 item 2: the feet on the closed-form leg IK (:meth:`~shintai.humanoid.hrp2_limbs.Hrp2Limb.solve`;
+Issue 13 item 2: the feet on the closed-form leg IK (:meth:`~shintai.humanoid.tricycle.hrp2_limbs.Hrp2Limb.solve`;
 trajectories change slightly, see the scenario notes). Twelve interleaved pairs in one process (feet on the
 DLS IK vs the closed form, each run against its own bare mj_step, three sessions, load average 1–4 on the
 2 cores, bare mj_step 0.39–0.69 s so the ratios spread widely): pedalling 2.8–6.2× (median 3.4×) →
@@ -50,7 +50,7 @@ inside these runs: ≈212 µs DLS → ≈47 µs closed form at that load (≈4.5
 unreachable tick). Still short of ≤ 1.5×: the rest of the tick (laws, interpolators, estimates, the hands'
 DLS IK when driving, logging, the Loop) is Python, as above.
 
-``humanoid.leg-ik`` (issue 13 item 2): the analytic leg IK (:mod:`shintai.humanoid.leg_ik`) against
+``humanoid.leg-ik`` (issue 13 item 2): the analytic leg IK (:mod:`shintai.humanoid.robots.leg_ik`) against
 the DLS IK per call on the same 500 sole targets of a pedalling-like foot path, as a ratio in one
 run. Measured on the loaded 2-core machine (load average ≈7): analytic ≈22–27 µs, DLS ≈390–510 µs
 a call (warm-started, one step and the check each), ratio ≈15×; the two agree to ≈7e-5 rad (the
@@ -58,7 +58,7 @@ DLS IK stops at its 0.1 mm / 1 mrad tolerance). Re-measured in this round: 9.6 /
 moment, 18.9 / 143 µs and 38 / 584 µs (7.6×, 15.3×) under load; agreement 6.7e-5 rad.
 
 ``humanoid.standing-overhead`` (issue 13): the standing stack's 4 ms Loop tick (preview, footsteps,
-stabilizer, foot damping, leg IK; :class:`~shintai.humanoid.standing.Standing`) against bare mj_step for
+stabilizer, foot damping, leg IK; :class:`~shintai.humanoid.balance.standing.Standing`) against bare mj_step for
 the same physics steps. Measured on the loaded 2-core machine: ≈3.9× (tick ≈0.95 ms against ≈0.24 ms of
 bare physics; per call preview ≈83 µs, footsteps ≈8, stabilizer ≈140, foot damping ≈65, leg IK ≈130,
 physics + Loop/snapshot ≈520 µs). The stabilizer's F/T reading and law went from NumPy to Python floats
@@ -74,7 +74,7 @@ import time
 import mujoco
 import numpy as np
 
-from shintai.humanoid import riding
+from shintai.humanoid.tricycle import riding
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,
     D_THETA_C,
@@ -82,12 +82,12 @@ from shintai.humanoid.constants import (
     DEG,
     DELTA_T,
 )
-from shintai.humanoid.hrp2_limbs import riding_limbs
-from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
-from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import Ride, slalom_goals
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+from shintai.humanoid.tricycle.operation import OperationSchedule
+from shintai.humanoid.tricycle.ride import Ride, slalom_goals
 from shintai.humanoid.robots.hrp2 import build_hrp2
-from shintai.humanoid.tricycle_rig import crank_schedule, legs_switcher, pedal_rig
+from shintai.humanoid.tricycle.rig import crank_schedule, legs_switcher, pedal_rig
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
 from shintai.sim import ik
@@ -194,10 +194,10 @@ def leg_ik_cost(ticks: int = 500) -> dict:
 @benchmark("humanoid.standing-overhead",
            "HRP2 standing on the stabilizer stack (LIP tracking, distributor, foot damping, leg IK): the 4 ms Loop tick vs bare mj_step")
 def standing_overhead(seconds: float = 4.0) -> dict:
-    """The standing stack (:class:`~shintai.humanoid.standing.Standing`, standing still) for ``seconds`` of
+    """The standing stack (:class:`~shintai.humanoid.balance.standing.Standing`, standing still) for ``seconds`` of
     simulated time against bare ``mj_step`` for the same physics steps from the ``stand`` keyframe (the
     faster of two runs each), with each module's mean time per call from the Loop's ``timing``."""
-    from shintai.humanoid.standing import Standing
+    from shintai.humanoid.balance.standing import Standing
 
     def run():
         st = Standing(hold=seconds + 1.0)

@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.prior_value_integrator import R_SAT_V
-from shintai.humanoid.speed_governing_ride import (
+from shintai.humanoid.learning.prior_value_integrator import R_SAT_V
+from shintai.humanoid.vboard.governed_ride import (
     PLANTS,
     START_DELAY,
     governed_rig,
@@ -19,7 +19,7 @@ from shintai.humanoid.speed_governing_ride import (
     replay_integrator,
     ui_jumps,
 )
-from shintai.humanoid.vboard_ride import D_VBOARD
+from shintai.humanoid.vboard.ride import D_VBOARD
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 MODES = ("corrected", "saturated")

@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.solc import PHASES, solc_ride, switch_times
-from shintai.humanoid.speed_governing_ride import PLANTS, VIEW, governor_series, plant_values
+from shintai.humanoid.vboard.solc import PHASES, solc_ride, switch_times
+from shintai.humanoid.vboard.governed_ride import PLANTS, VIEW, governor_series, plant_values
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

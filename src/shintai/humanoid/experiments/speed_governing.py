@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG
-from shintai.humanoid.speed_governing_ride import (
+from shintai.humanoid.vboard.governed_ride import (
     PLANTS,
     START_DELAY,
     governed_rig,
@@ -19,7 +19,7 @@ from shintai.humanoid.speed_governing_ride import (
     ui_jumps,
     unstable_intervals,
 )
-from shintai.humanoid.vboard_ride import D_VBOARD
+from shintai.humanoid.vboard.ride import D_VBOARD
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

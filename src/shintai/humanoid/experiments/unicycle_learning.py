@@ -5,8 +5,8 @@ tracking's references instead (ours: see the notes for why)."""
 
 from __future__ import annotations
 
-from shintai.humanoid.ninebot_ride import PLACEMENTS
-from shintai.humanoid.unicycle import P0_PARAM, draw_learning, summary, unicycle_rig
+from shintai.humanoid.unicycle.ride import PLACEMENTS
+from shintai.humanoid.unicycle.rig import P0_PARAM, draw_learning, summary, unicycle_rig
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

@@ -3,7 +3,7 @@ lift (the thesis's supporting hand) letting go — does the speed run away? (see
 
 from __future__ import annotations
 
-from shintai.humanoid.unicycle import P0_PARAM, V_DIVERGED, summary, unicycle_rig
+from shintai.humanoid.unicycle.rig import P0_PARAM, V_DIVERGED, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 

@@ -9,11 +9,11 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.boarding import boarding_stack, run_summary
-from shintai.humanoid.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
-from shintai.humanoid.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
-from shintai.humanoid.standing import CHANNELS
-from shintai.humanoid.vehicles.vboard import board_pitch
+from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
+from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
+from shintai.humanoid.learning.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
+from shintai.humanoid.balance.standing import CHANNELS
+from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -22,8 +22,8 @@ AFTER_S = 2.0  # s of standing after the plan's end (the robot on the scooter), 
 
 
 def rig(params, variant, seed):
-    """The stack of :class:`~shintai.humanoid.standing.Standing` stepping onto the scooter
-    (:mod:`shintai.humanoid.boarding`); the SLC schedule runs inside the foot damping, learning (``slc``) or
+    """The stack of :class:`~shintai.humanoid.balance.standing.Standing` stepping onto the scooter
+    (:mod:`shintai.humanoid.vboard.boarding`); the SLC schedule runs inside the foot damping, learning (``slc``) or
     only marking the same window (``fixed_d``: D = D₀ throughout)."""
     p = SLCParams(D0=params["D0"], Q=params["Q"], R=params["R"], eta=params["eta"])
     st, sched = boarding_stack(p, params["T"], learn=variant == "slc")

@@ -1,14 +1,14 @@
 """``humanoid.vboard-plant-id``: the speed plants P_*(s) = K_*/(s(1 + T_* s)) identified on HRP2 riding the V-BOARD
 at behaviour level 2, from a known foot-pitch input and the simulated sensors' v, ω (seed 000 §6.2.2 (D),
-Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.plant_id`."""
+Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.vboard.plant_id`."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.plant_id import AXES, PARAMS, metrics, rig, series, window
-from shintai.humanoid.speed_governing import lowpass
+from shintai.humanoid.vboard.plant_id import AXES, PARAMS, metrics, rig, series, window
+from shintai.humanoid.learning.speed_governing import lowpass
 from shintai.scenarios.registry import Check, ThesisValue, experiment
 
 

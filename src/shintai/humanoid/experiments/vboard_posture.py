@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.humanoid.constants import DEG
-from shintai.humanoid.vboard_ride import D_VBOARD, VboardRide, chest_pitch
+from shintai.humanoid.vboard.ride import D_VBOARD, VboardRide, chest_pitch
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, experiment
 
