@@ -6,6 +6,8 @@ import math
 import numpy as np
 import pytest
 
+from shintai.core.geometry import roll_of
+
 from shintai.core.runtime import ChannelError, FunctionModule, Loop
 from shintai.humanoid.tricycle import ch4_riding as cr
 from shintai.humanoid.constants import DEG, TRICYCLE
@@ -34,7 +36,7 @@ def test_reference_channels_are_seen_one_tick_later_and_unknown_ones_rejected():
 def test_roll_sign_convention():
     c, s = math.cos(0.1), math.sin(0.1)
     rx = np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
-    assert cr.roll_of(rx) == pytest.approx(0.1)
+    assert roll_of(rx) == pytest.approx(0.1)
 
 
 def test_rider_waist_turns_about_the_hip_point():
@@ -44,7 +46,7 @@ def test_rider_waist_turns_about_the_hip_point():
     pos, rot = rider.waist_pose(0.1, 0.0, 0.0)
     hip_in_waist = rider.seat_rot.T @ (rider.hip_point - rider.seat_pos)
     assert pos + rot @ hip_in_waist == pytest.approx(rider.hip_point, abs=1e-12)
-    assert cr.roll_of(rot @ rider.seat_rot.T) == pytest.approx(0.1)
+    assert roll_of(rot @ rider.seat_rot.T) == pytest.approx(0.1)
     pos2, _ = rider.waist_pose(0.0, 0.03, 0.02)
     assert pos2 - rider.seat_pos == pytest.approx([0.0, 0.03, 0.02])
 

@@ -15,9 +15,9 @@ from shintai.humanoid.learning.mlc import (
     MLC_V,
     MLCParams,
     Sensitivity,
-    SpeedGovernor,
     recursion_coefficients,
 )
+from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.learning.speed_governing import (
     K_V,
     T_V,

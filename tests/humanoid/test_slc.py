@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Body, Loop, declare
+from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
 from shintai.humanoid.balance.foot_damping import (
     DAMPING_D_FLAT,
     FootDamping,
@@ -17,6 +18,7 @@ from shintai.humanoid.learning.slc import (
     SLC,
     SLC_D0,
     SLCParams,
+    LandingWindow,
     SLCSchedule,
     slc_cost,
     slc_gradient,
@@ -89,13 +91,17 @@ def test_bad_parameters_raise_one_line_naming_the_field(field, value):
 
 
 def run_schedule(fz_pairs, e_pitch=1.0):
+    """SLC after the damping of each tick (its e_τ, δ), the damping taking D one tick later (Fig. 5.4's order)."""
     feet = {"L": FootDamping(dt=DT), "R": FootDamping(dt=DT)}
     sched = SLCSchedule()
     states = []
     for i, (fl, fr) in enumerate(fz_pairs):
         for foot in feet.values():
             foot.step([0.0, e_pitch], [0.0, 0.0])
-        states.append(sched.step({"t": i * DT, "f_Lz": fl, "f_Rz": fr}, feet))
+        out = sched.update({"t": i * DT, "f_Lz": fl, "f_Rz": fr, "e_tau": np.concatenate([feet["L"].e_tau, feet["R"].e_tau]),
+                            "damping_delta": np.concatenate([feet["L"].delta, feet["R"].delta])})
+        feet["L"].D[:], feet["R"].D[:] = out["damping_gain"][:2], out["damping_gain"][2:]
+        states.append(sched.state)
     return feet, sched, states
 
 
@@ -135,9 +141,9 @@ def test_a_foot_unloading_before_it_lifts_does_not_fire_the_guards():
     t_land_r = (n_before_r + len(rattle_r) + len(swing)) * DT
     assert sched.t_start == pytest.approx(t_land_l) and sched.t_stop == pytest.approx(t_land_r)
     # without the airborne arming the unloading's rising edge (index 5 + 4) would have started it
-    eager = SLCSchedule(SLC(SLCParams(air_time=0.0)))
+    eager = LandingWindow(SLCParams(air_time=0.0))
     for i, (a, b) in enumerate(zip(fl, fr)):
-        eager.step({"t": i * DT, "f_Lz": a, "f_Rz": b}, {"L": FootDamping(dt=DT), "R": FootDamping(dt=DT)})
+        eager.step({"t": i * DT, "f_Lz": a, "f_Rz": b})
     assert eager.t_start == pytest.approx(9 * DT) and eager.t_stop < t_land_r
 
 
@@ -167,10 +173,18 @@ class TorqueBody(Body):
         self.t = round(self.t + self.dt, 9)
 
 
-def test_damping_module_runs_slc_in_a_loop_between_the_landings():
+def test_slc_after_the_damping_writes_d_its_one_writer_one_tick_later():
+    """SLC a stage after the damping: D(t+Δt) from e_τ(t), δ(t), reaching the damping on ``damping_gain`` one
+    tick later (Fig. 5.4 steps 1–3)."""
     sched = SLCSchedule()
-    module = FootDampingModule(slc=sched)
-    Loop(TorqueBody(), [module]).run(until=1.6)
+    module = FootDampingModule()
+    loop = Loop(TorqueBody(), stages=[[module], [sched]], channels=DAMPING_CHANNELS.values())
+    loop.run(until=1.6)
     assert sched.t_start == pytest.approx(0.1) and sched.t_stop == pytest.approx(1.3)
     assert sched.duration == pytest.approx(1.2)
-    assert module.feet["R"].D[1] == sched.slc.D > SLC_D0  # δ grows under a steady error: R′δ² wins
+    assert sched.D[3] == sched.slc.D > SLC_D0  # δ grows under a steady error: R′δ² wins
+    assert np.array_equal(module.feet["R"].D, sched.D[2:]) and np.array_equal(module.feet["L"].D, sched.D[:2])
+    before = module.feet["L"].D.copy()
+    sched.D[1] += 1.0  # what SLC writes now, the damping uses on the next tick, not this one
+    loop.step()
+    assert np.array_equal(module.feet["L"].D, before)

@@ -4,9 +4,8 @@
 import numpy as np
 import pytest
 
-from shintai.humanoid.balance.foot_damping import FootDamping
-from shintai.humanoid.learning.slc import SLC, SLCParams, slc_update
-from shintai.humanoid.vboard.solc import MLCPhase, solc_switcher, switch_times
+from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule, slc_update
+from shintai.humanoid.vboard.solc import SLC_WINDOW, MLCPhase, solc_switcher, switch_times
 from shintai.scenarios.registry import ParameterError, get
 
 DT = 0.004
@@ -19,16 +18,16 @@ def snapshots(f_l, f_r, t0=0.0):
 
 
 def test_the_switcher_boards_with_slc_then_governs_with_mlc_then_stops_learning():
-    feet = {"L": FootDamping(D=22.0), "R": FootDamping(D=22.0)}
-    feet["L"].e_tau[1], feet["L"].delta[1] = 1.0, 0.02  # Rδ² > Qe²: SLC raises D (Eq. 5.17)
-    slc = SLC(SLCParams())
-    gov = MLCPhase(feet)
-    sw = solc_switcher(feet, slc, gov)
+    slc = SLCSchedule(SLC(SLCParams()), window=SLC_WINDOW)  # SLC on the switcher's window, after the damping
+    gov = MLCPhase()
+    sw = solc_switcher(SLCParams(), gov)
     stand, air = [300.0] * 50, [0.0] * 50  # 0.2 s each
     seq = snapshots(stand + air + stand + stand + stand, stand + stand + stand + air + stand)
     phases = []
     for snap in seq:
-        sw.update(snap)
+        out = sw.update(snap)
+        # Rδ² > Qe²: SLC raises D (Eq. 5.17)
+        slc.update({**snap, **out, "e_tau": np.array([0.0, 1.0, 0.0, 0.0]), "damping_delta": np.array([0.0, 0.02, 0.0, 0.0])})
         phases.append(sw.active)
     times = switch_times(sw)
     # the left foot lands at tick 100 (after 0.2 s in the air), the right at tick 200
@@ -37,9 +36,9 @@ def test_the_switcher_boards_with_slc_then_governs_with_mlc_then_stops_learning(
     # SLC ran once per tick of its phase, from D₀, and the right pitch took its D when MLC started
     D = 22.0
     for _ in range(100):
-        D = slc_update(D, 1.0, 0.02, slc.params.Q_prime, slc.params.R_prime)
-    assert feet["L"].D[1] == pytest.approx(D) and D > 22.0
-    assert feet["R"].D[1] == feet["L"].D[1] and feet["L"].D[0] == feet["R"].D[0] == 22.0
+        D = slc_update(D, 1.0, 0.02, slc.slc.params.Q_prime, slc.slc.params.R_prime)
+    assert slc.D[1] == pytest.approx(D) and D > 22.0
+    assert slc.D[3] == slc.D[1] and slc.D[0] == slc.D[2] == 22.0
     # MLC observed its samples; when Eq. 6.32 holds on both axes the switcher goes to DONE and learning stops
     for a in ("v", "omega"):
         gov.mlc[a].converged = True

@@ -8,12 +8,9 @@ import pytest
 from shintai.core.constants import GRAVITY
 from shintai.core.recorder import Recorder
 from shintai.core.runtime import Loop
-from shintai.humanoid.vboard.ride import (
-    V_PERIOD,
-    VO_LATENCY,
-    ScooterSensors,
-    VboardRide,
-)
+from shintai.humanoid.balance.scooter import V_PERIOD, VO_LATENCY, ScooterSensors
+from shintai.humanoid.vboard.ride import VboardRide
+from shintai.humanoid.vboard.vehicle import scooter_velocity
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 
@@ -75,7 +72,7 @@ def test_sensors_rates_and_latency():
     """Table 6.1: v is published every 24 ms, 24 ms late; x_VO sampled every 10 ms (+10 ms latency, chosen); ω is
     the gyro's yaw rate every 4 ms. The robot starts moving at 0.5 m/s at t = 0.2 s (seen by the VO only)."""
     body = FakeBody()
-    sensors = ScooterSensors(body, noise=False)
+    sensors = ScooterSensors(body, scooter_velocity, noise=False)
     still = {"imu_quat": np.array([1.0, 0, 0, 0]), "imu_acc": np.array([0, 0, GRAVITY]),
              "vboard_vel": np.zeros(3), "vboard_heading": np.array([1.0, 0, 0]), "vboard_angvel": np.zeros(3)}
     vs, ws = [], []

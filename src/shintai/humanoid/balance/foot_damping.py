@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from shintai.core.runtime import Module, Snapshot
+from shintai.core.runtime import SET, Channel, Module, Snapshot, declare
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.law_params import check_real
 
@@ -42,6 +42,9 @@ FORCE_DIFF_D = 3500.0  # N·s/m
 FORCE_DIFF_T = 1.5  # s
 FORCE_DIFF_LIMIT = 0.05  # m
 AXES = ("roll", "pitch")
+GAIN = "damping_gain"
+# δ and e_τ of this tick, and D from one tick earlier (SLC writes D(t+Δt) after this tick's damping step, Fig. 5.4)
+CHANNELS = {**declare("damping_delta", "e_tau", kind=SET), GAIN: Channel(GAIN, SET, delay=1)}
 
 
 def damping_step(delta, e_tau, D, T: float, dt: float):
@@ -107,21 +110,20 @@ class ForceDifferenceControl:
 
 
 class FootDampingModule(Module):
-    """Both feet's torque damping (Eq. 5.1) as a runtime module, with SLC (§5.3) inside when given.
+    """Both feet's torque damping (Eq. 5.1) as a runtime module.
 
     Reads ``tau_d_<foot>`` and ``tau_<foot>`` (roll, pitch; foot ∈ L, R) from the snapshot and contributes
     δ to ``channel`` as [L roll, L pitch, R roll, R pitch] (additive: the corrections add to the foot
-    attitudes, and in ch. 6 δ is the disturbance d of Eq. 6.5). SLC runs in this module rather than in its
-    own because Eq. 5.17 needs this controller's δ(t) and rewrites this controller's D in the same 4 ms step
-    (Fig. 5.4, steps 1–3): δ(t) is computed with D(t), then D(t+Δt) from e_τ(t), δ(t). ``slc`` is a
-    :class:`shintai.humanoid.learning.slc.SLCSchedule` (duck-typed here so that this module does not import SLC).
+    attitudes, and in ch. 6 δ is the disturbance d of Eq. 6.5). It also writes its own δ and e_τ, same layout,
+    on the set channels ``damping_delta`` and ``e_tau`` (SLC's search variables, Fig. 5.4), and takes its gains
+    D from channel ``damping_gain`` when someone writes it (SLC, one tick later: :data:`CHANNELS`); else the
+    feet keep the D they were built with. ``D`` and ``T`` build both feet (one D per axis, or one for all).
     """
 
-    def __init__(self, left: FootDamping | None = None, right: FootDamping | None = None, slc=None,
-                 channel: str = "foot_damping", name: str = "foot_damping", period: float | None = None):
+    def __init__(self, D=DAMPING_D_FLAT, T: float = DAMPING_T, channel: str = "foot_damping",
+                 name: str = "foot_damping", period: float | None = None):
         super().__init__(name, period)
-        self.feet = {"L": left or FootDamping(), "R": right or FootDamping()}
-        self.slc = slc
+        self.feet = {"L": FootDamping(D=D, T=T), "R": FootDamping(D=D, T=T)}
         self.channel = channel
 
     def reset(self, snapshot: Snapshot) -> None:
@@ -129,10 +131,12 @@ class FootDampingModule(Module):
             foot.reset()
 
     def update(self, snapshot: Snapshot):
-        deltas = {f: law.step(snapshot[f"tau_d_{f}"], snapshot[f"tau_{f}"]) for f, law in self.feet.items()}
-        if self.slc is not None:
-            self.slc.step(snapshot, self.feet)
         left, right = self.feet["L"], self.feet["R"]
+        gain = snapshot.get(GAIN)
+        if gain is not None:
+            left.D[:], right.D[:] = gain[:2], gain[2:]
+        deltas = {f: law.step(snapshot[f"tau_d_{f}"], snapshot[f"tau_{f}"]) for f, law in self.feet.items()}
         self.log(snapshot["t"], **{f"{self.name}.delta_L": deltas["L"], f"{self.name}.delta_R": deltas["R"],
                                    f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
-        return {self.channel: np.concatenate([deltas["L"], deltas["R"]])}
+        delta = np.concatenate([deltas["L"], deltas["R"]])
+        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.concatenate([left.e_tau, right.e_tau])}

@@ -8,7 +8,7 @@ control period, in four stages:
 2. stabilizer — :class:`~shintai.humanoid.balance.stabilizer.StabilizerModule` (LIP tracking, ZMP distributor,
    force difference control: ``tau_d_*``, ``tau_*``, ``f_*z``, ``sole_dz``);
 3. foot damping — :class:`~shintai.humanoid.balance.foot_damping.FootDampingModule` (Eqs. 5.1–5.3: δ on the
-   additive ``foot_damping`` channel; SLC (§5.3) goes inside it when given);
+   additive ``foot_damping`` channel; D from ``damping_gain``, written by SLC (§5.3) in a stage after it);
 4. IK — :class:`LegIKModule`: the waist under the CoM reference, the soles at their references rotated
    by δ and raised by the force-difference heights → :func:`~shintai.humanoid.robots.leg_ik.legs_ik` → ``ctrl``.
 
@@ -21,21 +21,6 @@ at s = ½ and descends to z₁ (each half z = z_a + (z_b − z_a)(θ − sin θ)
 horizontally it moves on one cycloid (θ − sin θ)/2π of (s − d)/(1 − 2d) between s = d and 1 − d
 (d = :data:`SWING_DELAY`) — so it clears an edge before moving over it, like hrpsys's CYCLOIDDELAY orbit. The
 sole stays flat (no yaw in the plans).
-
-**Measured** (seeded MuJoCo, deterministic; :func:`push_recovery`, :func:`largest_push`, the tests):
-standing 5 s the CoM stays within 1.5 mm of its reference after 3 s and the ZMP inside the soles; the
-largest 0.1 s push on the waist recovered (CoM back within 10 mm, soles within 20 mm; steps of 25 N) is
-300 N forward with the whole stack, 225 N with the foot damping off (= position control, as the LIP
-tracking only acts through the damping), 225 N with LIP and force difference off too; sideways 325 N,
-325 N and 275 N (the force difference control helps sideways, the damping does not). Stepping in place
-(two steps) the measured ZMP follows the plan with 17 mm rms error, 49 mm with the damping off; onto a
-0.12 m box at the V-BOARD's pad positions (:func:`platform_steps`) 34 mm against 93 mm, and standing on
-the box in the last second 2.7 mm against 38 mm (without the damping the ZMP keeps swinging and the
-feet slide ≈10 mm). The feet creep 7–12 mm forward over two steps in place (open). Probe, not a
-test (ch. 6 is the next step): standing still on the V-BOARD (:func:`~shintai.humanoid.vboard.stand.build_vboard_stand`
-as ``body``) the flat-floor stack (D = 22) keeps the robot up for 5 s while the scooter rocks back and
-forth by up to 0.85 m; with the damping off it falls at ≈3 s; position control alone rides backwards
-5.4 m in 4.5 s (the level-1 drift of §6.2.1).
 
 **CoM → waist** (chosen): the waist is placed at ``com_ref`` minus the waist-to-CoM offset of the
 ``stand`` keyframe (upright waist); hrpsys's AutoBalancer solves a whole-body CoM IK instead. The legs
@@ -51,10 +36,12 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
 from shintai.humanoid.constants import FLOOR, SOLE
 from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
-from shintai.humanoid.balance.foot_damping import FootDampingModule
+from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
+from shintai.humanoid.balance.foot_damping import DAMPING_D_FLAT, DAMPING_T, FootDampingModule
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
 from shintai.humanoid.balance.preview import CHANNELS as PREVIEW_CHANNELS
@@ -78,7 +65,7 @@ PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen
 # reach once the CoM is ≈0.15 m ahead of it, before it lifts: measured, 58 ticks out of reach)
 BOARDING_CROUCH = 0.05
 BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 15 mm past platform_body's near edge
-CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **declare("sole_ref", "support", kind=SET),
+CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **DAMPING_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
 
 
@@ -211,12 +198,6 @@ class StepPreview(PreviewModule):
         return out
 
 
-def _rot_xy(roll: float, pitch: float) -> np.ndarray:
-    """Ry(pitch) Rx(roll): δ about world x, then world y."""
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    return np.array([[cp, sp * sr, sp * cr], [0.0, cr, -sr], [-sp, cp * sr, cp * cr]])
-
-
 class LegIKModule(Module):
     """Stage 4: reads ``com_ref``, ``sole_ref``, ``foot_damping`` (δ: L roll, L pitch, R roll, R pitch)
     and ``sole_dz``; writes the whole ``ctrl`` vector: the ``stand`` keyframe's targets with the leg
@@ -241,7 +222,7 @@ class LegIKModule(Module):
             pos = soles[i].copy()
             rot = self._eye
             if delta is not None:
-                rot = _rot_xy(float(delta[2 * i]), float(delta[2 * i + 1]))
+                rot = rot_xy(float(delta[2 * i]), float(delta[2 * i + 1]))
             if dz is not None:
                 pos[2] += float(dz[i])
             res = leg_ik(s, waist, self._eye, pos, rot)
@@ -315,20 +296,25 @@ def platform_body(height: float = PLATFORM_HEIGHT, x: float = 0.38, y: float = 0
 
 
 class Standing:
-    """HRP2 with the stack (module docstring) on a footstep plan (none: standing still).
+    """HRP2 with the stack (module docstring) on a footstep plan (none: standing still), its slots chosen here.
 
     ``steps``: :class:`SoleStep` s; ``damping=False`` drops stage 3 (no δ: the foot torque damping
-    off); ``lip=False`` no LIP tracking; ``force_difference=False`` no height corrections; ``push``:
-    (force (3,), t0, duration) on the waist; ``body`` another hrp2 body (e.g. :func:`platform_body`);
-    ``slc`` an :class:`~shintai.humanoid.learning.slc.SLCSchedule` run inside the foot damping (§5.4.1); ``hold``
-    the plan's rest at the start and the end (s); ``crouch`` (m): the CoM reference is lowered by this
-    much during the first hold and stays lower (long steps: the hip of a straight-enough trailing leg
-    reaches only ≈0.15 m ahead of its ankle at the ``stand`` height, see :data:`BOARDING_CROUCH`).
+    off); ``D``, ``T`` the damping's gains (Eq. 5.1; one D per axis or one for all); ``lip=False`` no LIP
+    tracking; ``force_difference=False`` no height corrections; ``push``: (force (3,), t0, duration) on the
+    waist; ``body`` another hrp2 body (e.g. :func:`platform_body`); ``hold`` the plan's rest at the start and
+    the end (s); ``crouch`` (m): the CoM reference is lowered by this much during the first hold and stays
+    lower (long steps: the hip of a straight-enough trailing leg reaches only ≈0.15 m ahead of its ankle at
+    the ``stand`` height, see :data:`BOARDING_CROUCH`). Slots: ``stabilizer`` builds stage 2 as
+    ``stabilizer(body, lip=, force_difference=)``, ``ik`` stage 4 as ``ik(body, ctrl0, com_offset)``; ``learner``
+    (SLC, :class:`~shintai.humanoid.learning.slc.SLCSchedule`) runs in a stage after the damping, reading its δ
+    and e_τ and writing its gain (the order of Fig. 5.4).
+    :meth:`stages` composes the stack with the modules a rig adds; :attr:`loop` runs it alone.
     """
 
     def __init__(self, steps=(), damping: bool = True, lip: bool = True, force_difference: bool = True,
-                 push=None, body: MujocoBody | None = None, slc=None, hold: float | None = None,
-                 crouch: float = 0.0):
+                 push=None, body: MujocoBody | None = None, hold: float | None = None, crouch: float = 0.0,
+                 D=DAMPING_D_FLAT, T: float = DAMPING_T, learner: Module | None = None, stabilizer=StabilizerModule,
+                 ik=None):
         crouch = check_real("crouch", crouch, 0.0, 0.2)
         self.body = body if body is not None else build_hrp2()
         settle_on_floor(self.body)
@@ -347,17 +333,38 @@ class Standing:
         self.preview = StepPreview(self.plan, self.heights, zc=float(self.body.data.subtree_com[
             self.body.id("body", "waist")][2]) - base, base=base)
         self.footsteps = FootstepModule(self.plan, soles, self.steps)
-        self.stabilizer = StabilizerModule(self.body, lip=lip, force_difference=force_difference)
-        self.damping = FootDampingModule(slc=slc) if damping else None
-        self.ik = LegIKModule(self.body, self.body.data.ctrl, offset + np.array([0.0, 0.0, 0.0]))
+        self.stabilizer = stabilizer(self.body, lip=lip, force_difference=force_difference)
+        self.damping = FootDampingModule(D=D, T=T) if damping else None
         # the reference CoM height: the keyframe's (PreviewModule writes z_c above z = 0, the floor)
-        stages = [[self.preview, self.footsteps], [self.stabilizer]]
+        self.ik = (ik or LegIKModule)(self.body, self.body.data.ctrl, offset + np.array([0.0, 0.0, 0.0]))
+        self.push = Push(self.body, *push) if push is not None else None
+        self.learner = learner
+        self._loop = None
+
+    def stages(self, references=(), governor=(), supervisor=(), beside_damping=(), observers=()) -> list[list[Module]]:
+        """The stack's stages with a rig's modules in its slots: ``references`` beside the preview (stage 1),
+        ``governor`` a stage of their own before the stabilizer, ``supervisor`` a stage after it (a switcher whose
+        guards read its sole forces), ``beside_damping`` in the damping's stage, ``observers`` beside the IK (they
+        see every channel of the tick)."""
+        stages = [[*([self.push] if self.push else []), self.preview, self.footsteps, *references]]
+        if governor:
+            stages.append(list(governor))
+        stages.append([self.stabilizer])
+        if supervisor:
+            stages.append(list(supervisor))
         if self.damping is not None:
-            stages.append([self.damping])
-        stages.append([self.ik])
-        if push is not None:
-            stages[0].insert(0, Push(self.body, *push))
-        self.loop = Loop(self.body, stages=stages, channels=CHANNELS.values())
+            stages.append([self.damping, *beside_damping])
+        if self.learner is not None:
+            stages.append([self.learner])
+        stages.append([self.ik, *observers])
+        return stages
+
+    @property
+    def loop(self) -> Loop:
+        """The stack alone in a Loop (built on first use)."""
+        if self._loop is None:
+            self._loop = Loop(self.body, stages=self.stages(), channels=CHANNELS.values())
+        return self._loop
 
     @property
     def duration(self) -> float:

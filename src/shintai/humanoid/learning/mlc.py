@@ -1,5 +1,5 @@
-"""Mini-batch-based closed-loop Learning Control, MLC (seed 000 §6.3.1–6.3.2, Eqs. 6.17–6.32, Tables 6.4, 6.6),
-and the speed governor that runs it with the PID of Eq. 6.2 (§6.3.4, Figs. 6.6 and 6.13).
+"""Mini-batch-based closed-loop Learning Control, MLC (seed 000 §6.3.1–6.3.2, Eqs. 6.17–6.32, Tables 6.4, 6.6);
+the V-BOARD's speed governor runs it with the PID of Eq. 6.2 (:mod:`shintai.humanoid.vboard.governor`).
 
 For * = v, ω and ρ_n = (K_P(n), K_I(n), K_D(n)):
 
@@ -32,19 +32,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Module, Snapshot
 from shintai.core.search_index import MatrixGain, SearchIndex
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.learning.prior_value_integrator import PID
-from shintai.humanoid.learning.speed_governing import (
-    K_OMEGA,
-    K_V,
-    T_OMEGA,
-    T_V,
-    foot_pitch_increments,
-    stability_flag,
-)
+from shintai.humanoid.learning.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
 
 # --- constants ----------------------------------------------------------------------------------------
 T_L = 2.0  # s, mini-batch length (§6.3.2: 2/0.004 = 500 samples)
@@ -191,43 +182,3 @@ class MLC:
             self.sensitivity.set_gains(self.index.rho)
         self.batches.append(Batch(t, J, grad, self.gains, clipped, holds))
         return not self.converged
-
-
-AXES = ("v", "omega")
-
-
-class SpeedGovernor(Module):
-    """Fig. 6.13 for v and ω: PID (Eq. 6.2) with the prior-value-correcting integrator, MLC every T_L, and the
-    foot-pitch mixing of Eq. 6.5 to channel ``foot_pitch`` = [Δθ_R, Δθ_L] (additive; the damping module's δ
-    adds as the disturbance d). Reads ``v`` and ``omega`` (the filtered speeds) from the snapshot; targets
-    ``v_d``/``omega_d`` from the snapshot when present, else 0 (the experiments of §6.4.1).
-    ``learn=False`` runs the PID with fixed gains (behaviour level 3 without learning).
-    """
-
-    def __init__(self, params=(MLC_V, MLC_OMEGA), gains0=((0.0,) * 3, (0.0,) * 3), mode: str = "corrected",
-                 learn: bool = True, channel: str = "foot_pitch", name: str = "speed_governor"):
-        super().__init__(name, params[0].dt)
-        self.params = dict(zip(AXES, params, strict=True))
-        self.pid = {a: PID(p.dt, g, mode) for a, p, g in zip(AXES, params, gains0, strict=True)}
-        self.mlc = {a: MLC(p, g) for a, p, g in zip(AXES, params, gains0, strict=True)}
-        self.learn = learn
-        self.channel = channel
-
-    def update(self, snapshot: Snapshot):
-        t = float(snapshot["t"])
-        u, signals = {}, {}
-        for a in AXES:
-            e = float(snapshot.get(f"{a}_d", 0.0)) - float(snapshot[a])
-            u[a] = self.pid[a].step(e)  # Eq. 6.2 with the gains in force
-            if self.learn and self.mlc[a].observe(e, t):
-                self.pid[a].set_gains(self.mlc[a].gains)  # §6.3.4 steps 4–5, effective next sample
-            p, pid = self.params[a], self.pid[a]
-            signals.update({f"{self.name}.e_{a}": e, f"{self.name}.u_{a}": u[a], f"{self.name}.gains_{a}": pid.gains,
-                            f"{self.name}.E_{a}": pid.integrator.E, f"{self.name}.uI_{a}": pid.integrator.u_I,
-                            f"{self.name}.stable_{a}": stability_flag(p.K, p.T, pid.gains)})
-        self.log(t, **signals)
-        return {self.channel: foot_pitch_increments(u["v"], u["omega"])}
-
-    @property
-    def converged(self) -> bool:
-        return all(m.converged for m in self.mlc.values())

@@ -32,7 +32,8 @@ Choices where the thesis is silent (each tested):
 * the right-foot pitch takes the learned D once, when SLC stops (its foot is in the air while SLC runs);
 * D has no lower bound in the thesis, yet divides Eqs. 5.1 and 5.17: an update that would take D below
   ``D_min`` (default 1.0) is refused and D kept (the engine's ``hold``, as Eq. 3.14 keeps a reference);
-* order within one step: δ(t) from D(t) (Eq. 5.1), then D(t+Δt) from e_τ(t), δ(t) (Fig. 5.4 steps 1–3).
+* order within one step: δ(t) from D(t) (Eq. 5.1), then D(t+Δt) from e_τ(t), δ(t) (Fig. 5.4 steps 1–3); D reaches
+  the damping on a channel with a one-tick delay (:class:`SLCSchedule`).
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Snapshot
+from shintai.core.runtime import Module, Snapshot
 from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
 from shintai.humanoid.constants import (
     F_THRE,  # landing threshold of the start/stop guards (§5.4.1)
@@ -139,26 +140,20 @@ class SLC:
 
 
 PITCH = 1  # index of pitch in FootDamping's (roll, pitch)
+GAIN = "damping_gain"  # the channel SLC writes: D as [L roll, L pitch, R roll, R pitch]
+WINDOW = ("waiting", "learning", "done")  # the states of the SLC window, coded 0, 1, 2 on a ``window`` channel
 
 
-class SLCSchedule:
-    """When SLC runs during boarding (§5.4.1, Fig. 5.5), and on which gain.
+class LandingWindow:
+    """When SLC runs during boarding (§5.4.1, Fig. 5.5): ``waiting`` → (left foot lands: f_Lz rises through
+    F_thre after ≥ ``air_time`` at or below it) → ``learning`` → (right foot lands, likewise on f_Rz) → ``done``.
+    ``step(snapshot)`` reads ``f_Lz`` and ``f_Rz`` (N) and returns the state; ``t_start``, ``t_stop`` the landings."""
 
-    States: ``waiting`` → (left foot lands: f_Lz rises through F_thre after ≥ ``air_time`` at or below it)
-    → ``learning`` → (right foot lands, likewise on f_Rz) → ``done``. While learning, each step updates the left-foot pitch D from that
-    controller's e_τ and δ; at ``done`` the right-foot pitch D takes the learned value. Reads ``f_Lz`` and
-    ``f_Rz`` (N) from the snapshot; ``step(snapshot, feet)`` is called by
-    :class:`shintai.humanoid.balance.foot_damping.FootDampingModule` after its damping step. ``learn=False`` keeps
-    the window (the same guards) without touching any D: the fixed-D run of Figs. 5.6 and 5.8-(a1–d1).
-    """
-
-    def __init__(self, slc: SLC | None = None, learn: bool = True):
-        self.slc = slc or SLC()
-        self.learn = bool(learn)
+    def __init__(self, params: SLCParams | None = None):
+        self.params = params or SLCParams()
         self.state = "waiting"
         self.t_start: float | None = None
         self.t_stop: float | None = None
-        self.updates = 0
         self._prev: dict[str, float] | None = None
         self._below_since: dict[str, float | None] = {"f_Lz": None, "f_Rz": None}  # start of the run ≤ F_thre
 
@@ -169,31 +164,80 @@ class SLCSchedule:
 
     def _landed(self, key: str, f: float, t: float) -> bool:
         """f rises through F_thre after the foot was in the air (≤ F_thre for ≥ ``air_time``)."""
-        p = self.slc.params
+        p = self.params
         since = self._below_since[key]
         return (self._prev is not None and self._prev[key] <= p.F_thre < f and since is not None
                 and t - since >= p.air_time - 1e-9)
 
-    def step(self, snapshot: Snapshot, feet: dict) -> str:
+    def step(self, snapshot: Snapshot) -> str:
         f = {k: float(snapshot[k]) for k in ("f_Lz", "f_Rz")}
         t = float(snapshot["t"])
         landed = {k: self._landed(k, f[k], t) for k in f}
         for k, value in f.items():  # the runs of f ≤ F_thre (in the air or unloading)
-            if value > self.slc.params.F_thre:
+            if value > self.params.F_thre:
                 self._below_since[k] = None
             elif self._below_since[k] is None:
                 self._below_since[k] = t
         if self.state == "waiting" and landed["f_Lz"]:
             self.state, self.t_start = "learning", t
-            if self.learn:
-                feet["L"].D[PITCH] = self.slc.D
         elif self.state == "learning" and landed["f_Rz"]:
             self.state, self.t_stop = "done", t
-            if self.learn:
-                feet["R"].D[PITCH] = self.slc.D
-        if self.state == "learning" and self.learn:
-            left = feet["L"]
-            left.D[PITCH] = self.slc.update(left.e_tau[PITCH], left.delta[PITCH])
-            self.updates += 1
         self._prev = f
         return self.state
+
+
+class SLCSchedule(Module):
+    """SLC on the foot damping's left-foot pitch gain during its window (§5.4.1), as a module of the stack.
+
+    Reads the damping's ``e_tau`` and ``damping_delta`` ([L roll, L pitch, R roll, R pitch]) of this tick and
+    writes D on channel ``damping_gain`` (same layout), which the damping reads one tick later (declared
+    delay): Fig. 5.4 runs steps 1–3 every 4 ms on the search variables (e_τ(t), δ(t)) the damping controller
+    C_τ(s) just produced with the current D, and the updated D "updates C_τ(s)" for its next step — δ(t) from
+    D(t), then D(t+Δt) from e_τ(t), δ(t). Every stack runs this one order, with this module in a stage after
+    the damping. ``D`` is the gains it writes, starting at D₀ on every axis (Table 5.2, §5.4.1: the roll stays
+    at D₀); while learning the left pitch follows Eq. 5.17, at ``done`` the right pitch takes the learned value.
+
+    The window is its own :class:`LandingWindow` (``window=None``), or the state (0, 1, 2 of :data:`WINDOW`)
+    a switcher writes on the set channel named ``window`` (SOLC, §7.4.2). ``learn=False`` keeps the window
+    and writes nothing (D = D₀ throughout: the fixed-D run of Figs. 5.6 and 5.8-(a1–d1)).
+    """
+
+    def __init__(self, slc: SLC | None = None, learn: bool = True, window: str | None = None, name: str = "slc",
+                 period: float | None = None):
+        super().__init__(name, period)
+        self.slc = slc or SLC()
+        self.learn = bool(learn)
+        self.window = window
+        self.landings = LandingWindow(self.slc.params) if window is None else None
+        self.state = "waiting"
+        self.D = np.full(4, self.slc.params.D0)
+        self.updates = 0
+
+    @property
+    def t_start(self) -> float | None:
+        return self.landings.t_start
+
+    @property
+    def t_stop(self) -> float | None:
+        return self.landings.t_stop
+
+    @property
+    def duration(self) -> float | None:
+        return self.landings.duration
+
+    def update(self, snapshot: Snapshot):
+        if self.window is None:
+            state = self.landings.step(snapshot)
+        else:
+            state = WINDOW[int(snapshot[self.window])]
+        entered, self.state = state != self.state, state
+        if self.learn:
+            if entered and state == "learning":
+                self.D[PITCH] = self.slc.D
+            elif entered and state == "done":
+                self.D[2 + PITCH] = self.slc.D
+            if state == "learning":
+                self.D[PITCH] = self.slc.update(snapshot["e_tau"][PITCH], snapshot["damping_delta"][PITCH])
+                self.updates += 1
+        self.log(snapshot["t"], **{f"{self.name}.D_L": self.D[PITCH], f"{self.name}.D_R": self.D[2 + PITCH]})
+        return {GAIN: self.D.copy()} if self.learn else None

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from shintai.core.geometry import roll_of
 from shintai.core.runtime import ADD, Channel, Module
 from shintai.sim.spec import quat_axis
 from shintai.humanoid.tricycle.active import grip_plan
@@ -166,12 +167,6 @@ def vehicle_pose2d(body: MujocoBody) -> np.ndarray:
     p = body.body_pos("tricycle")
     r = body.data.body("tricycle").xmat.reshape(3, 3)
     return np.array([p[0], p[1], np.arctan2(r[1, 0], r[0, 0])])
-
-
-def roll_of(rot: np.ndarray) -> float:
-    """Roll (about the body's x, ZYX Euler) of a rotation matrix: the tilt of its y axis out of the
-    horizontal; positive when the body's left side rises (top leans to −y)."""
-    return float(np.arctan2(rot[2, 1], rot[2, 2]))
 
 
 def trunk_roll(snapshot) -> float:

@@ -26,16 +26,17 @@ correction in parallel with speed-gain learning, for the scenarios ``humanoid.un
 
 from __future__ import annotations
 
+import functools
 import math
 
 import mujoco
 import numpy as np
 
 from shintai.core.geometry import rot_x
+from shintai.core.geometry import roll_of
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.constants import SCENE
 from shintai.sim.spec import fill_keyframe, scene_spec
-from shintai.humanoid.tricycle.ch4_riding import roll_of
 from shintai.humanoid.constants import CONTROL_PERIOD, SUBSTEPS
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.balance.foot_attitude import quat_to_rot
@@ -45,9 +46,8 @@ from shintai.humanoid.robots.hrp2 import add_hrp2
 from shintai.humanoid.learning.speed_governing import foot_pitch_increments
 from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Push, Standing
-from shintai.humanoid.vboard.ride import CHANNELS as RIDE_CHANNELS
-from shintai.humanoid.vboard.ride import ChestPitchIK, FootPitch, Lift, ScooterSensors
-from shintai.humanoid.vboard.stand import posture_on_pads
+from shintai.humanoid.balance.scooter import CHANNELS as RIDE_CHANNELS
+from shintai.humanoid.balance.scooter import ChestPitchIK, FootPitch, Lift, ScooterSensors, posture_on_pads
 from shintai.humanoid.unicycle.vehicle import NINEBOT, PAD, NinebotSpec, add_ninebot, install_firmware, ninebot_velocity
 from shintai.sim.body import MujocoBody
 
@@ -218,7 +218,8 @@ class NinebotRide:
         body.before_physics.insert(0, self.lift)
         body.reset("stand")
         self.lift.hold()
-        self.standing = Standing(body=body)
+        self.standing = Standing(body=body, stabilizer=functools.partial(ModifiedStabilizer, placement=placement),
+                                 ik=ChestRollIK if roll_shaping else None)
         if push is not None:  # on the chest, before every physics step (the lift owns the waist's xfrc_applied)
             body.before_physics.append(Push(body, *push, link="chest"))
         self.body, self.n = body, n
@@ -228,29 +229,19 @@ class NinebotRide:
         def start(snapshot) -> bool:
             return lift.released and float(snapshot["t"]) >= lift.t_release + start_delay
 
-        stages = [list(s) for s in self.standing.loop.stages]
-        self.sensors = ScooterSensors(body, seed=seed, truth=ninebot_velocity)
-        stages[0].append(self.sensors)
-        st = self.standing.stabilizer
-        stab = ModifiedStabilizer(body, placement, lip=st.lip, force_difference=st.use_force_difference)
-        stages[1] = [stab if m is st else m for m in stages[1]]
-        self.traj = self.speed = None
+        self.sensors = ScooterSensors(body, ninebot_velocity, seed=seed)
+        self.traj = self.speed = self.foot_pitch = None
         if control == "parallel":
             self.traj = TrajectoryCorrection(start, gains0=gains[0], learn=learn)
             self.speed = SpeedPID(start, gains0=gains[1], learn=learn)
-            stages.insert(1, [self.traj, self.speed])
             self.foot_pitch = FootPitch()
-            stages[-2].append(self.foot_pitch)
-        self.roll = None
-        if roll_shaping:
-            self.roll = RollShaping()
-            stages[0].append(self.roll)
-            ik_ = self.standing.ik
-            stages[-1] = [ChestRollIK(body, ik_.ctrl0, ik_.com_offset) if m is ik_ else m for m in stages[-1]]
+        self.roll = RollShaping() if roll_shaping else None
         self.v_d = v_d
-        if v_d is not None:
-            stages[0].append(_Target(v_d, lambda: self.t0))
-        self.stages = stages
+        target = _Target(v_d, lambda: self.t0) if v_d is not None else None
+        self.stages = self.standing.stages(
+            references=[m for m in (self.sensors, self.roll, target) if m is not None],
+            governor=[self.traj, self.speed] if self.traj else (),
+            beside_damping=[self.foot_pitch] if self.foot_pitch else ())
         self.channels = list(CHANNELS.values()) + list(declare("v_d", kind=SET).values())
 
     @property

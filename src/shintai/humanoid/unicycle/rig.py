@@ -1,4 +1,4 @@
-"""The ``humanoid.unicycle-*`` scenarios' rig, metrics and pictures (seed 000 §7.3.3, Figs. 7.7, 7.9–7.10, 7.13):
+"""The ``humanoid.unicycle-*`` scenarios' rig and metrics (seed 000 §7.3.3, Figs. 7.7, 7.9–7.10, 7.13):
 one :class:`~shintai.humanoid.unicycle.ride.NinebotRide` per run, times from the lift's release."""
 
 from __future__ import annotations
@@ -29,25 +29,25 @@ P0_PARAM = Param("p0_m", P0_M, "the Ninebot firmware's moment zero point p⁰, x
                  "mass centre is placed over the axle)", lo=-0.1, hi=0.1)
 
 
-def unicycle_rig(params: dict, seed: int, **ride_kw) -> Rig:
-    """A run of ``params["duration_s"]`` after the release, ending at a fall."""
-    ride = NinebotRide(seed=seed, n=replace(NINEBOT, p0=params.get("p0_m", P0_M)), **ride_kw)
+def unicycle_rig(duration: float, seed: int, p0: float = P0_M, **ride_kw) -> Rig:
+    """A run of ``duration`` s after the release on the Ninebot with moment zero point ``p0`` (m), ending at a fall."""
+    ride = NinebotRide(seed=seed, n=replace(NINEBOT, p0=p0), **ride_kw)
 
     def until(snapshot) -> bool:
-        return ride.fallen() or float(snapshot["t"]) >= ride.t0 + params["duration_s"]
-    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["duration_s"] + 5.0, until=until,
+        return ride.fallen() or float(snapshot["t"]) >= ride.t0 + duration
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=duration + 5.0, until=until,
                record={5: ride.signals}, view=VIEW, state=ride)
 
 
-def _series(log, name):
+def series(log, name):
     return (log.times(name), log.values(name)) if name in log.names() else (np.zeros(0), np.zeros(0))
 
 
 def zmp_errors(run, t0: float) -> tuple[float, float, np.ndarray, np.ndarray, np.ndarray]:
     """RMS of final target ZMP x (p^{d**}, the stabilizer's p_d) minus the measured ZMP x over the first 2 s after
     the release and over the last 2 s; and the series (t from release, target, measured)."""
-    t, zd = _series(run.log, "stabilizer.zmp_d")
-    _, za = _series(run.log, "stabilizer.zmp_act")
+    t, zd = series(run.log, "stabilizer.zmp_d")
+    _, za = series(run.log, "stabilizer.zmp_act")
     if not t.size:
         return math.nan, math.nan, t, t, t
     zd, za = zd.reshape(-1, 2)[:, 0], za.reshape(-1, 2)[:, 0]
@@ -103,37 +103,3 @@ def summary(run) -> dict:
     return out
 
 
-def draw_learning(ax, run, label: str) -> None:
-    """Fig. 7.9 (b)–(e) and Fig. 7.10 of one run on 5 axes."""
-    ride, log = run.state, run.log
-    t0 = ride.t0
-    for a, mod, sym in ((ax[0], ride.traj, "traj"), (ax[1], ride.speed, "v")):
-        if mod is None:
-            continue
-        t, g = _series(log, f"{mod.name}.gains")
-        g = g.reshape(-1, 3)
-        for i, (name, c) in enumerate((("K_P", "r"), ("K_I", "g"), ("K_D", "b"))):
-            a.plot(t - t0, g[:, i], c, label=f"{name}^{sym}(n)")
-        a.set_ylabel(f"({'b' if sym == 'traj' else 'c'}) {sym} gains")
-        a.legend(fontsize=7)
-    ax[0].set_title(label)
-    t, v = log.times("true_v") - t0, log.values("true_v")
-    tv, vd = _series(log, "speed.e")
-    ax[2].plot(t, v, "g--", label="act v (truth)")
-    ax[2].axhline(0.0, color="r", label="ref v")
-    ax[2].set_ylabel("(d) v [m/s]")
-    ax[2].legend(fontsize=7)
-    for mod, style in ((ride.traj, "r-o"), (ride.speed, "b-s")):
-        if mod is not None and mod.mlc.batches:
-            b = mod.mlc.batches
-            ax[3].semilogy([x.t_end - t0 for x in b], [max(x.J, 1e-12) for x in b], style, ms=3,
-                           label=f"J ({mod.name}; both see the one e_v)")
-    ax[3].set_ylabel("(e) J (Eq. 6.17)")
-    ax[3].legend(fontsize=7)
-    _, _, tz, zd, za = zmp_errors(run, t0)
-    ax[4].plot(tz, zd * 1e3, "r", label="fin ref ZMP x (p^{d**})")
-    ax[4].plot(tz, za * 1e3, "g--", lw=0.8, label="act ZMP x")
-    ax[4].set_ylabel("Fig. 7.10: ZMP x [mm]")
-    ax[4].set_ylim(np.nanpercentile(za * 1e3, 1) - 20, np.nanpercentile(za * 1e3, 99) + 20) if za.size else None
-    ax[4].legend(fontsize=7)
-    ax[4].set_xlabel("t [s] from the release")

@@ -90,21 +90,19 @@ def boarding_steps(soles: dict, x: float = BOARD_X, v: VboardSpec = VBOARD) -> l
 
 
 def boarding_stack(p: SLCParams, T: float = DAMPING_T, learn: bool = True, v: VboardSpec = VBOARD,
-                   schedule: bool = True) -> tuple[Standing, SLCSchedule | None]:
+                   window: str | None = None) -> tuple[Standing, SLCSchedule]:
     """The boarding of §5.4.1 ready to run: :func:`boarding_body` settled on the floor, the
     :class:`~shintai.humanoid.balance.standing.Standing` stack on :func:`boarding_steps` (crouched by
     :data:`~shintai.humanoid.balance.standing.BOARDING_CROUCH`), D₀ = ``p.D0`` and T on every axis of both feet (Table
-    5.2; §5.4.1: the roll stays at D₀), and the SLC schedule inside the foot damping — learning (``learn``) or only
+    5.2; §5.4.1: the roll stays at D₀), and SLC in its slot after the foot damping — learning (``learn``) or only
     marking the same window (D = D₀ throughout: Fig. 5.6's run). ``humanoid.vboard-boarding`` runs it, and
-    ``humanoid.speed-governing`` rides on after it (Fig. 6.16). ``schedule=False``: no SLC inside the damping (the
-    schedule is None) — :mod:`~shintai.humanoid.vboard.solc` switches SLC in and out itself (§7.4.2)."""
+    ``humanoid.speed-governing`` rides on after it (Fig. 6.16). ``window``: the channel whose state opens and
+    closes SLC instead of its own landing guards (:mod:`~shintai.humanoid.vboard.solc` switches it, §7.4.2)."""
     body = boarding_body(v=v)
     settle_on_floor(body)
     soles, _ = stand_geometry(body)
-    sched = SLCSchedule(SLC(p), learn=learn) if schedule else None
-    st = Standing(steps=boarding_steps(soles, v=v), body=body, crouch=BOARDING_CROUCH, slc=sched)
-    for foot in st.damping.feet.values():
-        foot.D[:], foot.T = p.D0, T
+    sched = SLCSchedule(SLC(p), learn=learn, window=window)
+    st = Standing(steps=boarding_steps(soles, v=v), body=body, crouch=BOARDING_CROUCH, D=p.D0, T=T, learner=sched)
     return st, sched
 
 

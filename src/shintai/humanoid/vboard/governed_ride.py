@@ -1,6 +1,6 @@
 """MLC speed governing on HRP2 riding the V-BOARD (seed 000 §6.4, Figs. 6.13, 6.15–6.17): the riding rig
 (:class:`~shintai.humanoid.vboard.ride.VboardRide`, behaviour level 3) with
-:class:`~shintai.humanoid.learning.mlc.SpeedGovernor` learning the v and ω PID gains online, for the scenarios
+:class:`~shintai.humanoid.vboard.governor.SpeedGovernor` learning the v and ω PID gains online, for the scenarios
 ``humanoid.speed-governing`` and ``humanoid.integrator-comparison``.
 
 * **Start** (§6.4.1, Fig. 6.15): "図 6.15,図 6.16 はともに学習の開始までは行動レベル2であり、調速行動制御系を OFF
@@ -33,7 +33,8 @@ import numpy as np
 from shintai.core.recorder import Recorder
 from shintai.humanoid.vboard.boarding import boarding_stack
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.learning.mlc import MLC_OMEGA, MLC_V, MLCParams, SpeedGovernor
+from shintai.humanoid.learning.mlc import MLC_OMEGA, MLC_V, MLCParams
+from shintai.humanoid.vboard.governor import GatedGovernor
 from shintai.humanoid.vboard.plant_id import identified_plant
 from shintai.humanoid.learning.prior_value_integrator import R_SAT_V, PriorValueIntegrator
 from shintai.humanoid.learning.slc import SLCParams
@@ -45,22 +46,6 @@ START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets 
 PLANTS = ("board", "table6.2")
 MODES = ("corrected", "saturated", "plain")
 GOVERNOR = "speed_governor"
-
-
-class GatedGovernor(SpeedGovernor):
-    """:class:`~shintai.humanoid.learning.mlc.SpeedGovernor` that is off (zero increments, no PID, no learning) until
-    ``start(snapshot)`` first holds (§6.4.1: level 2 until learning starts); ``t_start`` is that instant."""
-
-    def __init__(self, start, **kw):
-        super().__init__(**kw)
-        self.start, self.t_start = start, None
-
-    def update(self, snapshot):
-        if self.t_start is None:
-            if not self.start(snapshot):
-                return {self.channel: np.zeros(2)}
-            self.t_start = float(snapshot["t"])
-        return super().update(snapshot)
 
 
 def plant_values(plant: str) -> dict:
@@ -84,7 +69,7 @@ def mlc_params(plant: dict, eta_scale: float = 1.0) -> tuple[MLCParams, MLCParam
 
 def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gains=((0.0,) * 3,) * 2,
                   start_delay: float = START_DELAY, eta_scale: float = 1.0, boarding: bool = False,
-                  **ride_kw) -> VboardRide:
+                  theta_o_error_deg: float = 0.0, **ride_kw) -> VboardRide:
     """A lift-placed :class:`VboardRide` at level 3 whose governor is a :class:`GatedGovernor` with MLC on the
     given plant and integrator ``mode``; learning starts ``start_delay`` after the lift lets go (or at
     ``start_delay`` without a lift). ``boarding``: Fig. 6.16's start instead — the robot boards by itself from
@@ -97,48 +82,47 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
     if not start_delay >= 0.0:
         raise ValueError(f"start_delay must be >= 0, got {start_delay!r}")
-    sched = None
+    stack = sched = None
     if boarding:
-        st, sched = boarding_stack(SLCParams(), v=scooter_spec(ride_kw.get("theta_o_error_deg", 0.0)))
+        stack = boarding_stack(SLCParams(), v=scooter_spec(theta_o_error_deg))
+        sched = stack[1]
         ride_kw = {k: v for k, v in ride_kw.items() if k != "D"}  # the boarding's own (learned) gains
-        ride = VboardRide(level=3, standing=st, **ride_kw)
-        ride.boarding = (st, sched)
-    else:
-        ride = VboardRide(level=3, **ride_kw)
-        ride.boarding = None
-    lift = ride.lift
 
-    def start(snapshot) -> bool:
-        if sched is not None:
-            return sched.t_stop is not None
-        if lift is None:
-            return float(snapshot["t"]) >= start_delay
-        return lift.released and float(snapshot["t"]) >= lift.t_release + start_delay
+    def governor(lift):
+        def start(snapshot) -> bool:
+            if sched is not None:
+                return sched.t_stop is not None
+            if lift is None:
+                return float(snapshot["t"]) >= start_delay
+            return lift.released and float(snapshot["t"]) >= lift.t_release + start_delay
+        return GatedGovernor(start, params=mlc_params(plant, eta_scale), gains0=gains, mode=mode, learn=learn,
+                             name=GOVERNOR)
 
-    gov = GatedGovernor(start, params=mlc_params(plant, eta_scale), gains0=gains, mode=mode, learn=learn, name=GOVERNOR)
-    ride.stages = [[gov if m is ride.governor else m for m in stage] for stage in ride.stages]
-    ride.governor = gov
+    ride = VboardRide(level=3, theta_o_error_deg=theta_o_error_deg, governor=governor,
+                      standing=stack[0] if stack else None, **ride_kw)
+    ride.boarding = stack
     return ride
 
 
 VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
 
 
-def governed_rig(params: dict, mode: str, seed: int, learn: bool = True, boarding: bool = False) -> Rig:
-    """One run of the scenarios: :func:`governed_ride` from their parameters (``plant``, ``learn_s``,
-    ``start_delay_s``, ``eta_scale``, ``theta_o_error_deg``, ``damping_d``), stopping at a fall or ``learn_s`` after
-    the learning start; records the ride's signals every 5 ticks. ``boarding``: Fig. 6.16's self-boarding start."""
-    pv = plant_values(params["plant"])
-    ride = governed_ride(pv, mode=mode, learn=learn, start_delay=params.get("start_delay_s", START_DELAY),
-                         theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                         eta_scale=params.get("eta_scale", 1.0), seed=seed, boarding=boarding)
+def governed_rig(plant: str, learn_s: float, mode: str, seed: int, theta_o_error_deg: float, D: float,
+                 start_delay: float = START_DELAY, eta_scale: float = 1.0, learn: bool = True,
+                 boarding: bool = False) -> Rig:
+    """One run of the scenarios: :func:`governed_ride` on the plant named ``plant`` (:func:`plant_values`),
+    stopping at a fall or ``learn_s`` after the learning start; records the ride's signals every 5 ticks.
+    ``boarding``: Fig. 6.16's self-boarding start."""
+    pv = plant_values(plant)
+    ride = governed_ride(pv, mode=mode, learn=learn, start_delay=start_delay, theta_o_error_deg=theta_o_error_deg,
+                         D=D, eta_scale=eta_scale, seed=seed, boarding=boarding)
     ride.plant = pv
     before = ride.boarding[0].duration if boarding else 0.0  # the boarding plan's length: a bound on the start
 
     def until(snapshot) -> bool:
         t0 = ride.governor.t_start
-        return ride.fallen() or (t0 is not None and float(snapshot["t"]) >= t0 + params["learn_s"])
-    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=before + params["learn_s"] + 10.0,
+        return ride.fallen() or (t0 is not None and float(snapshot["t"]) >= t0 + learn_s)
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=before + learn_s + 10.0,
                until=until, record={5: ride.signals}, view=VIEW, state=ride)
 
 
@@ -193,3 +177,9 @@ def replay_integrator(series: dict, mode: str, r_sat: float = R_SAT_V, dt: float
         if i and KI[i] != KI[i - 1]:  # the run's MLC set a new gain at tick i, effective from i+1
             integ.set_gain(KI[i])
     return out
+
+
+def increase_ticks(s: dict) -> np.ndarray:
+    """Ticks k where an I-gain increase first acts (u_I(k) − u_I(k−1) is the jump; see ui_jumps)."""
+    k = np.flatnonzero(np.diff(s["gains"][:, 1]) > 0) + 2
+    return k[k < s["uI"].size]

@@ -19,31 +19,23 @@ from shintai.humanoid.vboard.ride import (
     square_wave,
 )
 from shintai.scenarios.experiment import Rig, run_rig
-from shintai.scenarios.registry import Param
 
 AXES = ("v", "omega")
-PARAMS = [
-    Param("excite_s", 8.0, "length of the excitation of each run (v, ω) [s]", lo=2.0, hi=60.0),
-    Param("amplitude_rad", EXCITE_AMPLITUDE, "square-wave amplitude of u_v [rad per 4 ms] (ours)", lo=1e-6, hi=5e-4),
-    Param("period_s", EXCITE_PERIOD, "square-wave period [s] (ours)", lo=0.2, hi=10.0),
-    Param("theta_o_error_deg", 0.3, "true θ_O minus the regression intercept [deg] (ours, as humanoid.vboard-levels)",
-          lo=-3.0, hi=3.0),
-    Param("damping_d", D_VBOARD, "foot damping gain D [N m s/rad] (§5.4.2)", lo=1.0, hi=1000.0),
-]
-DEFAULTS = {p.name: p.default for p in PARAMS}
-
+EXCITE_S = 8.0  # s, chosen: the length of each run's excitation
+THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression intercept, as humanoid.vboard-levels
 START_S = 2.0  # s, chosen: the excitation starts after the lift has let go (≈1.0 s) and the stack has settled
 # Eq. 6.10 with K_R ≈ K_L (Eq. 6.11), in our units (u in rad per control period): the board-side gains
 K_V_EQ610 = VBOARD.wheel_radius / CONTROL_PERIOD * (VBOARD.gain("r") + VBOARD.gain("l")) / 2
 K_OMEGA_EQ610 = VBOARD.wheel_radius / CONTROL_PERIOD * (VBOARD.gain("r") + VBOARD.gain("l")) / VBOARD.track
+VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}
 
 
-def excitation(params, axis: str):
-    """A square wave on u_v (run ``v``) or u_ω (run ``omega``) from START_S for ``excite_s`` (chosen: the thesis
+def excitation(axis: str, amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERIOD,
+               span: float = EXCITE_S):
+    """A square wave on u_v (run ``v``) or u_ω (run ``omega``) from START_S for ``span`` s (chosen: the thesis
     does not say what input Fig. 6.9's data had). u_ω's amplitude is u_v's × W/2: the same wheel-speed swing.
     One run per axis, each from a fresh boarding (level 2 leaves yaw free: ω creeps over a long run)."""
-    a, per, span = params["amplitude_rad"], params["period_s"], params["excite_s"]
-    wave = square_wave(a if axis == "v" else a * VBOARD.track / 2, per, START_S)
+    wave = square_wave(amplitude if axis == "v" else amplitude * VBOARD.track / 2, period, START_S)
 
     def u(t: float):
         x = wave(t) if t < START_S + span else 0.0
@@ -51,15 +43,18 @@ def excitation(params, axis: str):
     return u
 
 
-def rig(params, variant, seed):
-    ride = VboardRide(level=2, theta_o_error_deg=params["theta_o_error_deg"], D=params["damping_d"],
-                      excite=excitation(params, variant), seed=seed)
+def plant_id_rig(axis: str, seed: int, excite_s: float = EXCITE_S, amplitude: float = EXCITE_AMPLITUDE,
+                 period: float = EXCITE_PERIOD, theta_o_error_deg: float = THETA_O_ERROR_DEG,
+                 D: float = D_VBOARD) -> Rig:
+    """One identification run: level 2 with the :func:`excitation` of ``axis``, recording the boards' pitch."""
+    ride = VboardRide(level=2, theta_o_error_deg=theta_o_error_deg, D=D,
+                      excite=excitation(axis, amplitude, period, excite_s), seed=seed)
 
     def board(snapshot):
         th = {s: float(snapshot[f"board_{s}_pitch"][0]) for s in "rl"}
         return {"board_R": th["r"], "board_L": th["l"]}
-    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=START_S + params["excite_s"],
-               until=lambda s: ride.fallen(), record={1: board}, view={"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}, state=ride)
+    return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=START_S + excite_s,
+               until=lambda s: ride.fallen(), record={1: board}, view=VIEW, state=ride)
 
 
 def fit(u, y, window):
@@ -82,7 +77,8 @@ def window(t):
     return t >= START_S
 
 
-def metrics(runs, params):
+def identification(runs) -> dict:
+    """The fits of both runs (``runs['v']``, ``runs['omega']``), from u and from the boards' pitch."""
     (tv, sv), (tw, sw) = series(runs["v"]), series(runs["omega"])
     wv, ww = window(tv), window(tw)
     fv, fw = fit(sv["foot_pitch.u_v"], sv["sensors.v"], wv), fit(sw["foot_pitch.u_omega"], sw["sensors.omega"], ww)
@@ -114,7 +110,7 @@ def identified_plant(source: str = "board") -> dict:
     (K_v < 0 in our rig). Returns {"K_v", "T_v", "K_omega", "T_omega", "r2_v", "r2_omega"}."""
     if source not in ("board", "u"):
         raise ValueError(f"source must be 'board' or 'u', got {source!r}")
-    m = metrics({axis: run_rig(rig(DEFAULTS, axis)) for axis in AXES}, DEFAULTS)
+    m = identification({axis: run_rig(plant_id_rig(axis, 0)) for axis in AXES})  # the scenario's seed-0 run
     tag = "_board" if source == "board" else ""
     return {"K_v": m[f"K_v{tag}"], "T_v": m[f"T_v{tag}_s"], "K_omega": m[f"K_omega{tag}"],
             "T_omega": m[f"T_omega{tag}_s"], "r2_v": m[f"r2_v{tag}"], "r2_omega": m[f"r2_omega{tag}"]}

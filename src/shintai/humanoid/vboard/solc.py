@@ -9,33 +9,37 @@ boards the V-BOARD, then MLC speed governing on it, as one :class:`~shintai.core
 
 * ``init`` — the robot on the floor (and stepping, the AutoBalancer plan runs throughout): no learning, no
   governor; leaves when the left foot lands on its board (f_Lz > F_thre after ≥ ``air_time`` at or below it);
-* ``slc`` — Eq. 5.17 on the left-foot pitch D every tick (:class:`SLCPhase`), D₀ = 22 on entry; leaves when the
-  right foot lands (f_Rz, likewise), the right pitch taking the learned D;
-* ``mlc`` — the speed governor learning its PID gains from 0 (:class:`~shintai.humanoid.learning.mlc.SpeedGovernor`,
+* ``slc`` — SLC's window: Eq. 5.17 on the left-foot pitch D every tick, D₀ = 22 on entry; leaves when the right
+  foot lands (f_Rz, likewise), the right pitch taking the learned D;
+* ``mlc`` — the speed governor learning its PID gains from 0 (:class:`~shintai.humanoid.vboard.governor.SpeedGovernor`,
   Table 6.6, Eqs. 6.17–6.32); leaves when Eq. 6.32 holds on both axes;
 * ``done`` — the same PID with the learned gains, no more learning (:class:`DonePhase`).
 
-The landing guards are :class:`~shintai.humanoid.learning.slc.SLCSchedule`'s (run with ``learn=False`` as a detector, so the
-two boardings share one definition). Order within a tick (chosen; Fig. 5.4's
-sequence kept): the switcher is a stage of its own between the stabilizer (whose f_Lz, f_Rz of this tick the guards
-read) and the damping, so ``slc`` computes D(t+Δt) from the e_τ, δ the damping produced on the previous tick and the
-damping then steps with it — δ from D, then D from e_τ and δ, as SLC inside the damping module does, with SLC's
-input one 4 ms tick older.
+The landing guards are :class:`~shintai.humanoid.learning.slc.LandingWindow`'s (the boarding's own). The switcher
+is the stack's supervisor slot (after the stabilizer, whose f_Lz, f_Rz of this tick the guards read); each phase writes SLC's window state on ``slc_window``, and
+SLC itself is the boarding stack's :class:`~shintai.humanoid.learning.slc.SLCSchedule` after the damping, the one
+writer of D — in the tick order of Fig. 5.4 that every stack runs: δ(t) from D(t), then D(t+Δt) from e_τ(t), δ(t).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from shintai.core.runtime import Module, Switcher
+from shintai.core.runtime import SET, Module, Switcher, declare
+from shintai.humanoid.learning.slc import WINDOW, LandingWindow, SLCParams
 from shintai.humanoid.vboard.boarding import boarding_stack
-from shintai.humanoid.learning.mlc import SpeedGovernor
-from shintai.humanoid.learning.slc import PITCH, SLC, SLCParams, SLCSchedule
 from shintai.humanoid.vboard.governed_ride import mlc_params
+from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.ride import VboardRide, scooter_spec
 
 PHASES = ("init", "slc", "mlc", "done")
 CHANNEL = "foot_pitch"
+SLC_WINDOW = "slc_window"  # the phase as SLC's window state (0, 1, 2 of slc.WINDOW), written by the active phase
+CHANNELS = declare(SLC_WINDOW, kind=SET)
+
+
+def window(state: str) -> dict:
+    return {SLC_WINDOW: float(WINDOW.index(state))}
 
 
 class Idle(Module):
@@ -45,39 +49,28 @@ class Idle(Module):
         super().__init__(name, period)
 
     def update(self, snapshot):
-        return {CHANNEL: np.zeros(2)}
+        return {CHANNEL: np.zeros(2), **window("waiting")}
 
 
 class SLCPhase(Module):
-    """``slc``: Eq. 5.17 on the left-foot pitch damping gain every tick (Table 7.7's left column); on entry D = D₀.
-    ``feet`` is the :class:`~shintai.humanoid.balance.foot_damping.FootDampingModule`'s feet (``"L"``, ``"R"``)."""
+    """``slc``: SLC's window is open (Table 7.7's left column); the governor is off."""
 
-    def __init__(self, feet: dict, slc: SLC | None = None, name: str = "slc", period: float | None = None):
+    def __init__(self, name: str = "slc", period: float | None = None):
         super().__init__(name, period)
-        self.feet, self.slc = feet, slc or SLC()
-        self.updates = 0
-
-    def reset(self, snapshot) -> None:
-        self.feet["L"].D[PITCH] = self.slc.D
 
     def update(self, snapshot):
-        left = self.feet["L"]
-        left.D[PITCH] = self.slc.update(left.e_tau[PITCH], left.delta[PITCH])
-        self.updates += 1
-        self.log(snapshot["t"], **{f"{self.name}.D": left.D[PITCH]})
-        return {CHANNEL: np.zeros(2)}
+        return {CHANNEL: np.zeros(2), **window("learning")}
 
 
 class MLCPhase(SpeedGovernor):
-    """``mlc``: the speed governor learning from its initial gains (Table 7.7's right column); on entry the right
-    foot's pitch takes the D SLC learned (§5.4.1)."""
+    """``mlc``: the speed governor learning from its initial gains (Table 7.7's right column); SLC's window is
+    closed, the right foot's pitch holding the D SLC learned (§5.4.1)."""
 
-    def __init__(self, feet: dict, name: str = "mlc", **kw):
+    def __init__(self, name: str = "mlc", **kw):
         super().__init__(name=name, **kw)
-        self.feet = feet
 
-    def reset(self, snapshot) -> None:
-        self.feet["R"].D[PITCH] = self.feet["L"].D[PITCH]
+    def update(self, snapshot):
+        return {**super().update(snapshot), **window("done")}
 
 
 class DonePhase(Module):
@@ -91,21 +84,21 @@ class DonePhase(Module):
         self.governor.learn = False
 
     def update(self, snapshot):
-        return self.governor.update(snapshot)
+        return {**self.governor.update(snapshot), **window("done")}
 
 
-def solc_switcher(feet: dict, slc: SLC, governor: MLCPhase, detector: SLCSchedule | None = None,
+def solc_switcher(params: SLCParams, governor: MLCPhase, detector: LandingWindow | None = None,
                   name: str = "solc") -> Switcher:
-    """INIT → SLC → MLC → DONE (module docstring). ``detector``: an :class:`SLCSchedule` with ``learn=False`` whose
-    state is the landing guards' (default: one on ``slc``'s F_thre and air time)."""
-    det = detector or SLCSchedule(SLC(slc.params), learn=False)
+    """INIT → SLC → MLC → DONE (module docstring). ``detector``: the landing guards (default: a
+    :class:`LandingWindow` on ``params``' F_thre and air time)."""
+    det = detector or LandingWindow(params)
 
     def landed(state: str):
-        return lambda snapshot: det.step(snapshot, feet) == state
+        return lambda snapshot: det.step(snapshot) == state
 
     transitions = [("init", "slc", landed("learning")), ("slc", "mlc", landed("done")),
                    ("mlc", "done", lambda snapshot: governor.converged)]
-    sw = Switcher([Idle(), SLCPhase(feet, slc), governor, DonePhase(governor)], transitions, initial="init", name=name)
+    sw = Switcher([Idle(), SLCPhase(), governor, DonePhase(governor)], transitions, initial="init", name=name)
     sw.detector = det
     return sw
 
@@ -122,16 +115,15 @@ def switch_times(sw: Switcher) -> dict[str, float]:
 def solc_ride(plant: dict, theta_o_error_deg: float = 0.0, eta_scale: float = 1.0, seed: int = 0,
               params: SLCParams | None = None):
     """HRP2 on the floor before the V-BOARD running SOLC: the boarding stack of
-    :func:`~shintai.humanoid.vboard.boarding.boarding_stack` without its own SLC schedule, ridden on as
-    :class:`~shintai.humanoid.vboard.ride.VboardRide` (sensors, foot-pitch integration), the switcher (module
-    docstring) as its own stage after the stabilizer; MLC on ``plant``'s K, T (as ``humanoid.speed-governing``).
-    ``ride.switcher``, ``ride.governor`` (the ``mlc`` child)."""
+    :func:`~shintai.humanoid.vboard.boarding.boarding_stack` with SLC on the switcher's window, ridden on as
+    :class:`~shintai.humanoid.vboard.ride.VboardRide` (sensors, foot-pitch integration) with the switcher
+    (module docstring) in its supervisor slot; MLC on ``plant``'s K, T (as ``humanoid.speed-governing``).
+    ``ride.switcher``, ``ride.governor`` (the ``mlc`` child), ``ride.slc`` (SLC, the writer of D)."""
     p = params or SLCParams()
-    st, _ = boarding_stack(p, v=scooter_spec(theta_o_error_deg), schedule=False)
-    ride = VboardRide(level=2, standing=st, theta_o_error_deg=theta_o_error_deg, seed=seed)
-    feet = st.damping.feet
-    gov = MLCPhase(feet, params=mlc_params(plant, eta_scale))
-    ride.switcher = solc_switcher(feet, SLC(p), gov)
-    ride.stages.insert(2, [ride.switcher])  # after [references, sensors] and [stabilizer]
-    ride.governor = gov
+    st, slc = boarding_stack(p, v=scooter_spec(theta_o_error_deg), window=SLC_WINDOW)
+    gov = MLCPhase(params=mlc_params(plant, eta_scale))
+    switcher = solc_switcher(p, gov)
+    ride = VboardRide(level=2, standing=st, theta_o_error_deg=theta_o_error_deg, seed=seed, supervisor=switcher)
+    ride.switcher, ride.governor, ride.slc = switcher, gov, slc
+    ride.channels = ride.channels + list(CHANNELS.values())
     return ride

@@ -19,16 +19,12 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import SCENE
-from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
-from shintai.humanoid.constants import HRP2_LINKS, STANDING_POSTURE, SUBSTEPS, VBOARD, VboardSpec
-from shintai.humanoid.robots.hrp2 import LEG, SIDES, add_hrp2, side_posture
+from shintai.humanoid.balance.scooter import posture_on_pads
+from shintai.humanoid.constants import SCENE, SUBSTEPS, VBOARD, VboardSpec
+from shintai.humanoid.robots.hrp2 import add_hrp2
 from shintai.humanoid.vboard.vehicle import PAD, add_vboard, install_firmware, vboard_state
-from shintai.sim import ik
 from shintai.sim.body import MujocoBody
-
-SOLE = {s: f"{s}_sole" for s in SIDES}
-COM_ITERATIONS = 3  # waist moves then IK; the mass centre settles over the axle to < 1 mm in 2–3
+from shintai.sim.spec import fill_keyframe, scene_spec
 
 
 def standing_posture(model: mujoco.MjModel, v: VboardSpec = VBOARD) -> np.ndarray:
@@ -39,40 +35,6 @@ def standing_posture(model: mujoco.MjModel, v: VboardSpec = VBOARD) -> np.ndarra
     qpos = model.qpos0.copy()
     vboard_state(model, qpos, None, v)
     return posture_on_pads(model, qpos, v.deck_height, PAD, "vboard_centre", "on the V-BOARD")
-
-
-def posture_on_pads(model: mujoco.MjModel, qpos: np.ndarray, deck_height: float, pads: dict[str, str],
-                    centre_site: str, where: str, flat_soles: bool = False) -> np.ndarray:
-    """HRP2 standing with each sole on its pad site (the pads' orientation, or level with ``flat_soles``) and its
-    mass centre over ``centre_site`` in x: the standing knee bend, the waist lowered to the deck, then
-    :data:`COM_ITERATIONS` rounds of leg IK and a waist shift. Shared by the V-BOARD and the Ninebot.
-
-    Raises ValueError if the IK does not reach the pads.
-    """
-    posture = side_posture(STANDING_POSTURE)
-    set_joints(model, qpos, posture)
-    hip, knee = posture["l_hip_pitch"], posture["l_knee_pitch"]
-    leg = HRP2_LINKS.thigh * np.cos(hip) + HRP2_LINKS.shank * np.cos(hip + knee)
-    root = model.joint("root").qposadr[0]
-    qpos[root:root + 3] = [0.0, 0.0, deck_height - HRP2_LINKS.hip_z + leg + HRP2_LINKS.ankle_height]
-    data = mujoco.MjData(model)
-    waist = model.body("waist").id
-    for _ in range(COM_ITERATIONS):
-        data.qpos[:] = qpos
-        mujoco.mj_kinematics(model, data)
-        targets = {SOLE[s]: (data.site(pads[s]).xpos.copy(),
-                             np.eye(3) if flat_soles else data.site(pads[s]).xmat.reshape(3, 3).copy())
-                   for s in SIDES}
-        result = ik.solve(model, targets, qpos, LEG, posture={j: posture[j] for j in LEG if j in posture})
-        if not result.ok:
-            raise ValueError(f"standing posture {where} not reachable: residual {result.residual[0]:.4f} m, "
-                             f"{result.residual[1]:.4f} rad")
-        qpos = result.q
-        data.qpos[:] = qpos
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_comPos(model, data)
-        qpos[root] -= data.subtree_com[waist][0] - data.site(centre_site).xpos[0]
-    return qpos
 
 
 def build_vboard_stand(v: VboardSpec = VBOARD, substeps: int = SUBSTEPS) -> MujocoBody:
