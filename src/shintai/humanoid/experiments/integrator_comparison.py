@@ -16,6 +16,7 @@ from shintai.humanoid.vboard.governed_ride import (
     START_DELAY,
     governed_rig,
     governor_series,
+    increase_ticks,
     replay_integrator,
     ui_jumps,
 )

@@ -64,7 +64,7 @@ experiment(
     checks=[
         Check("speed_ratio", ">", 1.0,
               "follows from our schedules: 56 sequential samples of 2Δt against 36 simultaneous samples of "
-              "2 × 0.8Δt, 1.944 (pinned by tests/humanoid/test_ride.py), with D_c fixing the distance per "
+              "2 × 0.8Δt, 1.944 (pinned by tests/humanoid/tricycle/test_ride.py), with D_c fixing the distance per "
               "revolution; not a comparison with the thesis (see speed_ratio_vs_thesis)", kind="consistency"),
         Check("speed_ratio", ">=", 1 / WAIT_FRACTION_IMPROVED,
               "derived from our inputs: the 80 % waits alone give 1/0.8; simultaneous steering removes the "

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid.unicycle.rig import V_DIVERGED, series
+from shintai.humanoid.unicycle.rig import V_DIVERGED, series, zmp_errors
 
 
 def draw_learning(ax, run, label: str) -> None:

@@ -179,7 +179,7 @@ def boarding(ctx, runs, params):
                 a.legend(fontsize=7, loc="upper left")
                 a.grid(alpha=0.3)
     with ctx.figure("boarding", 3, 1, sharex=True, figsize=(8, 7)) as (_, ax):
-        for variant in VARIANTS:
+        for variant in runs:
             log = runs[variant].log
             t = log.times("J")
             ax[0].plot(t, log.values("f_Lz"), label=f"f_Lz {variant}")
