@@ -17,5 +17,5 @@ Units, one per vehicle, each importing only the shared layers:
 
 Across the units: :mod:`~shintai.humanoid.models` (the models for export), :mod:`~shintai.humanoid.coverage`
 (the thesis's experiments, one row each), :mod:`~shintai.humanoid.benchmarks`; one file per scenario in
-``experiments/``, its account in ``notes/``. MjSpec helpers: :mod:`shintai.sim.spec`.
+:mod:`~shintai.humanoid.experiments`, its account in ``notes/``. MjSpec helpers: :mod:`shintai.sim.spec`.
 """
