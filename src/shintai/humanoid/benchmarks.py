@@ -20,19 +20,13 @@ import time
 import mujoco
 import numpy as np
 
-from shintai.humanoid.tricycle import riding
-from shintai.humanoid.constants import (
-    CONTROL_PERIOD,
-    D_THETA_C,
-    D_THETA_H,
-    DEG,
-    DELTA_T,
-)
-from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
+from shintai.humanoid.constants import CONTROL_PERIOD, D_THETA_C, D_THETA_H, DEG, DELTA_T
+from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+from shintai.humanoid.tricycle import riding
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.operation import OperationSchedule
 from shintai.humanoid.tricycle.ride import Ride, slalom_goals
-from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.tricycle.rig import crank_schedule, legs_switcher, pedal_rig
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark

@@ -14,8 +14,8 @@ from shintai.humanoid.balance.foot_attitude import (
     quat_to_rot,
     two_foot_zmp,
 )
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES
 from shintai.humanoid.robots.hrp2 import build_hrp2
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES
 
 
 def test_eq_6_1_gives_the_true_foot_attitude_of_a_tilted_robot():

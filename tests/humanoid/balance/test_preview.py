@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Loop, Module
-from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.balance.preview import (
     CHANNELS,
     PREVIEW_TIME,
@@ -19,6 +18,7 @@ from shintai.humanoid.balance.preview import (
     preview_gains,
     zmp_plan,
 )
+from shintai.humanoid.constants import CONTROL_PERIOD
 
 ZC = 0.82  # about HRP2's (test_hrp2_com_height), fixed so the other tests do not build the model
 

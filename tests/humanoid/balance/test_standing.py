@@ -7,10 +7,8 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.constants import VBOARD
 from shintai.humanoid.balance.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.balance.preview import hrp2_com_height
-from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.humanoid.balance.stabilizer import (
     LIP_K,
     StabilizerModule,
@@ -32,6 +30,8 @@ from shintai.humanoid.balance.standing import (
     push_recovery,
     swing_point,
 )
+from shintai.humanoid.constants import VBOARD
+from shintai.humanoid.robots.hrp2 import ft_reaction
 
 FEET = {"l": np.array([0.0, 0.06]), "r": np.array([0.0, -0.06])}
 FOOT_X = (-0.105, 0.135)  # the sole box in x (centre 15 mm ahead of the sole point, 240 mm long)

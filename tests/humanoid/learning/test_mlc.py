@@ -17,13 +17,8 @@ from shintai.humanoid.learning.mlc import (
     Sensitivity,
     recursion_coefficients,
 )
+from shintai.humanoid.learning.speed_governing import K_V, T_V, IdentifiedScooterPlant, pid_loop_stable
 from shintai.humanoid.vboard.governor import SpeedGovernor
-from shintai.humanoid.learning.speed_governing import (
-    K_V,
-    T_V,
-    IdentifiedScooterPlant,
-    pid_loop_stable,
-)
 
 DT = 0.004
 

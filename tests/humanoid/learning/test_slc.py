@@ -7,18 +7,13 @@ import pytest
 
 from shintai.core.runtime import Body, Loop, declare
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
-from shintai.humanoid.balance.foot_damping import (
-    DAMPING_D_FLAT,
-    FootDamping,
-    FootDampingModule,
-    damping_step,
-)
+from shintai.humanoid.balance.foot_damping import DAMPING_D_FLAT, FootDamping, FootDampingModule, damping_step
 from shintai.humanoid.learning.slc import (
     F_THRE,
     SLC,
     SLC_D0,
-    SLCParams,
     LandingWindow,
+    SLCParams,
     SLCSchedule,
     slc_cost,
     slc_gradient,

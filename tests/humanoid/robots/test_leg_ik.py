@@ -7,15 +7,8 @@ import numpy as np
 import pytest
 
 from shintai.humanoid.constants import HRP2_LINKS, STANDING_POSTURE
-from shintai.humanoid.robots.leg_ik import (
-    JOINT_NAMES,
-    LIMITS,
-    hip_point,
-    leg_fk,
-    leg_ik,
-    legs_ik,
-)
 from shintai.humanoid.robots.hrp2 import build_hrp2, side_posture
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, LIMITS, hip_point, leg_fk, leg_ik, legs_ik
 from shintai.sim import ik
 
 

@@ -9,8 +9,8 @@ import pytest
 from shintai.core.geometry import roll_of
 
 from shintai.core.runtime import ChannelError, FunctionModule, Loop
-from shintai.humanoid.tricycle import ch4_riding as cr
 from shintai.humanoid.constants import DEG, TRICYCLE
+from shintai.humanoid.tricycle import ch4_riding as cr
 from shintai.humanoid.tricycle.navigation import crank_rate
 
 

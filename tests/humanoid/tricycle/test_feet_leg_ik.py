@@ -8,10 +8,10 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.tricycle import riding
 from shintai.humanoid.constants import DEG, HRP2_LINKS, THETA_C_INIT
-from shintai.humanoid.tricycle.hrp2_limbs import SOLE_IN_VEHICLE, riding_limbs
 from shintai.humanoid.robots.leg_ik import hip_point
+from shintai.humanoid.tricycle import riding
+from shintai.humanoid.tricycle.hrp2_limbs import SOLE_IN_VEHICLE, riding_limbs
 from shintai.humanoid.tricycle.vehicle import pedal_position
 from shintai.sim import ik
 

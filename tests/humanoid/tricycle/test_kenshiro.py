@@ -6,8 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.tricycle.active import pedal_phase, v
 from shintai.humanoid.constants import DEG, DELTA_C, KENSHIRO, KENSHIRO_RELAXED_TENDON, THETA_C_INIT
+from shintai.humanoid.robots.kenshiro import build_kenshiro, leg_ik, pedal_axle
+from shintai.humanoid.tricycle.active import pedal_phase, v
 from shintai.humanoid.tricycle.kenshiro import (
     PITCH_GRID,
     PassiveLegUpdate,
@@ -20,7 +21,6 @@ from shintai.humanoid.tricycle.kenshiro import (
     pedal_plan,
     step_margin,
 )
-from shintai.humanoid.robots.kenshiro import build_kenshiro, leg_ik, pedal_axle
 from shintai.scenarios.runner import run_scenario
 
 K = KENSHIRO

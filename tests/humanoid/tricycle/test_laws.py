@@ -7,18 +7,6 @@ from scipy.integrate import solve_ivp
 
 from shintai.core.runtime import Body, Loop, declare
 from shintai.core.search_index import StabilityMonitor, estimate_sign_matrix, offline_index
-from shintai.humanoid.tricycle.active import (
-    R_y,
-    crank_angle_of_phase,
-    grip_plan,
-    in_active_region,
-    pedal_offline_index,
-    pedal_phase,
-    pedal_point,
-    pedal_trajectory,
-    pedal_update,
-    v,
-)
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,
     D_THETA_C,
@@ -31,6 +19,18 @@ from shintai.humanoid.constants import (
     THETA_C_INIT,
     THETA_H_MAX,
     TRICYCLE,
+)
+from shintai.humanoid.tricycle.active import (
+    R_y,
+    crank_angle_of_phase,
+    grip_plan,
+    in_active_region,
+    pedal_offline_index,
+    pedal_phase,
+    pedal_point,
+    pedal_trajectory,
+    pedal_update,
+    v,
 )
 from shintai.humanoid.tricycle.operation import LimbPair, OperationSchedule, role_switcher, travel_distance
 from shintai.humanoid.tricycle.passive import PASSIVE_SGN, ActiveImpedance, PassiveFunction

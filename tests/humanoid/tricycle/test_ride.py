@@ -7,10 +7,16 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.constants import DEG, D_THETA_C, D_THETA_H, F_TRG_PASSIVE_LEG_IMPROVED, THETA_C_INIT
-from shintai.humanoid.tricycle.ride import (expected_swaps, handle_crossings, leg_gains, route_goals, signed_travel,
-                                  slalom_goals)
+from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, F_TRG_PASSIVE_LEG_IMPROVED, THETA_C_INIT
 from shintai.humanoid.tricycle.operation import OperationSchedule
+from shintai.humanoid.tricycle.ride import (
+    expected_swaps,
+    handle_crossings,
+    leg_gains,
+    route_goals,
+    signed_travel,
+    slalom_goals,
+)
 from shintai.scenarios.runner import run_scenario
 
 

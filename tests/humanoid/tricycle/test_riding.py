@@ -8,11 +8,11 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.tricycle import riding
-from shintai.sim import ik
 from shintai.humanoid.constants import HRP2_LINKS, THETA_C_INIT, THETA_H_MAX
 from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.humanoid.tricycle import vehicle as tricycle
+from shintai.humanoid.tricycle import riding
+from shintai.sim import ik
 
 SIDES = ("l", "r")
 

@@ -8,10 +8,10 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.tricycle import riding
 from shintai.humanoid.constants import DEG, THETA_C_INIT
-from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.robots.hrp2 import ft_reaction
+from shintai.humanoid.tricycle import riding
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.vehicle import grip_position, pedal_position
 from shintai.scenarios.runner import run_scenario
 

@@ -8,11 +8,10 @@ import numpy as np
 import pytest
 
 from shintai.core.constants import GRAVITY
-from shintai.humanoid.constants import SOLE, SCENE
-from shintai.sim.spec import scene_spec
-from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_MASS
-from shintai.humanoid.unicycle.ride import K_TRAJ, MLC_TRAJ, T_TRAJ, ModifiedStabilizer, TrajectoryCorrection
+from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_MASS, SCENE, SOLE
 from shintai.humanoid.learning.speed_governing import SpeedPlant
+from shintai.humanoid.unicycle.constants import T_TRAJ
+from shintai.humanoid.unicycle.ride import K_TRAJ, MLC_TRAJ, ModifiedStabilizer, TrajectoryCorrection
 from shintai.humanoid.unicycle.vehicle import (
     NINEBOT,
     NinebotSpec,
@@ -26,6 +25,7 @@ from shintai.humanoid.unicycle.vehicle import (
 from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import scene_spec
 
 
 def test_zmp_to_speed_law_eqs_a5_a9():

@@ -5,9 +5,9 @@ the right foot's, D changes inside it only, and the right pitch takes the learne
 import numpy as np
 import pytest
 
-from shintai.humanoid.vboard.boarding import BOARD_X, boarding_body, boarding_steps
-from shintai.humanoid.constants import VBOARD
 from shintai.humanoid.balance.standing import settle_on_floor, stand_geometry
+from shintai.humanoid.constants import VBOARD
+from shintai.humanoid.vboard.boarding import BOARD_X, boarding_body, boarding_steps
 from shintai.scenarios.registry import ParameterError, get
 from shintai.scenarios.runner import run_scenario
 

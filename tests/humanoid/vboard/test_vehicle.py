@@ -10,13 +10,12 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.humanoid.constants import SOLE, SCENE
-from shintai.sim.spec import fill_keyframe, scene_spec
-from shintai.humanoid.constants import DEG, HRP2_MASS, VBOARD
-from shintai.humanoid.vboard.stand import build_vboard_stand
+from shintai.humanoid.constants import DEG, HRP2_MASS, SCENE, SOLE, VBOARD
 from shintai.humanoid.vboard import vehicle as vb
+from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.sim.body import MujocoBody
 from shintai.sim.export import load_models
+from shintai.sim.spec import fill_keyframe, scene_spec
 
 G = 9.81
 HALF_RIDER = HRP2_MASS / 2  # kg on each board

@@ -29,8 +29,8 @@ import numpy as np
 
 from shintai.core.geometry import rot_y, rot_z
 from shintai.humanoid.constants import F_THRE
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_fk
 from shintai.humanoid.robots.hrp2 import ft_reaction
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_fk
 from shintai.sim.body import MujocoBody
 
 # A foot counts in the ZMP when the floor pushes it up by more than the thesis's F_thre (§5.4.1).

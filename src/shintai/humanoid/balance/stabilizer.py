@@ -67,9 +67,9 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.core.geometry import wrap_pi
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
 from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
+from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------

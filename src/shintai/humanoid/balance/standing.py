@@ -38,22 +38,16 @@ import numpy as np
 
 from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
-from shintai.humanoid.constants import FLOOR, SOLE
-from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
 from shintai.humanoid.balance.foot_damping import DAMPING_D_FLAT, DAMPING_T, FootDampingModule
-from shintai.humanoid.law_params import check_real
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
 from shintai.humanoid.balance.preview import CHANNELS as PREVIEW_CHANNELS
-from shintai.humanoid.balance.preview import (
-    PLAN_HOLD_S,
-    Footstep,
-    PreviewModule,
-    zmp_plan,
-)
-from shintai.humanoid.robots.hrp2 import build_hrp2
+from shintai.humanoid.balance.preview import PLAN_HOLD_S, Footstep, PreviewModule, zmp_plan
 from shintai.humanoid.balance.stabilizer import CHANNELS as STABILIZER_CHANNELS
 from shintai.humanoid.balance.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
+from shintai.humanoid.constants import CONTROL_PERIOD, FLOOR, SOLE, VBOARD
+from shintai.humanoid.law_params import check_real
+from shintai.humanoid.robots.hrp2 import build_hrp2
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
 from shintai.sim.body import MujocoBody
 
 SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height

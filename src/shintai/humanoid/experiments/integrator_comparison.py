@@ -11,17 +11,15 @@ import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.learning.prior_value_integrator import R_SAT_V
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
 from shintai.humanoid.vboard.governed_ride import (
-    PLANTS,
-    START_DELAY,
     governed_rig,
     governor_series,
     increase_ticks,
     replay_integrator,
     ui_jumps,
 )
-from shintai.humanoid.vboard.ride import D_VBOARD
-from shintai.humanoid.vboard import plots
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 MODES = ("corrected", "saturated")

@@ -9,6 +9,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from shintai.humanoid.constants import DEG, NAVIGATION
 from shintai.humanoid.tricycle import plots
 from shintai.humanoid.tricycle.ch4_drive import (
     CH4_VIEW,
@@ -23,7 +24,6 @@ from shintai.humanoid.tricycle.ch4_drive import (
     vehicle_geoms,
 )
 from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
-from shintai.humanoid.constants import DEG, NAVIGATION
 from shintai.humanoid.tricycle.localisation import Localiser, box_map
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment

@@ -3,9 +3,16 @@ ones of seed 000 §3.5.4 (simultaneous steering and pedalling, 80 % waits, passi
 
 from __future__ import annotations
 
+from shintai.humanoid.constants import (
+    D_THETA_C,
+    D_THETA_H,
+    DEG,
+    DELTA_T,
+    F_TRG_PASSIVE_LEG_IMPROVED,
+    TRICYCLE,
+    WAIT_FRACTION_IMPROVED,
+)
 from shintai.humanoid.tricycle import plots
-from shintai.humanoid.constants import (D_THETA_C, D_THETA_H, DEG, DELTA_T, F_TRG_PASSIVE_LEG_IMPROVED, TRICYCLE,
-                                        WAIT_FRACTION_IMPROVED)
 from shintai.humanoid.tricycle.operation import OperationSchedule
 from shintai.humanoid.tricycle.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
 from shintai.humanoid.tricycle.rig import F_TRG

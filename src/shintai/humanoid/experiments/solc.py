@@ -8,9 +8,10 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.vboard.solc import PHASES, solc_ride, switch_times
-from shintai.humanoid.vboard.governed_ride import PLANTS, VIEW, governor_series, plant_values
 from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import PLANTS, VIEW
+from shintai.humanoid.vboard.governed_ride import governor_series, plant_values
+from shintai.humanoid.vboard.solc import PHASES, solc_ride, switch_times
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

@@ -11,16 +11,9 @@ import math
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG
-from shintai.humanoid.vboard.governed_ride import (
-    PLANTS,
-    START_DELAY,
-    governed_rig,
-    governor_series,
-    ui_jumps,
-    unstable_intervals,
-)
-from shintai.humanoid.vboard.ride import D_VBOARD
 from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
+from shintai.humanoid.vboard.governed_ride import governed_rig, governor_series, ui_jumps, unstable_intervals
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

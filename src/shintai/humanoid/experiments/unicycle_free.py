@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.unicycle.ride import PLACEMENTS
-from shintai.humanoid.unicycle.rig import P0_M, P0_PARAM, summary, unicycle_rig
 from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M, PLACEMENTS
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'

@@ -5,9 +5,9 @@ tracking's references instead (ours: see the notes for why)."""
 
 from __future__ import annotations
 
-from shintai.humanoid.unicycle.ride import PLACEMENTS
-from shintai.humanoid.unicycle.rig import P0_M, P0_PARAM, summary, unicycle_rig
 from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M, PLACEMENTS
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

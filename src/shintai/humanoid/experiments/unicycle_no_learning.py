@@ -3,8 +3,9 @@ lift (the thesis's supporting hand) letting go — does the speed run away? (see
 
 from __future__ import annotations
 
-from shintai.humanoid.unicycle.rig import P0_M, P0_PARAM, summary, unicycle_rig
 from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 

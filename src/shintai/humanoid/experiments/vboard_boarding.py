@@ -9,12 +9,12 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
 from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
-from shintai.humanoid.learning.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
 from shintai.humanoid.balance.standing import CHANNELS
-from shintai.humanoid.vboard.vehicle import board_pitch
+from shintai.humanoid.learning.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
 from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
+from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

@@ -4,15 +4,9 @@ Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.human
 
 from __future__ import annotations
 
-from shintai.humanoid.vboard.plant_id import (
-    AXES,
-    EXCITE_S,
-    THETA_O_ERROR_DEG,
-    identification,
-    plant_id_rig,
-)
 from shintai.humanoid.vboard import plots
-from shintai.humanoid.vboard.ride import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD
+from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, EXCITE_S, THETA_O_ERROR_DEG
+from shintai.humanoid.vboard.plant_id import AXES, identification, plant_id_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid.constants import DEG
 from shintai.humanoid.balance.scooter import chest_pitch
-from shintai.humanoid.vboard.ride import D_VBOARD, VboardRide
+from shintai.humanoid.constants import DEG
 from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD
+from shintai.humanoid.vboard.ride import VboardRide
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, experiment
 

@@ -40,11 +40,37 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import (SCENE, SERVO_DAMPRATIO, SOLE, ARM_JOINTS, ARMATURE_BIG, ARMATURE_SMALL, ARMATURE_SPLIT, HRP2_LINKS,
-                                        HRP2_MASSES, LEG_JOINTS, NECK_JOINTS, SERVO_SATURATION_ERROR,
-                                        STANDING_POSTURE, SUBSTEPS, WAIST_JOINTS, Hrp2Links, JointSpec, joint_range)
+from shintai.humanoid.constants import (
+    ARM_JOINTS,
+    ARMATURE_BIG,
+    ARMATURE_SMALL,
+    ARMATURE_SPLIT,
+    HRP2_LINKS,
+    HRP2_MASSES,
+    LEG_JOINTS,
+    NECK_JOINTS,
+    SCENE,
+    SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR,
+    SOLE,
+    STANDING_POSTURE,
+    SUBSTEPS,
+    WAIST_JOINTS,
+    Hrp2Links,
+    JointSpec,
+    joint_range,
+)
 from shintai.sim.body import MujocoBody
-from shintai.sim.spec import add_ft_sensor, add_hinge, add_servo, add_visual, axis_vector, fill_keyframe, scene_spec, set_joints
+from shintai.sim.spec import (
+    add_ft_sensor,
+    add_hinge,
+    add_servo,
+    add_visual,
+    axis_vector,
+    fill_keyframe,
+    scene_spec,
+    set_joints,
+)
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each limb
 WHITE = [0.92, 0.92, 0.94, 1]

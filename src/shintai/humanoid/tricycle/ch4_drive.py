@@ -22,8 +22,6 @@ import mujoco
 import numpy as np
 
 from shintai.core.runtime import Module
-from shintai.humanoid.tricycle import ch4_riding as cr
-from shintai.humanoid.tricycle.ch4_riding import Rider, vehicle_pose2d, vehicle_roll
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,
     DEG,
@@ -35,6 +33,8 @@ from shintai.humanoid.constants import (
     SLIP_START_S,
 )
 from shintai.humanoid.corrections import push_down_angle
+from shintai.humanoid.tricycle import ch4_riding as cr
+from shintai.humanoid.tricycle.ch4_riding import Rider, vehicle_pose2d, vehicle_roll
 from shintai.humanoid.tricycle.navigation import (
     Costmap,
     DepthSensor,
@@ -44,8 +44,8 @@ from shintai.humanoid.tricycle.navigation import (
     global_path,
     handle_reference,
 )
-from shintai.humanoid.tricycle.switching import active_leg
 from shintai.humanoid.tricycle.rig import CrankEstimate
+from shintai.humanoid.tricycle.switching import active_leg
 from shintai.scenarios.registry import Param
 
 DRIVES = ("motor", "legs")

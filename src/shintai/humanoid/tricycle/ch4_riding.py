@@ -51,21 +51,45 @@ import numpy as np
 
 from shintai.core.geometry import roll_of
 from shintai.core.runtime import ADD, Channel, Module
-from shintai.sim.spec import quat_axis
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    CRANK_MOTOR_KV,
+    CRANK_MOTOR_TORQUE,
+    FOOT_FOLLOW_F_TRG,
+    HRP2_LINKS,
+    IMPEDANCE,
+    PEDAL_FRICTION,
+    RIDER_PERIOD,
+    SADDLE_CROWN_RADIUS,
+    SADDLE_FRICTION,
+    SADDLE_HALF_WIDTH,
+    SIT_BONE_HALF_LENGTH,
+    SIT_BONE_RADIUS,
+    SIT_BONE_Y,
+    STEER_RATE,
+    TRICYCLE,
+)
+from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.tricycle.active import grip_plan
-from shintai.humanoid.constants import (CONTROL_PERIOD, CRANK_MOTOR_KV, CRANK_MOTOR_TORQUE, FOOT_FOLLOW_F_TRG,
-                                        HRP2_LINKS, IMPEDANCE, PEDAL_FRICTION, RIDER_PERIOD, SADDLE_CROWN_RADIUS,
-                                        SADDLE_FRICTION, SADDLE_HALF_WIDTH, SIT_BONE_HALF_LENGTH, SIT_BONE_RADIUS,
-                                        SIT_BONE_Y, STEER_RATE, TRICYCLE)
 from shintai.humanoid.tricycle.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.tricycle.navigation import OBSTACLE_GROUP
 from shintai.humanoid.tricycle.passive import ActiveImpedance
-from shintai.humanoid.tricycle.riding import (ANKLE_FT, ARM, HAND, HIP_SADDLE, LEG, SOLE, WRIST_FT, hold_riding_pose,
-                                     riding_posture, riding_spec)
-from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
+from shintai.humanoid.tricycle.riding import (
+    ANKLE_FT,
+    ARM,
+    HAND,
+    HIP_SADDLE,
+    LEG,
+    SOLE,
+    WRIST_FT,
+    hold_riding_pose,
+    riding_posture,
+    riding_spec,
+)
 from shintai.humanoid.tricycle.vehicle import DARK, pedal_position, steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import quat_axis
 
 SEAT = 8  # collision bit: hip pad (contype) – saddle (conaffinity)
 SOLE_BIT, WHEEL_BIT = 2, 4

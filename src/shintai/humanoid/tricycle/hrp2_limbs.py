@@ -34,16 +34,16 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.sim.spec import quat_axis
-from shintai.humanoid.tricycle.active import R_y
 from shintai.humanoid.constants import PEDAL_SOLE_PITCH
-from shintai.humanoid.robots.leg_ik import leg_ik
-from shintai.humanoid.tricycle.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.robots.hrp2 import SIDES
+from shintai.humanoid.robots.leg_ik import leg_ik
+from shintai.humanoid.tricycle.active import R_y
+from shintai.humanoid.tricycle.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.tricycle.switching import estimate_handle_angle
 from shintai.humanoid.tricycle.vehicle import steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import quat_axis
 
 KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)

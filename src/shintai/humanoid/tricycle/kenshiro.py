@@ -37,7 +37,6 @@ import numpy as np
 from shintai.core.interpolation import SequencePlayer
 from shintai.core.runtime import Loop, Module, Switcher
 from shintai.core.search_index import SearchIndex
-from shintai.humanoid.tricycle.active import R_y, crank_angle_of_phase, pedal_trajectory
 from shintai.humanoid.constants import (
     DEG,
     DELTA_C,
@@ -51,8 +50,9 @@ from shintai.humanoid.constants import (
     KENSHIRO_SWITCH_LEAD,
     KenshiroSpec,
 )
-from shintai.humanoid.tricycle.passive import PASSIVE_SGN
 from shintai.humanoid.robots.kenshiro import JOINTS, PEDAL_HALF_THICKNESS, leg_fk, leg_ik, pedal_axle
+from shintai.humanoid.tricycle.active import R_y, crank_angle_of_phase, pedal_trajectory
+from shintai.humanoid.tricycle.passive import PASSIVE_SGN
 from shintai.humanoid.tricycle.switching import SwitchingDiagnostic, active_leg, estimate_crank_angle
 
 SIDE = {"left": "l", "right": "r"}  # our leg names → the model's prefixes

@@ -32,8 +32,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid.tricycle.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
+from shintai.humanoid.tricycle.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
 
 # Fig. 7.16 compares the tilted state before the recovery with the state after it; the windows are ours,
 # chosen before the runs: the 2 s before the recovery starts (T1 of Table 7.6), and 2 s from 1 s after it

@@ -37,8 +37,8 @@ from shintai.core.geometry import wrap, wrap_pi
 from shintai.humanoid.constants import NAVIGATION, TRICYCLE, WHEELBASE
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.navigation import Costmap, DepthSensor, integrate_pose
-from shintai.humanoid.tricycle.switching import estimate_handle_angle
 from shintai.humanoid.tricycle.rig import CrankEstimate
+from shintai.humanoid.tricycle.switching import estimate_handle_angle
 
 
 @dataclass(frozen=True)

@@ -15,13 +15,21 @@ import dataclasses
 
 import numpy as np
 
-from shintai.humanoid.tricycle import riding
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG, FALL_TILT, IMPEDANCE, MODEL_ERROR_MM, THETA_C_INIT
+from shintai.humanoid.tricycle import riding
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.operation import SIDES, OperationSchedule, role_switcher
+from shintai.humanoid.tricycle.rig import (
+    ARM_GAINS,
+    F_TRG,
+    LEG_GAINS,
+    hand_forces,
+    hand_plan,
+    handle_diagnostic,
+    legs_switcher,
+    settled,
+)
 from shintai.humanoid.tricycle.switching import active_arm, switching_angles
-from shintai.humanoid.tricycle.rig import (ARM_GAINS, F_TRG, LEG_GAINS, hand_forces, hand_plan, handle_diagnostic,
-                                           legs_switcher, settled)
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Param
 

@@ -41,14 +41,23 @@ import dataclasses
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import SCENE
-from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
-from shintai.humanoid.constants import (ARM_JOINTS, GRIP_BAR_OFFSET, GRIPPER_CLOSED, HRP2_LINKS, LEG_JOINTS,
-                                        RIDING_POSTURE, RIDING_WAIST_PITCH, SUBSTEPS, TRICYCLE)
+from shintai.humanoid.constants import (
+    ARM_JOINTS,
+    GRIP_BAR_OFFSET,
+    GRIPPER_CLOSED,
+    HRP2_LINKS,
+    LEG_JOINTS,
+    RIDING_POSTURE,
+    RIDING_WAIST_PITCH,
+    SCENE,
+    SUBSTEPS,
+    TRICYCLE,
+)
 from shintai.humanoid.robots.hrp2 import SIDES, add_hrp2, side_posture
 from shintai.humanoid.tricycle.vehicle import add_tricycle, tricycle_state
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
 
 HOLD = {s: f"hold_{s}" for s in SIDES}  # grip equalities
 HOLD_BAR = {s: f"hold_{s}_bar" for s in SIDES}  # second point hold of the "grip" grasp (on the bar)

@@ -21,14 +21,26 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.geometry import unwrap_from, wrap_pi
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    D_THETA_C,
+    D_THETA_H,
+    DELTA_C,
+    IMPEDANCE,
+    SWITCH_HYSTERESIS,
+    TRICYCLE,
+)
 from shintai.humanoid.tricycle.active import grip_plan
-from shintai.humanoid.constants import (CONTROL_PERIOD, D_THETA_C, D_THETA_H, DELTA_C, IMPEDANCE, SWITCH_HYSTERESIS,
-                                        TRICYCLE)
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.operation import SIDES, OperationSchedule, role_switcher
 from shintai.humanoid.tricycle.riding import PEDAL
-from shintai.humanoid.tricycle.switching import (SwitchingDiagnostic, active_arm, active_leg, estimate_crank_angle,
-                                        estimate_handle_angle)
+from shintai.humanoid.tricycle.switching import (
+    SwitchingDiagnostic,
+    active_arm,
+    active_leg,
+    estimate_crank_angle,
+    estimate_handle_angle,
+)
 from shintai.humanoid.tricycle.vehicle import crank_centre, pedal_position
 from shintai.scenarios.experiment import Rig
 

@@ -20,10 +20,10 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from shintai.core.geometry import wrap_pi
-from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
-from shintai.sim.ik import cross
+from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
+from shintai.sim.ik import cross
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
 

@@ -39,7 +39,16 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import SCENE, SOLE, WHEEL, SUBSTEPS, THETA_H0, TRICYCLE, TRICYCLE_DRIVE_SERVOS, TricycleSpec
+from shintai.humanoid.constants import (
+    SCENE,
+    SOLE,
+    SUBSTEPS,
+    THETA_H0,
+    TRICYCLE,
+    TRICYCLE_DRIVE_SERVOS,
+    WHEEL,
+    TricycleSpec,
+)
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, quat_axis, scene_spec, set_joints
 

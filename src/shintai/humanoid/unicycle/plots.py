@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid.unicycle.rig import V_DIVERGED, series, zmp_errors
+from shintai.humanoid.unicycle.constants import V_DIVERGED
+from shintai.humanoid.unicycle.rig import series, zmp_errors
 
 
 def draw_learning(ax, run, label: str) -> None:

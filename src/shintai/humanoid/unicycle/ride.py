@@ -32,36 +32,28 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.core.geometry import rot_x
-from shintai.core.geometry import roll_of
+from shintai.core.geometry import roll_of, rot_x
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid.constants import SCENE
-from shintai.sim.spec import fill_keyframe, scene_spec
-from shintai.humanoid.constants import CONTROL_PERIOD, SUBSTEPS
-from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.balance.foot_attitude import quat_to_rot
-from shintai.humanoid.learning.mlc import MLC, MLC_V, SIGMA_V, MLCParams
-from shintai.humanoid.learning.prior_value_integrator import PID
-from shintai.humanoid.robots.hrp2 import add_hrp2
-from shintai.humanoid.learning.speed_governing import foot_pitch_increments
-from shintai.humanoid.balance.stabilizer import StabilizerModule
-from shintai.humanoid.balance.standing import Push, Standing
 from shintai.humanoid.balance.scooter import CHANNELS as RIDE_CHANNELS
 from shintai.humanoid.balance.scooter import ChestPitchIK, FootPitch, Lift, ScooterSensors, posture_on_pads
+from shintai.humanoid.balance.stabilizer import StabilizerModule
+from shintai.humanoid.balance.standing import Push, Standing
+from shintai.humanoid.constants import CONTROL_PERIOD, SCENE, SUBSTEPS
+from shintai.humanoid.corrections import ChestPostureControl
+from shintai.humanoid.learning.mlc import MLC, MLC_V, SIGMA_V, MLCParams
+from shintai.humanoid.learning.prior_value_integrator import PID
+from shintai.humanoid.learning.speed_governing import foot_pitch_increments
+from shintai.humanoid.robots.hrp2 import add_hrp2
+from shintai.humanoid.unicycle.constants import ETA_TRAJ, JOY_FULL, PLACEMENTS, START_DELAY, T_TRAJ
 from shintai.humanoid.unicycle.vehicle import NINEBOT, PAD, NinebotSpec, add_ninebot, install_firmware, ninebot_velocity
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import fill_keyframe, scene_spec
 
 # --- constants ------------------------------------------------------------------------------------------
-T_TRAJ = 0.05  # s, Eq. 7.3's LPF time constant T_traj: not given; chosen: a 50 ms smoothing of a 4 ms difference
 K_TRAJ = NINEBOT.K0 / CONTROL_PERIOD  # Eq. 7.5: K_traj = K₀/Δt (m/s per m of correction per tick)
-# η for K^traj: not given (Table 7.4 gives A = 1 for the trajectory only). Chosen: a 0.1 m/s error held over one
-# batch moves K_P^traj by ≈1e-3 (gradient ≈ 2 K_traj ⟨e ∫e⟩ ≈ 50), the order of the P gain that makes the
-# loop K_traj K_P/(s(1+T s)) critically damped (1/(4 T K_traj) = 4e-3)
-ETA_TRAJ = (2e-5, 2e-5, 2e-5)
 MLC_TRAJ = MLCParams(K=K_TRAJ, T=T_TRAJ, eta=ETA_TRAJ, eps=1e-6 / ETA_TRAJ[0], sigma=SIGMA_V)
 MLC_SPEED = MLC_V  # the speed loop's plant for Eqs. 6.20–6.29: Table 6.2's (no Ninebot identification is given)
-START_DELAY = 0.0  # s after the lift's release; the thesis's 0–2 s are its first (unlearned) batch
-JOY_FULL = 0.05  # rad of vehicle roll at full stick (chosen, the operator model of RollShaping)
 ALPHA = 0.5 * CONTROL_PERIOD  # rad per tick at full stick: φ_C^d moves ≤ 0.5 rad/s (Eq. 7.6's α, not given)
 CHANNELS = {**RIDE_CHANNELS, **declare("zmp_mod", "ref:chest_roll", kind=SET)}
 
@@ -85,7 +77,6 @@ def build_ninebot_stand(n: NinebotSpec = NINEBOT, training_wheels: bool = True, 
     return body
 
 
-PLACEMENTS = ("after_lip", "reference")
 
 
 class ModifiedStabilizer(StabilizerModule):

@@ -8,23 +8,12 @@ from dataclasses import replace
 
 import numpy as np
 
+from shintai.humanoid.unicycle.constants import P0_M, TAIL_S, V_DIVERGED, V_SETTLED, VBOARD_V_KP_KD, VIEW
 from shintai.humanoid.unicycle.ride import NinebotRide
 from shintai.humanoid.unicycle.vehicle import NINEBOT
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Param
 
-VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}
-V_DIVERGED = 0.3  # m/s, the brief's threshold for speed_diverged / the time to |v| > 0.3 m/s
-TAIL_S = 2.0  # s, "final" values are means over the last 2 s (one mini-batch)
-V_SETTLED = 0.01  # m/s, chosen: "settled" = |v| below 1 cm/s from then to the end of the run (Fig. 7.9 (d)'s ≈18 s)
-# Our V-BOARD's learned (K_P^v, K_D^v), the thesis's comparison (§7.3.3: against Figs. 6.15 (b1) and 6.16 (b1)):
-# humanoid.speed-governing at its defaults on main, 2026-11-27 (variants `learn` = Fig. 6.15, `boarding` = Fig. 6.16;
-# README's reproduction table carries the run). Measured, not chosen — re-measure when that scenario changes.
-VBOARD_V_KP_KD = {"fig6.15": (6.32e-5, 1.08e-4), "fig6.16": (2.93e-4, 2.12e-5)}
-# p⁰ of the scenarios: the firmware's moment zero point 10 mm ahead of the axle, over which the rider's mass centre
-# is placed (chosen: the thesis says the boards-to-wheel relation is unknown to the rider, §7.3.3; with p⁰ exactly
-# under the rider's mass centre the only error left is the stack's own ≈1 mm, see the notes)
-P0_M = 0.01
 P0_PARAM = Param("p0_m", P0_M, "the Ninebot firmware's moment zero point p⁰, x from the axle [m] (ours; the rider's "
                  "mass centre is placed over the axle)", lo=-0.1, hi=0.1)
 

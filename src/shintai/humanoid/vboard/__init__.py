@@ -1,5 +1,6 @@
 """HRP2-JSK boards and rides the V-BOARD two-wheeled scooter (seed 000 chs. 5–6, §7.4.2, App. A.1.2):
 
+* :mod:`~shintai.humanoid.vboard.constants` — the unit's numbers with their sources (D on the board, excitation, start delay).
 * :mod:`~shintai.humanoid.vboard.vehicle` — the V-BOARD as MjSpec and its firmware (Eqs. A.1–A.4).
 * :mod:`~shintai.humanoid.vboard.stand` — HRP2 standing on it, one ``MujocoBody`` (§6.2.1).
 * :mod:`~shintai.humanoid.vboard.boarding` — stepping onto it from the floor with SLC (§5.4).

@@ -30,18 +30,7 @@ import math
 import numpy as np
 from scipy.signal import find_peaks
 
-from shintai.humanoid.constants import SCENE
-from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
-from shintai.humanoid.constants import (
-    HRP2_LINKS,
-    STANDING_POSTURE,
-    SUBSTEPS,
-    VBOARD,
-    VboardSpec,
-)
 from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT
-from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
-from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
 from shintai.humanoid.balance.standing import (
     BOARDING_CROUCH,
     BOARDING_STEP_X,
@@ -51,12 +40,15 @@ from shintai.humanoid.balance.standing import (
     settle_on_floor,
     stand_geometry,
 )
+from shintai.humanoid.constants import HRP2_LINKS, SCENE, STANDING_POSTURE, SUBSTEPS, VBOARD, VboardSpec
+from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
+from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
+from shintai.humanoid.vboard.constants import PEAK_GAP_S, PEAK_SMOOTH_S
 from shintai.humanoid.vboard.vehicle import BOARD, SIDES, add_vboard, install_firmware
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
 
 BOARD_X = BOARDING_STEP_X  # m, the scooter's axle ahead of the standing sole points (chosen, module docstring)
-PEAK_SMOOTH_S = 0.04  # s, chosen: J_τ smoothed over 10 ticks before its peaks are sought (it is a 4 ms signal)
-PEAK_GAP_S = 0.2  # s, chosen: two J_τ peaks are ≥ this apart (the thesis's are 0.4 s apart, §5.4.2)
 
 
 def boarding_body(x: float = BOARD_X, v: VboardSpec = VBOARD, substeps: int = SUBSTEPS) -> MujocoBody:

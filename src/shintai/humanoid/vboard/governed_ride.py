@@ -31,20 +31,18 @@ from dataclasses import replace
 import numpy as np
 
 from shintai.core.recorder import Recorder
-from shintai.humanoid.vboard.boarding import boarding_stack
 from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.learning.mlc import MLC_OMEGA, MLC_V, MLCParams
-from shintai.humanoid.vboard.governor import GatedGovernor
-from shintai.humanoid.vboard.plant_id import identified_plant
 from shintai.humanoid.learning.prior_value_integrator import R_SAT_V, PriorValueIntegrator
 from shintai.humanoid.learning.slc import SLCParams
 from shintai.humanoid.learning.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
+from shintai.humanoid.vboard.boarding import boarding_stack
+from shintai.humanoid.vboard.constants import MODES, PLANTS, START_DELAY, VIEW
+from shintai.humanoid.vboard.governor import GatedGovernor
+from shintai.humanoid.vboard.plant_id import identified_plant
 from shintai.humanoid.vboard.ride import VboardRide, scooter_spec
 from shintai.scenarios.experiment import Rig
 
-START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
-PLANTS = ("board", "table6.2")
-MODES = ("corrected", "saturated", "plain")
 GOVERNOR = "speed_governor"
 
 
@@ -104,7 +102,6 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
     return ride
 
 
-VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
 
 
 def governed_rig(plant: str, learn_s: float, mode: str, seed: int, theta_o_error_deg: float, D: float,

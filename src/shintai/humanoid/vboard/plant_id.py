@@ -11,23 +11,22 @@ import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, VBOARD
 from shintai.humanoid.learning.speed_governing import identify_plant
-from shintai.humanoid.vboard.ride import (
+from shintai.humanoid.vboard.constants import (
     D_VBOARD,
     EXCITE_AMPLITUDE,
     EXCITE_PERIOD,
-    VboardRide,
-    square_wave,
+    EXCITE_S,
+    START_S,
+    THETA_O_ERROR_DEG,
+    VIEW,
 )
+from shintai.humanoid.vboard.ride import VboardRide, square_wave
 from shintai.scenarios.experiment import Rig, run_rig
 
 AXES = ("v", "omega")
-EXCITE_S = 8.0  # s, chosen: the length of each run's excitation
-THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression intercept, as humanoid.vboard-levels
-START_S = 2.0  # s, chosen: the excitation starts after the lift has let go (≈1.0 s) and the stack has settled
 # Eq. 6.10 with K_R ≈ K_L (Eq. 6.11), in our units (u in rad per control period): the board-side gains
 K_V_EQ610 = VBOARD.wheel_radius / CONTROL_PERIOD * (VBOARD.gain("r") + VBOARD.gain("l")) / 2
 K_OMEGA_EQ610 = VBOARD.wheel_radius / CONTROL_PERIOD * (VBOARD.gain("r") + VBOARD.gain("l")) / VBOARD.track
-VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}
 
 
 def excitation(axis: str, amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERIOD,

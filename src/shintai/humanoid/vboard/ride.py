@@ -32,17 +32,12 @@ from shintai.humanoid.balance.scooter import (
 from shintai.humanoid.balance.standing import Standing
 from shintai.humanoid.constants import VBOARD
 from shintai.humanoid.law_params import check_real
+from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
 
 # --- constants ------------------------------------------------------------------------------------------
-D_VBOARD = 40.0  # N·m·s/rad, the damping gain SLC reached boarding the V-BOARD (§5.4.2: '約 D = 40.0'), and
-# §6.4.1 rides with '第5章で獲得した足部トルクダンピング制御系まわりのゲイン/パラメータ'. Probe: D = 22 rocks the
-# boards by ±15°, D = 40 holds them within 0.15° rms
-EXCITE_AMPLITUDE = 6.0e-5  # rad per control period, chosen: a 1 s half-period moves the boards 0.86°, v ±0.3 m/s
-EXCITE_PERIOD = 2.0  # s, chosen: the square wave's period (a triangle of θ, ≈ T_v of Table 6.2 per half)
-LEVELS = (1, 2, 3)
 
 
 def square_wave(amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERIOD, t0: float = 0.0):
