@@ -45,7 +45,6 @@ from shintai.humanoid.constants import (
 )
 
 
-
 # --- sitting recovery (§4.3.2, §7.4.1) ------------------------------------------------------------
 
 

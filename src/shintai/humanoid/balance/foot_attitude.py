@@ -38,8 +38,6 @@ CONTACT_FZ = F_THRE
 SIDES = ("l", "r")
 
 
-
-
 def quat_to_rot(quat) -> np.ndarray:
     """3×3 rotation of a unit quaternion (w, x, y, z), MuJoCo's order (the ``imu_quat`` sensor)."""
     w, x, y, z = (float(v) for v in quat)

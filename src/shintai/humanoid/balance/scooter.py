@@ -184,7 +184,6 @@ class ChestPitchControl(ChestPostureControl):
         return {"ref:chest_pitch": delta}
 
 
-
 class ChestPitchIK(LegIKModule):
     """The leg IK with Eq. 4.9's target correction R_C^{d*} = R_C^d R^{centre}(0, Δφ_C, 0): the upper body (waist
     target, position and attitude) turned by Δφ_C = ``ref:chest_pitch`` about the midpoint of the two soles —

@@ -69,9 +69,6 @@ class LegIKResult:
         return {f"{side}_{n}": float(v) for n, v in zip(JOINT_NAMES, self.q)}
 
 
-
-
-
 def hip_point(side: str, waist_pos, waist_rot, links: Hrp2Links = HRP2_LINKS) -> np.ndarray:
     """World position of the point where the hip yaw, roll and pitch axes meet."""
     return np.asarray(waist_pos, float) + np.asarray(waist_rot, float) @ (0.0, SIDES[side] * links.hip_y, links.hip_z)

@@ -77,8 +77,6 @@ def build_ninebot_stand(n: NinebotSpec = NINEBOT, training_wheels: bool = True, 
     return body
 
 
-
-
 class ModifiedStabilizer(StabilizerModule):
     """The stabilizer with the correction c = channel ``zmp_mod`` (x, m) (module docstring). ``placement``
     "after_lip": p^{d**} = p^{d*} + c (Eq. 7.2 as written); "reference": c shifts the LIP tracking's references

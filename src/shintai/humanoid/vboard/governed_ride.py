@@ -102,8 +102,6 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
     return ride
 
 
-
-
 def governed_rig(plant: str, learn_s: float, mode: str, seed: int, theta_o_error_deg: float, D: float,
                  start_delay: float = START_DELAY, eta_scale: float = 1.0, learn: bool = True,
                  boarding: bool = False) -> Rig:

@@ -17,7 +17,6 @@ import dataclasses
 import numpy as np
 
 from shintai.core.runtime import Module
-
 from shintai.humanoid.balance.foot_attitude import measured_zmp
 from shintai.humanoid.balance.scooter import (
     CHANNELS,
@@ -36,8 +35,6 @@ from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
-
-# --- constants ------------------------------------------------------------------------------------------
 
 
 def square_wave(amplitude: float = EXCITE_AMPLITUDE, period: float = EXCITE_PERIOD, t0: float = 0.0):
