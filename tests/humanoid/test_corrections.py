@@ -7,8 +7,17 @@ import numpy as np
 import pytest
 
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG, THETA_C_INIT
-from shintai.humanoid.corrections import (ChestPostureControl, PedalLoadDetector, RecoveryTrigger, SittingRecovery,
-                                          at_k_pi, hip_force, push_down_angle, recovery_due, recovery_index)
+from shintai.humanoid.corrections import (
+    ChestPostureControl,
+    PedalLoadDetector,
+    RecoveryTrigger,
+    SittingRecovery,
+    at_k_pi,
+    hip_force,
+    push_down_angle,
+    recovery_due,
+    recovery_index,
+)
 
 
 def test_recovery_trigger_only_at_k_pi():

@@ -10,7 +10,7 @@ import pytest
 
 from shintai.humanoid.constants import HRP2_HEIGHT, KENSHIRO, TRICYCLE
 from shintai.humanoid.robots import hrp2, kenshiro
-from shintai.humanoid.vehicles.tricycle import build_tricycle
+from shintai.humanoid.tricycle.vehicle import build_tricycle
 
 G = 9.81
 MASS = 56.5  # kg, Table A.1

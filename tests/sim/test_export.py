@@ -31,7 +31,7 @@ def test_model_command_lists_and_exports(tmp_path, capsys):
 def test_exported_scene_starts_where_the_body_starts(tmp_path):
     """What a builder sets on the compiled model (the seated keyframe, the holds' relative poses) is
     exported too: the reloaded HRP2-on-tricycle scene starts in the same state and stays seated."""
-    from shintai.humanoid.riding import build_riding
+    from shintai.humanoid.tricycle.riding import build_riding
 
     body = build_riding()
     reloaded = mujoco.MjModel.from_xml_path(str(export("humanoid.hrp2-tricycle", tmp_path)))

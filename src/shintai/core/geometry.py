@@ -1,5 +1,5 @@
 """Small geometry every body uses, in one place: elementary rotations, the cross-product matrix, angle
-wrapping and unwrapping."""
+wrapping and unwrapping, roll of a rotation matrix."""
 
 from __future__ import annotations
 
@@ -24,6 +24,18 @@ def rot_z(a: float) -> np.ndarray:
     """Rotation by ``a`` about z."""
     c, s = math.cos(a), math.sin(a)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rot_xy(roll: float, pitch: float) -> np.ndarray:
+    """Ry(pitch) Rx(roll): ``roll`` about world x, then ``pitch`` about world y."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    return np.array([[cp, sp * sr, sp * cr], [0.0, cr, -sr], [-sp, cp * sr, cp * cr]])
+
+
+def roll_of(rot: np.ndarray) -> float:
+    """Roll (about the body's x, ZYX Euler) of a rotation matrix: the tilt of its y axis out of the
+    horizontal; positive when the body's left side rises (top leans to −y)."""
+    return float(np.arctan2(rot[2, 1], rot[2, 2]))
 
 
 def skew(r) -> np.ndarray:

@@ -1,8 +1,8 @@
 """``shintai/NinebotRide-v0``: HRP2-JSK rides the Ninebot One S2 (seed 000 §7.3.3, App. A.1.3) and the agent is
 its speed controller C_v — it commands u_v, which Eq. 6.5 with u_ω = 0 (the Ninebot has no yaw input) turns into
-the foot-pitch increments [Δθ_R, Δθ_L] = [u_v, u_v], as :class:`~shintai.humanoid.ninebot_ride.SpeedPID` does.
+the foot-pitch increments [Δθ_R, Δθ_L] = [u_v, u_v], as :class:`~shintai.humanoid.unicycle.ride.SpeedPID` does.
 
-The rig is Fig. 7.8's (:class:`~shintai.humanoid.ninebot_ride.NinebotRide` ``control="parallel"``) with both
+The rig is Fig. 7.8's (:class:`~shintai.humanoid.unicycle.ride.NinebotRide` ``control="parallel"``) with both
 controllers at fixed zero gains (``learn=False``): the standing stack's balance on the footboards, Table 6.1's
 sensors (v of Eq. 6.3's filter), the foot-pitch integrator (Eq. 6.7) and the training wheels of the learning
 runs (NinebotRide's default); C_v's u and C_traj's trajectory correction c (Eq. 7.3, channel ``zmp_mod``) stay
@@ -32,9 +32,9 @@ from shintai.gym.riding import RideEnv
 from shintai.gym.vboard import AGENT_PERIOD, EPISODE_STEPS, U_MAX, V_BOUND, V_D_MAX
 
 # --- the adapter to the humanoid package (re-point these imports after the humanoid move) ------------------
-from shintai.humanoid.ninebot_ride import NinebotRide
-from shintai.humanoid.speed_governing import foot_pitch_increments
-from shintai.humanoid.unicycle import VIEW
+from shintai.humanoid.learning.speed_governing import foot_pitch_increments
+from shintai.humanoid.unicycle.constants import VIEW
+from shintai.humanoid.unicycle.ride import NinebotRide
 
 
 def ride_stack(seed: int):

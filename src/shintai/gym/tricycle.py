@@ -2,9 +2,9 @@
 the operator's joystick of Fig. 3.16: each step it chooses one command sample (how far to turn the handle and the
 crank), and the robot's arms and legs carry it out with the thesis's active/passive limbs.
 
-The body and modules are those of ``humanoid.tricycle-slalom`` (:class:`~shintai.humanoid.ride.Ride`): HRP2 seated
+The body and modules are those of ``humanoid.tricycle-slalom`` (:class:`~shintai.humanoid.tricycle.ride.Ride`): HRP2 seated
 on the App. A.1.1 tricycle, the arms on the handle and the legs on the crank as two role
-:class:`~shintai.core.runtime.Switcher` s of :class:`~shintai.humanoid.operation.LimbPair` (Table 3.4's
+:class:`~shintai.core.runtime.Switcher` s of :class:`~shintai.humanoid.tricycle.operation.LimbPair` (Table 3.4's
 impedances, roles swapped by the FK angle estimate at Eq. 3.19's switching angles). The only difference is where
 the command samples come from: here an :class:`OperatorModule` appends one per agent step to the schedule the limbs
 follow (Fig. 3.16 steps 1 and 4), instead of a joystick script. Each episode asks the robot to drive to a goal
@@ -37,8 +37,8 @@ import numpy as np
 from shintai.core.runtime import SET, Channel, Module
 from shintai.gym.loop_env import LoopEnv
 from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DELTA_T, FALL_TILT, THETA_H_MAX
-from shintai.humanoid.operation import DEVICES, OperationSchedule, Sample
-from shintai.humanoid.ride import RIDE_VIEW, Ride
+from shintai.humanoid.tricycle.operation import DEVICES, OperationSchedule, Sample
+from shintai.humanoid.tricycle.ride import RIDE_VIEW, Ride
 
 OPERATION = Channel("operation", SET, default=None, doc="the agent's (Δθ_h, Δθ_c) for the next command sample [rad]")
 GOAL_DISTANCE_M = (1.5, 3.0)  # chosen: a goal 1.5–3 m ahead (0.6–1.2 crank revolutions, D_c = 2.45 m)

@@ -2,7 +2,7 @@
 governor — it commands u_v and u_ω, the inputs of Eq. 6.5's foot-pitch mixing [Δθ_R, Δθ_L] = [[1, 1], [1, −1]]
 [u_v, u_ω], in the place of Fig. 6.6's PID (Eq. 6.2) and MLC.
 
-The rig is behaviour level 2 of §6.2.1 (:class:`~shintai.humanoid.vboard_ride.VboardRide` ``level=2``): the
+The rig is behaviour level 2 of §6.2.1 (:class:`~shintai.humanoid.vboard.ride.VboardRide` ``level=2``): the
 standing stack's balance (LIP tracking, ZMP distributor, foot torque damping Eqs. 5.1–5.3 with D = 40, force
 difference control), Table 6.1's sensors (ω from the chest gyro every 4 ms, v from Eq. 6.3's filter every 24 ms,
 24 ms late) and the foot-pitch integrator (θ̇ ≈ Δθ/Δt, Eq. 6.7) adding the soles' pitch to the damping's δ — all
@@ -36,9 +36,10 @@ from shintai.gym.riding import RideEnv
 
 # --- the adapter to the humanoid package (re-point these imports after the humanoid move) ------------------
 from shintai.humanoid.constants import VBOARD
-from shintai.humanoid.speed_governing import foot_pitch_increments
-from shintai.humanoid.speed_governing_ride import VIEW
-from shintai.humanoid.vboard_ride import EXCITE_AMPLITUDE, V_PERIOD, VboardRide
+from shintai.humanoid.balance.scooter import V_PERIOD
+from shintai.humanoid.learning.speed_governing import foot_pitch_increments
+from shintai.humanoid.vboard.constants import EXCITE_AMPLITUDE, VIEW
+from shintai.humanoid.vboard.ride import VboardRide
 
 
 def ride_stack(seed: int):

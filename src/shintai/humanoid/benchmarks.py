@@ -1,69 +1,15 @@
-"""Benchmark: what the tricycle controllers cost on top of bare ``mj_step`` (seed 000 ch. 3).
+"""Benchmarks of seed 000's controllers, each against the naive or bare form in one run (a ratio):
 
-Two configurations of the riding body, each run for the same simulated time:
+* ``humanoid.tricycle-overhead`` — the tricycle controllers on top of bare ``mujoco.mj_step`` on the same model
+  and physics steps: ``pedaling`` (the legs' role switcher, Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19, with the
+  experiment's recording; :func:`~shintai.humanoid.tricycle.rig.pedal_rig`) and ``driving`` (arms and legs on the
+  E3 slalom script, :class:`~shintai.humanoid.tricycle.ride.Ride`); ``sim_per_wall`` is simulated seconds per wall second;
+* ``humanoid.leg-ik`` — the analytic leg IK (:mod:`shintai.humanoid.robots.leg_ik`) against the DLS IK per call on
+  the same 500 sole targets of a pedalling-like foot path;
+* ``humanoid.standing-overhead`` — the standing stack's 4 ms tick (:class:`~shintai.humanoid.balance.standing.Standing`)
+  against bare mj_step for the same physics steps.
 
-* ``pedaling`` — the legs' role switcher (E2/E4: Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19) with the
-  experiment's per-tick recording (:func:`~shintai.humanoid.tricycle_rig.pedal_rig`);
-* ``driving`` — arms and legs together on the E3 slalom script (:class:`~shintai.humanoid.ride.Ride`),
-  Δt scaled so that steering, pedalling and role swaps all happen.
-
-Each is compared with bare ``mujoco.mj_step`` on the same model for the same number of physics
-steps (from the same seated keyframe, the servos holding it). The ratio is the controller + IK +
-logging overhead; ``sim_per_wall`` is simulated seconds per wall second of the full run.
-
-Measured on the 2-core machine (loaded by other jobs, so ±25 % run to run, bare mj_step itself
-0.22–0.33 s), the code before and after the last round back to back, four pairs in two sessions:
-pedalling 2.8–4.1× → 1.9–2.65× (typically 3.2–3.4× → 2.55–2.65×), driving 4.0–6.8× → 3.2–5.8×
-(typically 5.2–5.3× → 4.1×); the controller runs' wall time 0.76–1.0 s → 0.60–0.64 s (pedalling,
-6.4 s simulated) and 1.12–1.5 s → 0.89–1.27 s (driving, 6 s). Earlier rounds: 3.5–4× → 2.9–3.8×
-and 10.5–11.5× → 6.1–6.6×. Issue 6 aims at ≤ 1.5×, not met. Per 4 ms control tick of the
-pedalling run (timed around the pieces, without the profiler): physics ≈0.15–0.18 ms (four 1 ms
-mj_steps), the two feet's IK ≈0.11–0.13 ms (≈55–65 µs a solve: usually one damped-least-squares step and the
-check after it, each a few dozen NumPy / MuJoCo binding calls of ~0.5 µs), everything else
-≈0.12–0.14 ms (impedance laws and min-jerk players ≈40 µs, method-(a) angle estimate + switching guard
-≈30 µs, the scenario's logging ≈20 µs, Loop / snapshot / apply ≈30 µs) — even a free IK would leave
-≈1.8×: ≤ 1.5× needs the per-tick control loop out of Python, not a faster IK. Driving runs four IK
-solves a tick (the hands' with the handle-angle estimate in their target).
-What was done, with the trajectories unchanged (tricycle-pedaling and tricycle-slalom: metrics and
-every ``log.npz`` array bit-identical before/after; passive f_z 152.98994838400301 N, swaps at
-110.52°/290.52°, one revolution at 57.308 s): last round — the IK forms a target's quaternion once
-per solve (not per iteration), takes damping² I from a per-size cache, keeps views of the scratch data's site rows, has a one-step fast path
-when no joint is at a limit and no posture is pursued (``np.minimum/np.maximum`` for ``np.clip``),
-``np.concatenate`` for ``np.vstack``; ``cross`` on Python floats (same IEEE products); method (a)
-takes the unit axis and the projected zero directions from a cache; ``Segment.state`` calls
-``np.dot`` on the shapes ``np.tensordot`` forms, with the exponent arrays cached; ``VehicleFrame``
-keeps views of the waist rows; the hands' target reuses the constant steering axis; ``LimbPair``
-and the scenario logs form their signal names once and read ids / data rows once; ``‖x‖`` as
-``√(x·x)`` (what ``np.linalg.norm`` computes). Earlier: the IK's Jacobian only when a step follows,
-site ids cached, no limit bookkeeping when no joint is at a limit, F/T and FK read by id, the
-vehicle frame once per waist pose, the handle model's zero directions once per model; caching the
-IK's scratch ``MjData`` and one F/T and FK reading per limb per tick (≈17× → ≈7× then).
-Both the controller runs and bare mj_step are the faster of two runs.
-
-Issue 13 item 2: the feet on the closed-form leg IK (:meth:`~shintai.humanoid.hrp2_limbs.Hrp2Limb.solve`;
-trajectories change slightly, see the scenario notes). Twelve interleaved pairs in one process (feet on the
-DLS IK vs the closed form, each run against its own bare mj_step, three sessions, load average 1–4 on the
-2 cores, bare mj_step 0.39–0.69 s so the ratios spread widely): pedalling 2.8–6.2× (median 3.4×) →
-1.9–3.5× (median 2.4×), closed form cheaper in 11 of 12 pairs, fastest runs 1.73 → 1.05 s; driving
-5.0–9.8× (median 7.5×) → 4.0–6.0× (median 5.3×), 10 of 12 pairs, fastest runs 2.81 → 2.40 s. A foot's solve
-inside these runs: ≈212 µs DLS → ≈47 µs closed form at that load (≈4.5×; the DLS fallback never ran, no
-unreachable tick). Still short of ≤ 1.5×: the rest of the tick (laws, interpolators, estimates, the hands'
-DLS IK when driving, logging, the Loop) is Python, as above.
-
-``humanoid.leg-ik`` (issue 13 item 2): the analytic leg IK (:mod:`shintai.humanoid.leg_ik`) against
-the DLS IK per call on the same 500 sole targets of a pedalling-like foot path, as a ratio in one
-run. Measured on the loaded 2-core machine (load average ≈7): analytic ≈22–27 µs, DLS ≈390–510 µs
-a call (warm-started, one step and the check each), ratio ≈15×; the two agree to ≈7e-5 rad (the
-DLS IK stops at its 0.1 mm / 1 mrad tolerance). Re-measured in this round: 9.6 / 141 µs (14.7×) at a quiet
-moment, 18.9 / 143 µs and 38 / 584 µs (7.6×, 15.3×) under load; agreement 6.7e-5 rad.
-
-``humanoid.standing-overhead`` (issue 13): the standing stack's 4 ms Loop tick (preview, footsteps,
-stabilizer, foot damping, leg IK; :class:`~shintai.humanoid.standing.Standing`) against bare mj_step for
-the same physics steps. Measured on the loaded 2-core machine: ≈3.9× (tick ≈0.95 ms against ≈0.24 ms of
-bare physics; per call preview ≈83 µs, footsteps ≈8, stabilizer ≈140, foot damping ≈65, leg IK ≈130,
-physics + Loop/snapshot ≈520 µs). The stabilizer's F/T reading and law went from NumPy to Python floats
-(≈3× cheaper, same trajectories to 1e-15). The aim of ≤ 1.5× is not met: it leaves ≈0.12 ms a tick for
-five Python modules and the Loop; as for the tricycle, it needs the per-tick control out of Python.
+Measured histories are in git (this docstring's earlier versions) and the benchmarks' ``bench.json``.
 """
 
 from __future__ import annotations
@@ -74,20 +20,14 @@ import time
 import mujoco
 import numpy as np
 
-from shintai.humanoid import riding
-from shintai.humanoid.constants import (
-    CONTROL_PERIOD,
-    D_THETA_C,
-    D_THETA_H,
-    DEG,
-    DELTA_T,
-)
-from shintai.humanoid.hrp2_limbs import riding_limbs
-from shintai.humanoid.leg_ik import JOINT_NAMES, leg_ik
-from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import Ride, slalom_goals
+from shintai.humanoid.constants import CONTROL_PERIOD, D_THETA_C, D_THETA_H, DEG, DELTA_T
 from shintai.humanoid.robots.hrp2 import build_hrp2
-from shintai.humanoid.tricycle_rig import crank_schedule, legs_switcher, pedal_rig
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+from shintai.humanoid.tricycle import riding
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
+from shintai.humanoid.tricycle.operation import OperationSchedule
+from shintai.humanoid.tricycle.ride import Ride, slalom_goals
+from shintai.humanoid.tricycle.rig import crank_schedule, legs_switcher, pedal_rig
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
 from shintai.sim import ik
@@ -194,10 +134,10 @@ def leg_ik_cost(ticks: int = 500) -> dict:
 @benchmark("humanoid.standing-overhead",
            "HRP2 standing on the stabilizer stack (LIP tracking, distributor, foot damping, leg IK): the 4 ms Loop tick vs bare mj_step")
 def standing_overhead(seconds: float = 4.0) -> dict:
-    """The standing stack (:class:`~shintai.humanoid.standing.Standing`, standing still) for ``seconds`` of
+    """The standing stack (:class:`~shintai.humanoid.balance.standing.Standing`, standing still) for ``seconds`` of
     simulated time against bare ``mj_step`` for the same physics steps from the ``stand`` keyframe (the
     faster of two runs each), with each module's mean time per call from the Loop's ``timing``."""
-    from shintai.humanoid.standing import Standing
+    from shintai.humanoid.balance.standing import Standing
 
     def run():
         st = Standing(hold=seconds + 1.0)

@@ -34,6 +34,16 @@ F_THRE = 25.0  # N
 PHYSICS_TIMESTEP = 0.001
 SUBSTEPS = round(CONTROL_PERIOD / PHYSICS_TIMESTEP)
 
+# Collision bits (chosen, Table 3.1's contacts). Only these pairs collide: floor–sole, floor–tyre and
+# sole–pedal (the unilateral foot–pedal contact); hands hold grips by equality constraints, the hip is
+# welded to the saddle (§3.3.2), links do not self-collide. A sole has contype SOLE (conaffinity 0), a pedal
+# conaffinity SOLE (contype 0), a tyre contype WHEEL (conaffinity 0); the floor accepts all.
+FLOOR = 1
+SOLE = 2
+WHEEL = 4
+# The scene every humanoid model starts from (:func:`shintai.sim.spec.scene_spec`'s timestep and floor bits).
+SCENE = (PHYSICS_TIMESTEP, FLOOR, FLOOR | SOLE | WHEEL)
+
 # ------------------------------------------------------------------------------------------------
 # Steering / pedalling laws (Ch. 3)
 # ------------------------------------------------------------------------------------------------
@@ -328,7 +338,7 @@ TRICYCLE_DRIVE_SERVOS = {"handle": (2000.0, 100.0), "crank": (5000.0, 300.0)}
 
 @dataclass(frozen=True)
 class VboardSpec:
-    """The V-BOARD [58] (Vivo Market; a 6.5-inch "hoverboard") as :mod:`~shintai.humanoid.vehicles.vboard`
+    """The V-BOARD [58] (Vivo Market; a 6.5-inch "hoverboard") as :mod:`~shintai.humanoid.vboard.vehicle`
     builds it. Thesis values: Eq. A.1 (K, θ_O), Fig. A.4 (r, W). Everything else is *chosen* for a
     commercial 6.5-inch hoverboard, as marked; the thesis gives no mass, size or dynamics.
 

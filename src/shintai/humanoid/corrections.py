@@ -30,10 +30,19 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.core.runtime import Module
 from shintai.core.search_index import SearchIndex, first_order_gain
-from shintai.humanoid.constants import (CONTROL_PERIOD, POSTURE_K_C, POSTURE_T_C, PPDM_RISE, PPDM_WINDOW_S,
-                                        RECOVERY_CRANK_TOLERANCE, RECOVERY_LIFT_M, RECOVERY_PHASE_S, RECOVERY_PUSH_N,
-                                        RECOVERY_ROLL_THRESHOLD, THETA_C_INIT)
-
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    POSTURE_K_C,
+    POSTURE_T_C,
+    PPDM_RISE,
+    PPDM_WINDOW_S,
+    RECOVERY_CRANK_TOLERANCE,
+    RECOVERY_LIFT_M,
+    RECOVERY_PHASE_S,
+    RECOVERY_PUSH_N,
+    RECOVERY_ROLL_THRESHOLD,
+    THETA_C_INIT,
+)
 
 
 # --- sitting recovery (§4.3.2, §7.4.1) ------------------------------------------------------------

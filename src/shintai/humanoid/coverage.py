@@ -533,7 +533,7 @@ ROWS = (
         what="V-BOARD board tilt (digital protractor) against wheel speed (non-contact tachometer), each side",
         result="App. A.1.2, Eq. A.1: 'Ω_R = 4.6203 (θ_R + 1.7871), Ω_L = 4.3356 (θ_L + 1.9972)' (linear regression "
                "of the measured points, Fig. A.6); wheel radius 80 mm",
-        not_built="not a result to reproduce: our V-BOARD model (humanoid/vehicles/vboard.py) takes Eq. A.1 as its "
-                  "drive law, an input; tests/humanoid/test_vboard.py checks the model holds it under a static load",
+        not_built="not a result to reproduce: our V-BOARD model (humanoid/vboard/vehicle.py) takes Eq. A.1 as its "
+                  "drive law, an input; tests/humanoid/vboard/test_vehicle.py checks the model holds it under a static load",
     ),
 )

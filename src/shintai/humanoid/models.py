@@ -6,14 +6,14 @@ has its actuators but not its firmware (Python, run before every physics step): 
 wheels take torques from ``wheel_s_motor``. Likewise the Ninebot's firmware (Eqs. A.5–A.6) is Python: exported,
 its ``ninebot_motor`` is a bare velocity servo."""
 
-from shintai.humanoid.ninebot_ride import build_ninebot_stand
-from shintai.humanoid.riding import build_riding
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.kenshiro import build_kenshiro
-from shintai.humanoid.vboard_stand import build_vboard_stand
-from shintai.humanoid.vehicles.ninebot import build_ninebot
-from shintai.humanoid.vehicles.tricycle import build_tricycle
-from shintai.humanoid.vehicles.vboard import build_vboard
+from shintai.humanoid.tricycle.riding import build_riding
+from shintai.humanoid.tricycle.vehicle import build_tricycle
+from shintai.humanoid.unicycle.ride import build_ninebot_stand
+from shintai.humanoid.unicycle.vehicle import build_ninebot
+from shintai.humanoid.vboard.stand import build_vboard_stand
+from shintai.humanoid.vboard.vehicle import build_vboard
 from shintai.sim.export import model
 
 

@@ -97,7 +97,7 @@ class MujocoBody(Body):
     :class:`shintai.sim.VideoRecorder` adds its ``capture`` there); ``before_physics`` holds callables
     run before every *physics* step: the plant's own embedded controllers, which read ``data`` and
     write ``data.ctrl`` of their actuators at the physics rate (a vehicle's firmware, e.g.
-    :class:`shintai.humanoid.vehicles.vboard.VboardFirmware`), not the robot's modules.
+    :class:`shintai.humanoid.vboard.vehicle.VboardFirmware`), not the robot's modules.
     """
 
     def __init__(self, source: ModelSource, substeps: int = 1, keyframe: str | int | None = None,

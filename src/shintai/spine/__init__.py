@@ -21,5 +21,12 @@ tactile — push teaching triggers felt through the muscles (§5.9.3)
 teaching — encoder zeroing in LL mode (§4.6.4), direct teaching and playback (§4.2)
 tracking_loops — visual tracking loops of different periods in one Loop (§5.2.10, §5.2.12) and their metrics
 
+cla/ — Cla: the arms-only spine of E9–E11 and the whole-body Cla of chapter 5 (§3.4, §4.2–4.7, §5.2, §5.9)
+kenta/ — Kenta: the 40-muscle, 10-joint spine with arms, neck and eyes (§3.7, §4.2, §5.2.11–5.2.12)
+sq43/ — SQ43: the quadruped with a foam spine (§3.2, §5.6)
+hanzous/ — HanzouS: the brachiating robot with a leaf-spring trunk (§3.3, §5.7)
+bebe/ — BeBe: visual tracking with 36 on/off muscles and no geometric model (§4.8)
+mocap/ — motion capture onto spined robots (§5.8, Fig. 5.28)
+rabbit/ — Rabbit: the spine of silicone ring discs, quasi-static (§3.5)
 experiments/ — one declared scenario per file; notes/ — their accounts.
 """

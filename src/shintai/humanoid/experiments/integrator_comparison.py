@@ -10,16 +10,16 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.prior_value_integrator import R_SAT_V
-from shintai.humanoid.speed_governing_ride import (
-    PLANTS,
-    START_DELAY,
+from shintai.humanoid.learning.prior_value_integrator import R_SAT_V
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
+from shintai.humanoid.vboard.governed_ride import (
     governed_rig,
     governor_series,
+    increase_ticks,
     replay_integrator,
     ui_jumps,
 )
-from shintai.humanoid.vboard_ride import D_VBOARD
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 MODES = ("corrected", "saturated")
@@ -29,13 +29,9 @@ STARTS = ("boarding", "lift")
 
 
 def rig(params, variant, seed):
-    return governed_rig(params, variant, seed, boarding=params["start"] == "boarding")
-
-
-def increase_ticks(s: dict) -> np.ndarray:
-    """Ticks k where an I-gain increase first acts (u_I(k) − u_I(k−1) is the jump; see ui_jumps)."""
-    k = np.flatnonzero(np.diff(s["gains"][:, 1]) > 0) + 2
-    return k[k < s["uI"].size]
+    return governed_rig(params["plant"], params["learn_s"], variant, seed, params["theta_o_error_deg"],
+                        params["damping_d"], start_delay=params.get("start_delay_s", START_DELAY),
+                        eta_scale=params.get("eta_scale", 1.0), boarding=params["start"] == "boarding")
 
 
 def eq643_residual(s: dict, r_sat: float = R_SAT_V) -> float:
@@ -78,30 +74,6 @@ def metrics(runs, params):
     return out
 
 
-def plots(ctx, runs, params):
-    with ctx.figure("fig6_17", 3, 1, figsize=(11, 10), sharex=True) as (_fig, ax):
-        for m, style in (("corrected", "b--"), ("saturated", "g--")):
-            if m not in runs:
-                continue
-            s = governor_series(runs[m].log, "v")
-            t0 = runs[m].state.governor.t_start or 0.0
-            t = s["t"] - t0
-            ax[0].plot(t, s["uI"] * 1e3, style, label=f"u_I^v ×10³, {m} run (closed loop)")
-            if m == "corrected":
-                ax[1].plot(t, s["E"], "r", label="E_v(t), corrected integrator")
-                ax[2].plot(t, s["uI"] * 1e3, "b--", label="u_I^v ×10³ corrected (Eq. 6.38)")
-                ax[2].plot(t, replay_integrator(s, "saturated") * 1e3, "g--",
-                           label=f"u_I^v ×10³ saturated r_sat = {R_SAT_V} on the same e_v, K_I^v(n) (Eq. 6.42)")
-                for k in increase_ticks(s):
-                    for a in ax:
-                        a.axvline(t[k], color="0.85", lw=0.6)
-        ax[0].set_title("closed-loop runs, one per integrator (grey: I-gain increases of the corrected run)")
-        ax[2].set_title("Fig. 6.17: the corrected run's data replayed (the thesis's comparison)")
-        for a in ax:
-            a.legend(fontsize=7)
-        ax[-1].set_xlabel("t [s] from the learning start")
-
-
 experiment(
     "humanoid.integrator-comparison",
     covers=("000:fig6.17",),
@@ -135,5 +107,5 @@ experiment(
     thesis={"r_sat_v": ThesisValue(R_SAT_V, "seed 000 §6.4.2: '飽和制約 r_sat^v = 1.5'", None),
             "switch_time_s": ThesisValue(4.0, "seed 000 §6.4.2: the difference shows at the switching at '4[s]' "
                                           "(Fig. 6.17, Fig. 6.16's data)", None)},
-    rig=rig, variants=MODES, filmed=("saturated",), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=MODES, filmed=("saturated",), metrics=metrics, plots=plots.integrator_comparison, video=True,
 )

@@ -11,12 +11,26 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.geometry import unwrap_from
-from shintai.humanoid import plots
-from shintai.humanoid.constants import (DEG, KENSHIRO, KENSHIRO_CONTACT_N, KENSHIRO_RELAXED_TENDON,
-                                        KENSHIRO_SAMPLE_PERIOD, KENSHIRO_SWITCH_LEAD, THETA_C_INIT)
-from shintai.humanoid.kenshiro import (SIDE, active_leg_plan, crank_angle_from_feet, foot_force, pedal_plan,
-                                       pedalling_switcher, settle)
+from shintai.humanoid.constants import (
+    DEG,
+    KENSHIRO,
+    KENSHIRO_CONTACT_N,
+    KENSHIRO_RELAXED_TENDON,
+    KENSHIRO_SAMPLE_PERIOD,
+    KENSHIRO_SWITCH_LEAD,
+    THETA_C_INIT,
+)
 from shintai.humanoid.robots.kenshiro import build_kenshiro
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.kenshiro import (
+    SIDE,
+    active_leg_plan,
+    crank_angle_from_feet,
+    foot_force,
+    pedal_plan,
+    pedalling_switcher,
+    settle,
+)
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

@@ -9,8 +9,9 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import (
+from shintai.humanoid.constants import DEG, NAVIGATION
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.ch4_drive import (
     CH4_VIEW,
     DRIVE_PARAM,
     LEAD_NOTE,
@@ -22,9 +23,8 @@ from shintai.humanoid.ch4_drive import (
     overturned,
     vehicle_geoms,
 )
-from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
-from shintai.humanoid.constants import DEG, NAVIGATION
-from shintai.humanoid.localisation import Localiser, box_map
+from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
+from shintai.humanoid.tricycle.localisation import Localiser, box_map
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

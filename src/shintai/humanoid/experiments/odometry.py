@@ -9,12 +9,12 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
-from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
 from shintai.humanoid.constants import DEG, TRICYCLE
-from shintai.humanoid.localisation import LOCALISATION, Localiser, box_map
-from shintai.humanoid.navigation import crank_rate
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
+from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
+from shintai.humanoid.tricycle.localisation import LOCALISATION, Localiser, box_map
+from shintai.humanoid.tricycle.navigation import crank_rate
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

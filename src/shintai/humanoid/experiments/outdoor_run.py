@@ -3,12 +3,19 @@ ones of seed 000 §3.5.4 (simultaneous steering and pedalling, 80 % waits, passi
 
 from __future__ import annotations
 
-from shintai.humanoid import plots
-from shintai.humanoid.constants import (D_THETA_C, D_THETA_H, DEG, DELTA_T, F_TRG_PASSIVE_LEG_IMPROVED, TRICYCLE,
-                                        WAIT_FRACTION_IMPROVED)
-from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
-from shintai.humanoid.tricycle_rig import F_TRG
+from shintai.humanoid.constants import (
+    D_THETA_C,
+    D_THETA_H,
+    DEG,
+    DELTA_T,
+    F_TRG_PASSIVE_LEG_IMPROVED,
+    TRICYCLE,
+    WAIT_FRACTION_IMPROVED,
+)
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.operation import OperationSchedule
+from shintai.humanoid.tricycle.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
+from shintai.humanoid.tricycle.rig import F_TRG
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -64,7 +71,7 @@ experiment(
     checks=[
         Check("speed_ratio", ">", 1.0,
               "follows from our schedules: 56 sequential samples of 2Δt against 36 simultaneous samples of "
-              "2 × 0.8Δt, 1.944 (pinned by tests/humanoid/test_ride.py), with D_c fixing the distance per "
+              "2 × 0.8Δt, 1.944 (pinned by tests/humanoid/tricycle/test_ride.py), with D_c fixing the distance per "
               "revolution; not a comparison with the thesis (see speed_ratio_vs_thesis)", kind="consistency"),
         Check("speed_ratio", ">=", 1 / WAIT_FRACTION_IMPROVED,
               "derived from our inputs: the 80 % waits alone give 1/0.8; simultaneous steering removes the "

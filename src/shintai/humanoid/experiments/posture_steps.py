@@ -8,12 +8,19 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
-from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d, vehicle_roll
 from shintai.humanoid.constants import DEG, POSTURE_K_C, POSTURE_T_C, STEP_HEIGHT, STEPS_SPEED, TRICYCLE
 from shintai.humanoid.corrections import ChestPostureControl
-from shintai.humanoid.navigation import crank_rate
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
+from shintai.humanoid.tricycle.ch4_riding import (
+    REF_CHANNELS,
+    Obstacle,
+    build_ch4,
+    trunk_roll,
+    vehicle_pose2d,
+    vehicle_roll,
+)
+from shintai.humanoid.tricycle.navigation import crank_rate
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

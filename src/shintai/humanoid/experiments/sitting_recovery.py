@@ -8,19 +8,34 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule, Group, Switcher
-from shintai.humanoid import ch4_riding as cr
-from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import (CH4_VIEW, DRIVES, LEGS_NOTE, MOTOR_NOTE, SeatSlip, hip_to_com, lean_left,
-                                        overturned)
-from shintai.humanoid.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_pose2d, vehicle_roll
-from shintai.humanoid.constants import (CONTROL_PERIOD, DEG, DELTA_T, FOOT_FOLLOW_F_TRG, LEGS_FZ,
-                                        RECOVERY_PEDAL_REVOLUTIONS, STEPS_SPEED)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    DEG,
+    DELTA_T,
+    FOOT_FOLLOW_F_TRG,
+    LEGS_FZ,
+    RECOVERY_PEDAL_REVOLUTIONS,
+    STEPS_SPEED,
+)
 from shintai.humanoid.corrections import RecoveryTrigger, SittingRecovery
-from shintai.humanoid.load_monitor import LoadMonitor, recovery_windows, window_means
-from shintai.humanoid.navigation import crank_rate
-from shintai.humanoid.switching import estimate_crank_angle
-from shintai.humanoid.tricycle_rig import legs_pedalling, pedal_axles
-from shintai.humanoid.vehicles.tricycle import crank_centre
+from shintai.humanoid.tricycle import ch4_riding as cr
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.ch4_drive import (
+    CH4_VIEW,
+    DRIVES,
+    LEGS_NOTE,
+    MOTOR_NOTE,
+    SeatSlip,
+    hip_to_com,
+    lean_left,
+    overturned,
+)
+from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_pose2d, vehicle_roll
+from shintai.humanoid.tricycle.load_monitor import LoadMonitor, recovery_windows, window_means
+from shintai.humanoid.tricycle.navigation import crank_rate
+from shintai.humanoid.tricycle.rig import legs_pedalling, pedal_axles
+from shintai.humanoid.tricycle.switching import estimate_crank_angle
+from shintai.humanoid.tricycle.vehicle import crank_centre
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -124,7 +139,7 @@ def metrics(runs, params):
 
 
 def load_metrics(rec, rec_flag) -> dict:
-    """Fig. 7.16 (I) and (II) before and after the first recovery, means over :func:`~shintai.humanoid.load_monitor.recovery_windows`."""
+    """Fig. 7.16 (I) and (II) before and after the first recovery, means over :func:`~shintai.humanoid.tricycle.load_monitor.recovery_windows`."""
     t = rec.times("load.force_norm")
     values = {k: rec.values(f"load.{k}") for k in LOAD_KEYS}
     windows = recovery_windows(t, rec_flag)

@@ -9,14 +9,22 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule, Switcher
-from shintai.humanoid import ch4_riding as cr
-from shintai.humanoid import plots
-from shintai.humanoid.ch4_drive import CH4_VIEW, DRIVES, MOTOR_NOTE, BackPedal, LeadPedal, foot_off_pedal, overturned
-from shintai.humanoid.ch4_riding import REF_CHANNELS, Obstacle, Rider, build_ch4, vehicle_pose2d
 from shintai.humanoid.constants import BOARD_THICKNESS, CONTROL_PERIOD, LEGS_FZ, SMALL_SPEED, TRICYCLE
 from shintai.humanoid.corrections import PedalLoadDetector
-from shintai.humanoid.navigation import crank_rate
-from shintai.humanoid.tricycle_rig import CrankEstimate
+from shintai.humanoid.tricycle import ch4_riding as cr
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.ch4_drive import (
+    CH4_VIEW,
+    DRIVES,
+    MOTOR_NOTE,
+    BackPedal,
+    LeadPedal,
+    foot_off_pedal,
+    overturned,
+)
+from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, Rider, build_ch4, vehicle_pose2d
+from shintai.humanoid.tricycle.navigation import crank_rate
+from shintai.humanoid.tricycle.rig import CrankEstimate
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 

@@ -8,8 +8,10 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.solc import PHASES, solc_ride, switch_times
-from shintai.humanoid.speed_governing_ride import PLANTS, VIEW, governor_series, plant_values
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import PLANTS, VIEW
+from shintai.humanoid.vboard.governed_ride import governor_series, plant_values
+from shintai.humanoid.vboard.solc import PHASES, solc_ride, switch_times
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -22,14 +24,14 @@ def rig(params, variant, seed):
     pv = plant_values(params["plant"])
     ride = solc_ride(pv, params["theta_o_error_deg"], params["eta_scale"], seed)
     ride.plant = pv
-    sw, feet = ride.switcher, ride.standing.damping.feet
+    sw, slc = ride.switcher, ride.slc
 
     def until(snapshot) -> bool:
         done = switch_times(sw)["done"]
         return ride.fallen() or float(snapshot["t"]) >= done + params["after_done_s"]
 
     def signals(snapshot):
-        return {**ride.signals(snapshot), "D_L": feet["L"].D[1], "D_R": feet["R"].D[1],
+        return {**ride.signals(snapshot), "D_L": slc.D[1], "D_R": slc.D[3],
                 "phase": float(PHASES.index(sw.active))}
     return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["max_s"], until=until,
                record={5: signals}, view=VIEW, state=ride)
@@ -46,10 +48,10 @@ def metrics(runs, params):
     m = {"fallen": int(ride.fallen()), "end_s": t_end, "t_slc_start_s": times["slc"], "t_mlc_start_s": times["mlc"],
          "t_done_s": times["done"], "riding_phase_s": times["mlc"] - times["slc"],
          "converged": int(math.isfinite(times["done"])), "damping_initial": float(D[0]),
-         "damping_final": float(ride.standing.damping.feet["L"].D[1]),
+         "damping_final": float(ride.slc.D[1]),
          # the right pitch holds the left's learned D — and SLC did learn (it ran, and moved D off D₀)
          "right_took_learned_d": int(math.isfinite(times["mlc"]) and D[-1] != D[0]
-                                     and ride.standing.damping.feet["R"].D[1] == ride.standing.damping.feet["L"].D[1]),
+                                     and ride.slc.D[3] == ride.slc.D[1]),
          "final_abs_v_mps": float(np.mean(np.abs(log.values("true_v")[tail]))),
          "final_abs_omega_rad_s": float(np.mean(np.abs(log.values("true_omega")[tail])))}
     for a in AXES:
@@ -60,39 +62,6 @@ def metrics(runs, params):
         m[f"{a}_converged"] = int(mlc.converged)
         m[f"{a}_J_last"] = mlc.batches[-1].J if mlc.batches else math.nan
     return m
-
-
-def plots(ctx, runs, params):
-    """Fig. 7.20: (a) D in the riding phase, (b) v's and (c) ω's PID gains, (d) J_v, J_ω per batch; Fig. 7.21: v, ω
-    against v^d = ω^d = 0. Phases shaded: SLC grey, MLC none, DONE green."""
-    run = runs["solc"]
-    ride, log = run.state, run.log
-    times = switch_times(ride.switcher)
-    with ctx.figure("fig7_20", 4, 1, sharex=True, figsize=(9, 11)) as (_, ax):
-        ax[0].plot(log.times("D_L"), log.values("D_L"), label="D (left pitch)")
-        ax[0].plot(log.times("D_R"), log.values("D_R"), "--", label="D (right pitch)")
-        ax[0].set_ylabel("(a) D [N·m·s/rad]")
-        for j, a in enumerate(AXES):
-            s = governor_series(log, a, "mlc")
-            for i, (n, c) in enumerate(zip(("K_P", "K_I", "K_D"), "rgb", strict=True)):
-                ax[1 + j].plot(s["t"], s["gains"][:, i] * 1e3, c, label=f"{n}^{a}")
-            ax[1 + j].set_ylabel(f"({'bc'[j]}) {a} gains ×10⁻³")
-            b = ride.governor.mlc[a].batches
-            ax[3].semilogy([x.t_end for x in b], [max(x.J, 1e-12) for x in b], "o-", label=f"J_{a}")
-        ax[3].set_ylabel("(d) J per batch")
-        ax[3].set_xlabel("t [s] from the initial state on the floor")
-    with ctx.figure("fig7_21", 2, 1, sharex=True, figsize=(9, 6)) as (_, ax2):
-        for k, (a, key) in enumerate((("v [m/s]", "true_v"), ("ω [rad/s]", "true_omega"))):
-            ax2[k].plot(log.times(key), log.values(key), "g", label="measured (truth)")
-            ax2[k].axhline(0.0, color="r", label="target 0")
-            ax2[k].set_ylabel(a)
-        ax2[1].set_xlabel("t [s]")
-    for a in list(ax) + list(ax2):
-        a.axvspan(times["slc"], times["mlc"] if math.isfinite(times["mlc"]) else times["slc"], color="0.9", zorder=0)
-        if math.isfinite(times["done"]):
-            a.axvspan(times["done"], float(ride.body.t), color="#dfd", zorder=0)
-        a.legend(fontsize=7)
-        a.grid(alpha=0.3)
 
 
 experiment(
@@ -132,5 +101,5 @@ experiment(
             "t_done_s": ThesisValue(79.5, f"{SEC}: '全体で 79.5[s] かかり, t = 79.5[s] で式 6.32 の終了条件を満たした'",
                                     "t_done_s"),
             "riding_phase_s": ThesisValue(1.5, f"{SEC}: 'Riding Phase by SLC : 4 ≤ t ≤ 5.5'", "riding_phase_s")},
-    rig=rig, variants=("solc",), filmed=("solc",), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=("solc",), filmed=("solc",), metrics=metrics, plots=plots.solc, video=True,
 )

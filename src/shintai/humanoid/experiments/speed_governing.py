@@ -11,15 +11,9 @@ import math
 import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG
-from shintai.humanoid.speed_governing_ride import (
-    PLANTS,
-    START_DELAY,
-    governed_rig,
-    governor_series,
-    ui_jumps,
-    unstable_intervals,
-)
-from shintai.humanoid.vboard_ride import D_VBOARD
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
+from shintai.humanoid.vboard.governed_ride import governed_rig, governor_series, ui_jumps, unstable_intervals
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -29,7 +23,9 @@ AXES = ("v", "omega")
 
 
 def rig(params, variant, seed):
-    return governed_rig(params, "corrected", seed, learn=variant != "off", boarding=variant == "boarding")
+    return governed_rig(params["plant"], params["learn_s"], "corrected", seed, params["theta_o_error_deg"],
+                        params["damping_d"], start_delay=params.get("start_delay_s", START_DELAY),
+                        eta_scale=params.get("eta_scale", 1.0), learn=variant != "off", boarding=variant == "boarding")
 
 
 def variants(params) -> tuple[str, ...]:
@@ -84,7 +80,7 @@ def summary(run) -> dict:
     if ride.boarding is not None:  # Fig. 6.16's start: the boarding (ch. 5) before the learning
         st, sched = ride.boarding
         out.update({"slc_window_s": sched.duration if sched.duration is not None else math.nan,
-                    "damping_learned": float(st.damping.feet["L"].D[1]), "plan_end_s": st.duration - t0})
+                    "damping_learned": float(sched.D[1]), "plan_end_s": st.duration - t0})
     conv = [out[f"{a}_t_converged_s"] for a in AXES]
     out["converged"] = int(all(out[f"{a}_converged"] for a in AXES))
     out["t_converged_s"] = max(conv) if out["converged"] else math.nan
@@ -99,80 +95,6 @@ def metrics(runs, params):
     if "learn" in runs and "off" in runs:
         out["ride_gain_s"] = out["ride_learn_s"] - out["ride_off_s"]
     return out
-
-
-def draw_run(ax, run, label: str):
-    """Figs. 6.15–6.16 (b)–(f) of one run on a 5×2 grid of axes."""
-    ride, log = run.state, run.log
-    t0 = ride.governor.t_start or 0.0
-    colors = {"K_P": "r", "K_I": "g", "K_D": "b"}
-    for j, a in enumerate(AXES):
-        s = governor_series(log, a)
-        t = s["t"] - t0
-        sym = "v" if a == "v" else "ω"
-        for i, name in enumerate(("K_P", "K_I", "K_D")):
-            ax[0, j].plot(t, s["gains"][:, i] * 1e3, colors[name], label=f"{name}^{sym}(n)")
-        ax[0, j].set_ylabel(f"({'b1' if j == 0 else 'b2'}) gains ×10⁻³")
-        ax[0, j].set_title(f"{label}: {sym}")
-        tv = log.times("true_v") - t0
-        ax[1, j].axhline(0.0, color="r", label=f"{sym}_d")
-        ax[1, j].plot(t, -s["e"], "g--", lw=0.8, label=f"{sym} measured (Eq. 6.3 / gyro)")
-        ax[1, j].plot(tv, log.values("true_v" if a == "v" else "true_omega"), color="0.5", lw=0.8, label="truth")
-        ax[1, j].set_ylabel(f"(c) {sym} [{'m/s' if a == 'v' else 'rad/s'}]")
-        ax[2, j].plot(t, s["E"], "r", label=f"E_{sym}(t)")
-        ax[2, j].plot(t, s["uI"] * 1e3, "b--", label=f"u_I^{sym}(t) ×10³")
-        ax[2, j].set_ylabel("(d) E, u_I")
-        for a_, b in unstable_intervals(t, s["stable"]):
-            ax[1, j].axvspan(a_, b, color="0.9")
-    for j, a in enumerate(AXES):
-        s = governor_series(log, a)
-        style = ("m", "-") if a == "v" else ("g", "--")
-        ax[3, 0].plot(s["t"] - t0, s["stable"], color=style[0], ls=style[1], label="v" if a == "v" else "ω")
-        b = ride.governor.mlc[a].batches
-        ax[3, 1].semilogy([x.t_end - t0 for x in b], [max(x.J, 1e-12) for x in b], color=style[0], ls=style[1],
-                          marker="o", label=f"J_{'v' if a == 'v' else 'ω'}")
-    ax[3, 0].set_ylabel("(e) Routh–Hurwitz (Eq. 6.41)")
-    ax[3, 0].set_yticks([-1, 1])
-    ax[3, 1].set_ylabel("(f) J (Eq. 6.17), per batch")
-    th = log.values("foot_pitch.theta_R") if "foot_pitch.theta_R" in log.names() else None
-    if th is not None:
-        tt = log.times("foot_pitch.theta_R") - t0
-        ax[4, 0].plot(tt, th / DEG, "r", label="Σ Δθ_R (governor + excitation)")
-        ax[4, 0].plot(tt, log.values("foot_pitch.theta_L") / DEG, "b--", label="Σ Δθ_L")
-    ax[4, 0].set_ylabel("commanded foot pitch [deg]")
-    ax[4, 1].plot(log.times("x") - t0, log.values("x"), "k", label="scooter x [m]")
-    ax[4, 1].set_ylabel("travel [m]")
-    for row in ax:
-        for x in row:
-            x.legend(fontsize=6)
-    for x in ax[-1]:
-        x.set_xlabel("t [s] from the learning start")
-
-
-def draw_boarding(ax, run):
-    """Fig. 6.16-(a0)'s phase: the boarding before the learning — D of both foot pitches (SLC), the boards' pitch,
-    the scooter's travel; t from the learning start (both feet landed)."""
-    log, t0 = run.log, run.state.governor.t_start or 0.0
-    for side in ("L", "R"):
-        ax[0].plot(log.times(f"foot_damping.D_{side}") - t0, log.values(f"foot_damping.D_{side}")[:, 1],
-                   label=f"D ({side} pitch)")
-        ax[1].plot(log.times("theta_L") - t0, log.values(f"theta_{side}") / DEG, label=f"θ_{side}")
-    ax[2].plot(log.times("x") - t0, log.values("x"), "k", label="scooter x")
-    for a, label in zip(ax, ("D [N·m·s/rad]", "board pitch [deg]", "x [m]"), strict=True):
-        a.set_ylabel(label)
-        a.axvline(0.0, color="r", lw=0.6, ls=":")
-        a.legend(fontsize=7)
-    ax[2].set_xlabel("t [s] from the learning start (both feet landed)")
-
-
-def plots(ctx, runs, params):
-    for name, run in runs.items():
-        fig = "fig6_16" if name == "boarding" else f"fig6_15_{name}"
-        with ctx.figure(fig, 5, 2, figsize=(13, 15), sharex=True) as (_fig, ax):
-            draw_run(ax, run, f"{name} (Fig. {'6.16' if name == 'boarding' else '6.15'} layout)")
-    if "boarding" in runs:
-        with ctx.figure("fig6_16_boarding", 3, 1, figsize=(8, 7), sharex=True) as (_fig, ax):
-            draw_boarding(ax, runs["boarding"])
 
 
 experiment(
@@ -232,5 +154,5 @@ experiment(
                                                   "t_converged_boarding_s"),
             "eta_v": ThesisValue(1e-7, "seed 000 Table 6.6: diag(10⁻⁷, 10⁻⁷, 10⁻⁷) for v", None),
             "eta_omega": ThesisValue(1e-9, "seed 000 Table 6.6: diag(10⁻⁹, 10⁻⁹, 10⁻⁹) for ω", None)},
-    rig=rig, variants=variants, filmed=("learn", "boarding"), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=variants, filmed=("learn", "boarding"), metrics=metrics, plots=plots.speed_governing, video=True,
 )

@@ -6,13 +6,29 @@ from __future__ import annotations
 import numpy as np
 from scipy.stats import spearmanr
 
-from shintai.humanoid import plots, riding
-from shintai.humanoid.constants import (CONTROL_PERIOD, D_THETA_C, DEG, DELTA_T, MODEL_ERROR_MM, PEDAL_FORCE_BAND,
-                                        TRICYCLE)
-from shintai.humanoid.hrp2_limbs import riding_limbs
-from shintai.humanoid.operation import SIDES, LimbPair, travel_distance
-from shintai.humanoid.tricycle_rig import (F_TRG, LEG_GAINS, active_samples, crank_estimate_error, crank_schedule,
-                                           foot_plan, force_errors, legs_switcher, pedal_rig)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    D_THETA_C,
+    DEG,
+    DELTA_T,
+    MODEL_ERROR_MM,
+    PEDAL_FORCE_BAND,
+    TRICYCLE,
+)
+from shintai.humanoid.tricycle import plots, riding
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
+from shintai.humanoid.tricycle.operation import SIDES, LimbPair, travel_distance
+from shintai.humanoid.tricycle.rig import (
+    F_TRG,
+    LEG_GAINS,
+    active_samples,
+    crank_estimate_error,
+    crank_schedule,
+    foot_plan,
+    force_errors,
+    legs_switcher,
+    pedal_rig,
+)
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 AP, BOTH = "active_passive", "both_active"

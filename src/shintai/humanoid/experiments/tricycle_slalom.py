@@ -3,11 +3,11 @@ slalom of Fig. 3.21 from a joystick script, sequential mode (seed 000 ยง3.5.2, ย
 
 from __future__ import annotations
 
-from shintai.humanoid import plots
 from shintai.humanoid.constants import D_THETA_C, D_THETA_H, DEG, DELTA_T, TRICYCLE
-from shintai.humanoid.operation import OperationSchedule
-from shintai.humanoid.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, slalom_goals
-from shintai.humanoid.tricycle_rig import F_TRG
+from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.operation import OperationSchedule
+from shintai.humanoid.tricycle.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, slalom_goals
+from shintai.humanoid.tricycle.rig import F_TRG
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 

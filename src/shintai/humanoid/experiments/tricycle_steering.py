@@ -5,13 +5,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid import plots, riding
 from shintai.humanoid.constants import CONTROL_PERIOD, D_THETA_H, DEG, DELTA_T
-from shintai.humanoid.hrp2_limbs import riding_limbs
-from shintai.humanoid.operation import SIDES, LimbPair, role_switcher
-from shintai.humanoid.switching import active_arm
-from shintai.humanoid.tricycle_rig import (ARM_GAINS, hand_plan, handle_diagnostic, sample_end_errors,
-                                           steer_rig, steer_schedule)
+from shintai.humanoid.tricycle import plots, riding
+from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
+from shintai.humanoid.tricycle.operation import SIDES, LimbPair, role_switcher
+from shintai.humanoid.tricycle.rig import (
+    ARM_GAINS,
+    hand_plan,
+    handle_diagnostic,
+    sample_end_errors,
+    steer_rig,
+    steer_schedule,
+)
+from shintai.humanoid.tricycle.switching import active_arm
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 AP, BOTH = "active_passive", "both_active"

@@ -7,8 +7,9 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.ninebot_ride import PLACEMENTS
-from shintai.humanoid.unicycle import P0_PARAM, summary, unicycle_rig
+from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M, PLACEMENTS
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'
@@ -25,7 +26,7 @@ def rig(params, variant, seed):
     if params["tap_n"] > 0:
         ride_push = (np.array([0.0, params["tap_n"], 0.0]), TAP_AT_S, 0.1)
     step_at = params["step_at_s"]
-    return unicycle_rig(params, seed, control="parallel", learn=False, training_wheels=False,
+    return unicycle_rig(params["duration_s"], seed, params.get("p0_m", P0_M), control="parallel", learn=False, training_wheels=False,
                         roll_shaping=params["roll_shaping"], placement=params["placement"],
                         gains=(LEARNED_TRAJ, LEARNED_V), v_d=lambda t: V_STEP if t >= step_at else 0.0, push=ride_push)
 
@@ -40,26 +41,6 @@ def metrics(runs, params):
     out["fell"] = out.pop("fallen")
     out["t_fall_s"] = out["ride_s"] if out["fell"] else math.nan
     return out
-
-
-def plots(ctx, runs, params):
-    run = runs["run"]
-    ride, log = run.state, run.log
-    t = log.times("true_v") - ride.t0
-    with ctx.figure("fig7_13", 3, 1, figsize=(9, 9), sharex=True) as (_fig, ax):
-        ax[0].plot(t, np.where(t >= params["step_at_s"], V_STEP, 0.0), "r", label="ref v")
-        ax[0].plot(t, log.values("true_v"), "g--", label="act v (truth)")
-        ax[0].set_ylabel("v [m/s]")
-        ax[0].set_title("Fig. 7.13: no training wheels, learned gains; t = 0 at the release")
-        ax[1].plot(t, np.degrees(log.values("roll")), "k", label="unicycle roll")
-        if ride.roll is not None and "roll.target" in log.names():
-            ax[1].plot(log.times("roll.target") - ride.t0, np.degrees(log.values("roll.target")), "m",
-                       label="φ_C^d (Eq. 7.6)")
-        ax[1].set_ylabel("roll [deg]")
-        ax[2].plot(t, log.values("zmp_mod") * 1e3, "b", label="correction p^{d**} − p^{d*} [mm]")
-        ax[2].set_xlabel("t [s] from the release")
-        for a in ax:
-            a.legend(fontsize=7)
 
 
 experiment(
@@ -87,5 +68,5 @@ experiment(
               kind="reproduction"),
     ],
     thesis={"v_step_mps": ThesisValue(V_STEP, "seed 000 §7.3.3: 'v^d = 0.3[m/s]のステップ指令'", None)},
-    rig=rig, metrics=metrics, plots=plots, video=True,
+    rig=rig, metrics=metrics, plots=lambda ctx, runs, params: plots.free(ctx, runs, params["step_at_s"], V_STEP), video=True,
 )

@@ -5,8 +5,9 @@ tracking's references instead (ours: see the notes for why)."""
 
 from __future__ import annotations
 
-from shintai.humanoid.ninebot_ride import PLACEMENTS
-from shintai.humanoid.unicycle import P0_PARAM, draw_learning, summary, unicycle_rig
+from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M, PLACEMENTS
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -15,17 +16,11 @@ assert set(VARIANTS.values()) == set(PLACEMENTS)
 
 
 def rig(params, variant, seed):
-    return unicycle_rig(params, seed, control="parallel", learn=True, training_wheels=True, placement=VARIANTS[variant])
+    return unicycle_rig(params["duration_s"], seed, params.get("p0_m", P0_M), control="parallel", learn=True, training_wheels=True, placement=VARIANTS[variant])
 
 
 def metrics(runs, params):
     return per_variant({name: summary(run) for name, run in runs.items()})
-
-
-def plots(ctx, runs, params):
-    with ctx.figure("fig7_9_7_10", 5, len(runs), figsize=(6 * len(runs), 14), sharex="col", squeeze=False) as (_f, ax):
-        for j, (name, run) in enumerate(runs.items()):
-            draw_learning(ax[:, j], run, f"{name} (Fig. 7.9 (b)–(e), Fig. 7.10)")
 
 
 experiment(
@@ -61,7 +56,7 @@ experiment(
     thesis={"t_settled_s": ThesisValue(18.0, "seed 000 §7.3.3, Fig. 7.9 (a4) 't = 18.0[s]', Fig. 7.10 "
                                              "'(18[s]付近)にはエラーを小さく抑える'", "t_settled_as_written_s"),
             "v_gain_ratio": ThesisValue(0.1, "seed 000 §7.3.3: '10 分の 1 未満'", "v_gain_ratio_to_vboard_as_written")},
-    rig=rig, metrics=metrics, plots=plots, video=True,
+    rig=rig, metrics=metrics, plots=plots.learning, video=True,
     variants=lambda p: tuple(VARIANTS) if p["variants"] == "both" else (p["variants"],),
     filmed=lambda p: ("as_written",) if p["variants"] in ("both", "as_written") else ("reference",),
 )

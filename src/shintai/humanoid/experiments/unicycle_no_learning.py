@@ -3,35 +3,18 @@ lift (the thesis's supporting hand) letting go — does the speed run away? (see
 
 from __future__ import annotations
 
-from shintai.humanoid.unicycle import P0_PARAM, V_DIVERGED, summary, unicycle_rig
+from shintai.humanoid.unicycle import plots
+from shintai.humanoid.unicycle.constants import P0_M
+from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
 def rig(params, variant, seed):
-    return unicycle_rig(params, seed, control="stabilizer", training_wheels=True)
+    return unicycle_rig(params["duration_s"], seed, params.get("p0_m", P0_M), control="stabilizer", training_wheels=True)
 
 
 def metrics(runs, params):
     return summary(runs["run"])
-
-
-def plots(ctx, runs, params):
-    run = runs["run"]
-    ride, log = run.state, run.log
-    t = log.times("true_v") - ride.t0
-    with ctx.figure("speed", 3, 1, figsize=(9, 9), sharex=True) as (_fig, ax):
-        ax[0].plot(t, log.values("true_v"), "g", label="v (truth)")
-        for s in (1, -1):
-            ax[0].axhline(s * V_DIVERGED, color="0.6", ls=":")
-        ax[0].set_ylabel("v [m/s]")
-        ax[0].set_title("Fig. 7.7: stabilizer only, training wheels; t = 0 at the release")
-        ax[1].plot(t, log.values("zmp_act_x") * 1e3, "b", label="rider's ZMP x from p⁰ (M_y⁰/W, Eq. A.5)")
-        ax[1].set_ylabel("ZMP x [mm]")
-        ax[2].plot(t, log.values("x"), "k", label="unicycle x")
-        ax[2].set_ylabel("travel [m]")
-        ax[2].set_xlabel("t [s] from the release")
-        for a in ax:
-            a.legend(fontsize=7)
 
 
 experiment(
@@ -50,5 +33,5 @@ experiment(
     ],
     thesis={"speed_diverged": ThesisValue(1, "seed 000 §7.3.3, Fig. 7.7 (4): 'Divergence of Speed'",
                                           "speed_diverged")},
-    rig=rig, metrics=metrics, plots=plots, video=True,
+    rig=rig, metrics=metrics, plots=plots.no_learning, video=True,
 )

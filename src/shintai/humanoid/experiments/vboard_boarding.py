@@ -9,11 +9,12 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.boarding import boarding_stack, run_summary
-from shintai.humanoid.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
-from shintai.humanoid.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
-from shintai.humanoid.standing import CHANNELS
-from shintai.humanoid.vehicles.vboard import board_pitch
+from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
+from shintai.humanoid.balance.standing import CHANNELS
+from shintai.humanoid.learning.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
+from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -22,24 +23,22 @@ AFTER_S = 2.0  # s of standing after the plan's end (the robot on the scooter), 
 
 
 def rig(params, variant, seed):
-    """The stack of :class:`~shintai.humanoid.standing.Standing` stepping onto the scooter
-    (:mod:`shintai.humanoid.boarding`); the SLC schedule runs inside the foot damping, learning (``slc``) or
-    only marking the same window (``fixed_d``: D = D₀ throughout)."""
+    """The stack of :class:`~shintai.humanoid.balance.standing.Standing` stepping onto the scooter
+    (:mod:`shintai.humanoid.vboard.boarding`); SLC runs after the foot damping, learning (``slc``) or only marking
+    the same window (``fixed_d``: D = D₀ throughout)."""
     p = SLCParams(D0=params["D0"], Q=params["Q"], R=params["R"], eta=params["eta"])
     st, sched = boarding_stack(p, params["T"], learn=variant == "slc")
     body = st.body
     left: FootDamping = st.damping.feet["L"]
-    right: FootDamping = st.damping.feet["R"]
     qx = body.model.joint("vboard_x").qposadr[0]
     c = {}  # the stack's channels as the last stage sees them (the runner's loop is not st.loop)
     watch = FunctionModule(lambda snap: c.update({k: snap[k] for k in ("tau_d_L", "tau_L", "f_Lz", "f_Rz")}),
                            name="watch")
-    stages = [list(stage) for stage in st.loop.stages]
-    stages[-1].append(watch)
+    stages = st.stages(observers=[watch])
 
     def signals(snap):
         theta = board_pitch(snap)
-        return {"D_L": left.D[1], "D_R": right.D[1], "D_L_roll": left.D[0],
+        return {"D_L": sched.D[1], "D_R": sched.D[3], "D_L_roll": sched.D[0],
                 "tau_d": float(np.asarray(c["tau_d_L"])[1]), "tau": float(np.asarray(c["tau_L"])[1]),
                 "delta": left.delta[1], "e_tau": left.e_tau[1],
                 "J": float(slc_cost(left.e_tau[1], left.delta[1], p.Q, p.R)),
@@ -92,52 +91,6 @@ def metrics(runs, params):
         "ik_unreachable": fixed["unreachable"] + slc["unreachable"],
     }
     return m
-
-
-def plots(ctx, runs, params):
-    """Fig. 5.8: (a) D, (b) τᵈ and τ, (c) δ, (d) J_τ of the left-foot pitch, without (column 1) and with SLC
-    (column 2); time from SLC's start (the left landing), the SLC window shaded; and the boarding itself."""
-    with ctx.figure("fig5_8", 4, 2, sharex="col", figsize=(11, 10)) as (_, ax):
-        for col, variant in enumerate(VARIANTS):
-            log, sched = runs[variant].log, runs[variant].state.sched
-            t0 = sched.t_start if sched.t_start is not None else 0.0
-            t = log.times("J") - t0
-            title = "without SLC (D = 22.0 fixed)" if variant == "fixed_d" else "with SLC"
-            ax[0, col].plot(t, log.values("D_L"), label="D (left pitch)")
-            ax[0, col].plot(t, log.values("D_R"), "--", label="D (right pitch)")
-            ax[0, col].set_ylabel("D [N·m·s/rad]")
-            ax[0, col].set_title(f"({'ab'[col]}) {title}")
-            ax[1, col].plot(t, log.values("tau_d"), label="τᵈ")
-            ax[1, col].plot(t, log.values("tau"), label="τ")
-            ax[1, col].set_ylabel("left pitch torque [N·m]")
-            ax[2, col].plot(t, np.degrees(log.values("delta")), label="δ")
-            for s in (-1, 1):
-                ax[2, col].axhline(s * math.degrees(DELTA_LIMIT), color="r", lw=0.6, ls=":")
-            ax[2, col].set_ylabel("δ [deg]")
-            ax[3, col].plot(t, log.values("J"), label="J_τ")
-            ax[3, col].set_ylabel("J_τ")
-            ax[3, col].set_xlabel("t from the left landing (SLC start) [s]")
-            stop = (sched.t_stop - t0) if sched.t_stop is not None else t[-1]
-            for a in ax[:, col]:
-                a.axvspan(0.0, stop, color="0.9", zorder=0)
-                a.legend(fontsize=7, loc="upper left")
-                a.grid(alpha=0.3)
-    with ctx.figure("boarding", 3, 1, sharex=True, figsize=(8, 7)) as (_, ax):
-        for variant in VARIANTS:
-            log = runs[variant].log
-            t = log.times("J")
-            ax[0].plot(t, log.values("f_Lz"), label=f"f_Lz {variant}")
-            ax[0].plot(t, log.values("f_Rz"), "--", label=f"f_Rz {variant}")
-            ax[1].plot(t, np.degrees(log.values("theta_l")), label=f"θ_L {variant}")
-            ax[2].plot(t, log.values("scooter_x"), label=f"scooter x {variant}")
-        ax[0].axhline(runs["slc"].state.params.F_thre, color="k", lw=0.6, ls=":")
-        ax[0].set_ylabel("sole f_z [N]")
-        ax[1].set_ylabel("left board pitch [deg]")
-        ax[2].set_ylabel("scooter x [m]")
-        ax[2].set_xlabel("t [s]")
-        for a in ax:
-            a.legend(fontsize=7)
-            a.grid(alpha=0.3)
 
 
 SEC = "thesis §5.4.2"
@@ -202,5 +155,5 @@ experiment(
         "table_5_2": ThesisValue({"T": 1.5, "Q": 0.1, "R": 1.0e5, "eta": 0.01}, "seed 000 §5.4.2, Table 5.2"),
         "F_thre_n": ThesisValue(25.0, "seed 000 §5.4.1: '本稿では,F_thre = 25[N] として設定する'"),
     },
-    rig=rig, variants=VARIANTS, filmed=VARIANTS, metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=VARIANTS, filmed=VARIANTS, metrics=metrics, plots=plots.boarding, video=True,
 )

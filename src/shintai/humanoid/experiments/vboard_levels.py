@@ -5,8 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.humanoid.balance.scooter import LIFT_SPEED
 from shintai.humanoid.constants import DEG
-from shintai.humanoid.vboard_ride import D_VBOARD, LIFT_SPEED, VboardRide, theta_o
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD
+from shintai.humanoid.vboard.ride import VboardRide, theta_o, touchdown
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
@@ -19,15 +22,6 @@ def rig(params, variant, seed):
                       D=params["damping_d"], speed=params["lift_speed_mps"], seed=seed)
     return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["max_s"],
                until=lambda s: ride.fallen(), record={5: ride.signals}, view=VIEW, state=ride)
-
-
-def touchdown(run) -> float:
-    """Boarding, t = 0 of Figs. 6.3–6.4 (chosen): the first recorded instant with a measured ZMP, i.e. the soles
-    loaded past the F/T contact threshold while the lift still holds part of the weight (the thesis's plots
-    start with a ZMP; from the lift going slack instead, level 1's early ZMP-x peak is 9 mm, not 80 mm)."""
-    t, zx = run.log.times("x"), run.log.values("zmp_x")
-    ok = np.isfinite(zx)
-    return float(t[ok][0]) if ok.any() else float("nan")
 
 
 def summary(run) -> dict:
@@ -56,34 +50,6 @@ def metrics(runs, params):
             out[variant_metric(k, name)] = v
     out["drift_ratio"] = abs(out["drift_level2_m"]) / max(abs(out["drift_level1_m"]), 1e-9)
     return out
-
-
-def plots(ctx, runs, params):
-    with ctx.figure("zmp_and_pitch", 4, 2, figsize=(12, 11), sharex="col") as (_fig, ax):
-        for j, (name, run) in enumerate(runs.items()):
-            rec, ride = run.log, run.state
-            t0 = touchdown(run)
-            t = rec.times("x") - t0
-            ax[0, j].set_title(f"{name} (Fig. 6.{3 + j}); t = 0 at boarding (soles loaded); lift slack at "
-                               f"{ride.lift.t_release - t0:.2f} s")
-            for i, (key, label) in enumerate((("zmp_x", "ZMP X [mm]"), ("zmp_y", "ZMP Y [mm]"))):
-                ax[i, j].axhline(0.0, color="r", label="reference ZMP (scooter centre)")
-                ax[i, j].plot(t, rec.values(key) * 1e3, "g--", label="measured ZMP (ankle F/T)")
-                ax[i, j].set_ylabel(label)
-            for i, (key, side, label) in enumerate((("theta_R", "r", "θ_R [deg]"), ("theta_L", "l", "θ_L [deg]"))):
-                ax[2 + i, j].axhline(theta_o(side) / DEG, color="b", label="θ_O (Eq. A.1 intercept)")
-                ax[2 + i, j].plot(t, rec.values(key) / DEG, "m--", label="board pitch")
-                ax[2 + i, j].set_ylabel(label)
-            ax[3, j].set_xlabel("t [s]")
-            for a in ax[:, j]:
-                a.legend(fontsize=7)
-    with ctx.figure("travel", 1, 1, figsize=(8, 4)) as (_fig, ax):
-        for name, run in runs.items():
-            t0 = touchdown(run)
-            ax.plot(run.log.times("x") - t0, run.log.values("x"), label=name)
-        ax.set_xlabel("t [s] from boarding")
-        ax.set_ylabel("scooter x [m]")
-        ax.legend()
 
 
 experiment(
@@ -123,5 +89,5 @@ experiment(
                                                      "zmp_x_max_early_level1_mm"),
             "theta_o_r_deg": ThesisValue(-1.7871, "seed 000 §6.2.1 / Eq. A.1, θ_RO", None),
             "theta_o_l_deg": ThesisValue(-1.9972, "seed 000 §6.2.1 / Eq. A.1, θ_LO", None)},
-    rig=rig, variants=("level1", "level2"), filmed=("level1", "level2"), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=("level1", "level2"), filmed=("level1", "level2"), metrics=metrics, plots=plots.levels, video=True,
 )

@@ -1,43 +1,32 @@
 """``humanoid.vboard-plant-id``: the speed plants P_*(s) = K_*/(s(1 + T_* s)) identified on HRP2 riding the V-BOARD
 at behaviour level 2, from a known foot-pitch input and the simulated sensors' v, ω (seed 000 §6.2.2 (D),
-Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.plant_id`."""
+Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.vboard.plant_id`."""
 
 from __future__ import annotations
 
-import numpy as np
-
-from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.plant_id import AXES, PARAMS, metrics, rig, series, window
-from shintai.humanoid.speed_governing import lowpass
-from shintai.scenarios.registry import Check, ThesisValue, experiment
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, EXCITE_S, THETA_O_ERROR_DEG
+from shintai.humanoid.vboard.plant_id import AXES, identification, plant_id_rig
+from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
-def plots(ctx, runs, params):
-    m = metrics(runs, params)
-    with ctx.figure("identification", 3, 2, figsize=(13, 9)) as (_fig, ax):
-        for j, (axis, run, u, y, yt, T, K) in enumerate((
-                ("v", "v", "foot_pitch.u_v", "sensors.v", "sensors.true_v", m["T_v_s"], m["K_v"]),
-                ("ω", "omega", "foot_pitch.u_omega", "sensors.omega", "sensors.true_omega", m["T_omega_s"],
-                 m["K_omega"]))):
-            t, s = series(runs[run])
-            w = window(t)
-            if w.sum() < 50:
-                continue
-            tt = t[w]
-            ax[0, j].plot(tt, s[u][w], color="k", lw=0.8)
-            ax[0, j].set_ylabel(f"u_{axis} [rad / 4 ms]")
-            ax[1, j].plot(tt, s[y][w], "g--", lw=0.8, label=f"{axis} (simulated sensors)")
-            ax[1, j].plot(tt, s[yt][w], color="0.5", lw=0.8, label=f"{axis} (truth)")
-            ax[1, j].legend(fontsize=7)
-            ydot = np.gradient(s[y][w], CONTROL_PERIOD)
-            ax[2, j].plot(tt, ydot, "g--", lw=0.5, label=f"d{axis}/dt measured")
-            if np.isfinite(T):
-                ax[2, j].plot(tt, K * lowpass(s[u][w], T, CONTROL_PERIOD), "r", lw=1.0,
-                              label=f"Eq. 6.14 model, T={T:.2f} s, K={K:.3g}")
-            ax[2, j].legend(fontsize=7)
-            ax[2, j].set_xlabel("t [s]")
-        ax[0, 0].set_title("Fig. 6.9 (a): v")
-        ax[0, 1].set_title("Fig. 6.9 (b): ω")
+PARAMS = [
+    Param("excite_s", EXCITE_S, "length of the excitation of each run (v, ω) [s]", lo=2.0, hi=60.0),
+    Param("amplitude_rad", EXCITE_AMPLITUDE, "square-wave amplitude of u_v [rad per 4 ms] (ours)", lo=1e-6, hi=5e-4),
+    Param("period_s", EXCITE_PERIOD, "square-wave period [s] (ours)", lo=0.2, hi=10.0),
+    Param("theta_o_error_deg", THETA_O_ERROR_DEG, "true θ_O minus the regression intercept [deg] (ours, as "
+          "humanoid.vboard-levels)", lo=-3.0, hi=3.0),
+    Param("damping_d", D_VBOARD, "foot damping gain D [N m s/rad] (§5.4.2)", lo=1.0, hi=1000.0),
+]
+
+
+def rig(params, variant, seed):
+    return plant_id_rig(variant, seed, params["excite_s"], params["amplitude_rad"], params["period_s"],
+                        params["theta_o_error_deg"], params["damping_d"])
+
+
+def metrics(runs, params):
+    return identification(runs)
 
 
 experiment(
@@ -65,5 +54,5 @@ experiment(
             "T_omega_s": ThesisValue(0.6, "seed 000 Table 6.2, T_ω", "T_omega_s"),
             "K_v": ThesisValue(5.88e2, "seed 000 Table 6.2, K_v = 5.88×10²", "K_v"),
             "K_omega": ThesisValue(1.39e4, "seed 000 Table 6.2, K_ω = 1.39×10⁴", "K_omega")},
-    rig=rig, variants=AXES, filmed=("v",), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=AXES, filmed=("v",), metrics=metrics, plots=plots.plant_id, video=True,
 )

@@ -5,8 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.humanoid.balance.scooter import chest_pitch
 from shintai.humanoid.constants import DEG
-from shintai.humanoid.vboard_ride import D_VBOARD, VboardRide, chest_pitch
+from shintai.humanoid.vboard import plots
+from shintai.humanoid.vboard.constants import D_VBOARD
+from shintai.humanoid.vboard.ride import VboardRide
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, experiment
 
@@ -54,22 +57,6 @@ def metrics(runs, params):
     return out
 
 
-def plots(ctx, runs, params):
-    with ctx.figure("trunk_pitch", 3, 1, figsize=(10, 9), sharex=True) as (_fig, ax):
-        for name, run in runs.items():
-            rec = run.log
-            t = rec.times("x") - run.state.lift.t_release
-            ax[0].plot(t, rec.values("trunk_pitch") / DEG, label=f"chest pitch φ_C, {name} posture control")
-            ax[1].plot(t, rec.values("x"), label=f"scooter x, {name}")
-            ax[2].plot(t, rec.values("correction") / DEG, label=f"Δφ_C (Eq. 4.8), {name}")
-        ax[0].set_ylabel("φ_C [deg]")
-        ax[1].set_ylabel("x [m]")
-        ax[2].set_ylabel("Δφ_C [deg]")
-        ax[2].set_xlabel("t [s] from the lift letting go")
-        for a in ax:
-            a.legend(fontsize=8)
-
-
 experiment(
     "humanoid.vboard-posture",
     covers=("000:fig4.10b",),
@@ -93,5 +80,5 @@ experiment(
               kind="reproduction"),
     ],
     thesis={},
-    rig=rig, variants=("with", "without"), filmed=("with", "without"), metrics=metrics, plots=plots, video=True,
+    rig=rig, variants=("with", "without"), filmed=("with", "without"), metrics=metrics, plots=plots.posture, video=True,
 )

@@ -22,7 +22,7 @@ bodies         ``waist`` (pelvis, root), ``chest``, ``head``, ``s_hand``, ``s_fo
 sites          ``s_wrist_ft``/``s_ankle_ft`` (F/T sensor frames), ``s_grasp`` (grasp centre,
                0.10 m beyond the wrist; its x axis is the axis of a grasped bar), ``s_sole``
                (sole, under the ankle axis, foot frame), ``imu`` (chest), ``head_camera`` (depth
-               sensor origin on the head's face, x forward; :mod:`shintai.humanoid.navigation`)
+               sensor origin on the head's face, x forward; :mod:`shintai.humanoid.tricycle.navigation`)
 sensors        ``s_wrist_force``/``s_wrist_torque``, ``s_ankle_force``/``s_ankle_torque``: what
                the hand/foot receives from its parent link, in the site frame (see
                :func:`shintai.humanoid.add_ft_sensor` and :func:`ft_reaction`); ``imu_quat``
@@ -40,12 +40,37 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid import (SOLE, add_ft_sensor, add_hinge, add_servo, add_visual, axis_vector, fill_keyframe,
-                              scene_spec, set_joints)
-from shintai.humanoid.constants import (ARM_JOINTS, ARMATURE_BIG, ARMATURE_SMALL, ARMATURE_SPLIT, HRP2_LINKS,
-                                        HRP2_MASSES, LEG_JOINTS, NECK_JOINTS, SERVO_SATURATION_ERROR,
-                                        STANDING_POSTURE, SUBSTEPS, WAIST_JOINTS, Hrp2Links, JointSpec, joint_range)
+from shintai.humanoid.constants import (
+    ARM_JOINTS,
+    ARMATURE_BIG,
+    ARMATURE_SMALL,
+    ARMATURE_SPLIT,
+    HRP2_LINKS,
+    HRP2_MASSES,
+    LEG_JOINTS,
+    NECK_JOINTS,
+    SCENE,
+    SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR,
+    SOLE,
+    STANDING_POSTURE,
+    SUBSTEPS,
+    WAIST_JOINTS,
+    Hrp2Links,
+    JointSpec,
+    joint_range,
+)
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import (
+    add_ft_sensor,
+    add_hinge,
+    add_servo,
+    add_visual,
+    axis_vector,
+    fill_keyframe,
+    scene_spec,
+    set_joints,
+)
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each limb
 WHITE = [0.92, 0.92, 0.94, 1]
@@ -66,7 +91,7 @@ def _joint(spec, body, spec_row: JointSpec, side: str = "") -> str:
     name = f"{side}_{spec_row.name}" if side else spec_row.name
     armature = ARMATURE_BIG if spec_row.torque >= ARMATURE_SPLIT else ARMATURE_SMALL
     add_hinge(body, name, axis_vector(spec_row.axis), joint_range(spec_row, side), armature=armature)
-    add_servo(spec, name, spec_row.torque / SERVO_SATURATION_ERROR, spec_row.torque)
+    add_servo(spec, name, spec_row.torque / SERVO_SATURATION_ERROR, spec_row.torque, SERVO_DAMPRATIO)
     return name
 
 
@@ -168,7 +193,7 @@ def side_posture(per_side: dict[str, float]) -> dict[str, float]:
 
 def build_hrp2(links: Hrp2Links = HRP2_LINKS, substeps: int = SUBSTEPS) -> MujocoBody:
     """The humanoid standing on the floor (keyframe ``stand``), one body step = 4 ms."""
-    spec = scene_spec("hrp2-jsk")
+    spec = scene_spec("hrp2-jsk", *SCENE)
     add_hrp2(spec, spec.worldbody, [0, 0, 1.0], links)
     spec.add_key(name="stand")
     model = spec.compile()

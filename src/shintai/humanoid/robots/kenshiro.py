@@ -40,11 +40,19 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.humanoid import (SOLE, add_ft_sensor, add_hinge, add_servo, add_visual, fill_keyframe, scene_spec,
-                              set_joints)
-from shintai.humanoid.constants import KENSHIRO, PHYSICS_TIMESTEP, SERVO_SATURATION_ERROR, TRICYCLE, KenshiroSpec
-from shintai.humanoid.vehicles.tricycle import add_crank
+from shintai.humanoid.constants import (
+    KENSHIRO,
+    PHYSICS_TIMESTEP,
+    SCENE,
+    SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR,
+    SOLE,
+    TRICYCLE,
+    KenshiroSpec,
+)
+from shintai.humanoid.tricycle.vehicle import add_crank
 from shintai.sim.body import MujocoBody
+from shintai.sim.spec import add_ft_sensor, add_hinge, add_servo, add_visual, fill_keyframe, scene_spec, set_joints
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each leg
 SKIN = [0.85, 0.75, 0.55, 1]
@@ -115,14 +123,14 @@ def _add_leg(spec: mujoco.MjSpec, waist, side: str, k: KenshiroSpec) -> None:
     for body, joint in zip((thigh, shank, foot), JOINTS):
         name = f"{side}_{joint}"
         add_hinge(body, name, [0, 1, 0], limits[joint], armature=k.armature)
-        add_servo(spec, name, torques[joint] / SERVO_SATURATION_ERROR, torques[joint])
+        add_servo(spec, name, torques[joint] / SERVO_SATURATION_ERROR, torques[joint], SERVO_DAMPRATIO)
     add_ft_sensor(spec, f"{side}_foot_ft", f"{side}_foot")
 
 
 def kenshiro_spec(k: KenshiroSpec = KENSHIRO, crank_damping: float = TRICYCLE.crank_damping,
                   crank_friction: float = TRICYCLE.crank_friction) -> mujoco.MjSpec:
     """Kenshiro's legs, waist fixed above the crank rig (keyframe ``ride`` still to be filled)."""
-    spec = scene_spec("kenshiro-pedalling")
+    spec = scene_spec("kenshiro-pedalling", *SCENE)
     waist = spec.worldbody.add_body(name="waist", pos=[0, 0, HIP_HEIGHT])
     add_visual(waist, mujoco.mjtGeom.mjGEOM_BOX, [0.09, 0.16, 0.1], SKIN, pos=[-0.02, 0, 0.08])
     for side in SIDES:

@@ -1,0 +1,142 @@
+"""Foot torque damping control (seed 000 §5.2.2, Eqs. 5.1–5.3) and foot force difference control.
+
+Kajita et al.'s "Foot torque control" (the thesis's [55], run by hrpsys-base's Stabilizer) turns each
+foot's roll and pitch by δ so that the sensed ankle torque τ follows the reference τᵈ of the ZMP distributor:
+
+    δ̇ = D⁻¹ (τᵈ − τ) − δ / T                                   (Eq. 5.1)
+    e_τ = τᵈ − τ                                                (Eq. 5.2)
+    δ = C_τ(s) e_τ,   C_τ(s) = T / (D (1 + T s))                (Eq. 5.3, the "damping controller")
+
+D is the damping gain that SLC learns (§5.3, :mod:`shintai.humanoid.learning.slc`), T the time constant. On the
+computer Eq. 5.1 runs in forward Euler at the control period (hrpsys-base ``calcDampingControl``:
+δ ← δ + Δt (e_τ / D − δ / T)), and δ is clipped to a compensation limit afterwards. The thesis mentions that
+limit ("設定した入力制限", §5.4.2) without a value.
+
+"Foot force difference control" is named in §5.2.2 only in words: a distributor of the difference of the
+two feet's vertical reactions, effective in double support, and therefore not learned. The thesis gives
+no equation; the law here is Kajita et al. [55] Eq. 18 as hrpsys-base runs it — the same damping law on
+the force difference Δf = f_Lz − f_Rz, moving the feet by ∓z_ctrl/2 — and it only decays in single support
+(hrpsys ramps it over a transition time; chosen: off at once, see :class:`ForceDifferenceControl`).
+
+Units: τ in N·m, δ in rad, D in N·m·s/rad (the thesis gives D without units; hrpsys-base uses these).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shintai.core.runtime import SET, Channel, Module, Snapshot, declare
+from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.law_params import check_real
+
+# --- constants ------------------------------------------------------------------------------------
+DAMPING_T = 1.5  # s, T of Eq. 5.1 (Table 5.2; also hrpsys-base's eefm_rot_time_const default)
+DAMPING_D_FLAT = 22.0  # N·m·s/rad, D "adaptive on a flat floor" and the SLC start value D₀ (§5.4.1)
+# hrpsys-base's default rotation damping gain is 100 (20·5); the thesis's robot ran with 22.0 on the floor.
+DELTA_LIMIT = 10 * math.pi / 180  # rad; chosen: hrpsys-base eefm_rot_compensation_limit (thesis: no value)
+# Force difference control: no value in the thesis; hrpsys-base defaults (eefm_pos_damping_gain z,
+# eefm_pos_time_const_support z, 2 × eefm_pos_compensation_limit).
+FORCE_DIFF_D = 3500.0  # N·s/m
+FORCE_DIFF_T = 1.5  # s
+FORCE_DIFF_LIMIT = 0.05  # m
+AXES = ("roll", "pitch")
+GAIN = "damping_gain"
+# δ and e_τ of this tick, and D from one tick earlier (SLC writes D(t+Δt) after this tick's damping step, Fig. 5.4)
+CHANNELS = {**declare("damping_delta", "e_tau", kind=SET), GAIN: Channel(GAIN, SET, delay=1)}
+
+
+def damping_step(delta, e_tau, D, T: float, dt: float):
+    """One forward-Euler step of Eq. 5.1 with e_τ = τᵈ − τ (Eq. 5.2): δ + Δt (e_τ/D − δ/T)."""
+    return delta + dt * (np.asarray(e_tau, dtype=float) / D - np.asarray(delta, dtype=float) / T)
+
+
+def damping_controller_gain(D: float, T: float) -> float:
+    """The static gain of C_τ(s) = T / (D (1 + T s)) (Eq. 5.3): δ → T e_τ / D under a constant error."""
+    return T / D
+
+
+class FootDamping:
+    """Eq. 5.1 on one foot's roll and pitch (in that order), clipped to ±``limit``.
+
+    ``D`` holds one damping gain per axis and may be rewritten between steps (SLC writes the pitch one).
+    ``step(tau_d, tau)`` returns the new δ; ``e_tau`` keeps the error of that step.
+    """
+
+    def __init__(self, D=DAMPING_D_FLAT, T: float = DAMPING_T, dt: float = CONTROL_PERIOD, limit: float = DELTA_LIMIT):
+        D = np.broadcast_to(np.asarray(D, dtype=float), (2,)).copy()
+        for axis, d in zip(AXES, D, strict=True):
+            check_real(f"D ({axis})", d, 0.0, low_open=True)
+        self.D = D
+        self.T = check_real("T", T, 0.0, low_open=True)
+        self.dt = check_real("dt", dt, 0.0, low_open=True)
+        self.limit = check_real("limit", limit, 0.0, low_open=True)
+        self.delta = np.zeros(2)
+        self.e_tau = np.zeros(2)
+        self.saturated = np.zeros(2, dtype=bool)
+
+    def step(self, tau_d, tau) -> np.ndarray:
+        self.e_tau = np.asarray(tau_d, dtype=float) - np.asarray(tau, dtype=float)
+        raw = damping_step(self.delta, self.e_tau, self.D, self.T, self.dt)
+        self.delta = np.clip(raw, -self.limit, self.limit)
+        self.saturated = np.abs(raw) >= self.limit
+        return self.delta.copy()
+
+    def reset(self) -> None:
+        self.delta[:] = 0.0
+        self.e_tau[:] = 0.0
+
+
+class ForceDifferenceControl:
+    """Foot force difference control (§5.2.2 by name; law of [55] Eq. 18 as in hrpsys-base):
+
+        ż_ctrl = D_z⁻¹ (Δfᵈ − Δf) − z_ctrl / T_z,   Δf = f_Lz − f_Rz,   z_R = −z_ctrl/2,  z_L = +z_ctrl/2
+
+    in double support; in single support z_ctrl only decays (ż = −z/T_z). Returns (z_R, z_L) in m.
+    """
+
+    def __init__(self, D=FORCE_DIFF_D, T: float = FORCE_DIFF_T, dt: float = CONTROL_PERIOD, limit: float = FORCE_DIFF_LIMIT):
+        self.D = check_real("D_z", D, 0.0, low_open=True)
+        self.T = check_real("T_z", T, 0.0, low_open=True)
+        self.dt = check_real("dt", dt, 0.0, low_open=True)
+        self.limit = check_real("limit", limit, 0.0, low_open=True)
+        self.z_ctrl = 0.0
+
+    def step(self, f_d_diff: float, f_diff: float, double_support: bool) -> tuple[float, float]:
+        e = (f_d_diff - f_diff) if double_support else 0.0
+        self.z_ctrl = float(np.clip(damping_step(self.z_ctrl, e, self.D, self.T, self.dt), -self.limit, self.limit))
+        return -0.5 * self.z_ctrl, 0.5 * self.z_ctrl
+
+
+class FootDampingModule(Module):
+    """Both feet's torque damping (Eq. 5.1) as a runtime module.
+
+    Reads ``tau_d_<foot>`` and ``tau_<foot>`` (roll, pitch; foot ∈ L, R) from the snapshot and contributes
+    δ to ``channel`` as [L roll, L pitch, R roll, R pitch] (additive: the corrections add to the foot
+    attitudes, and in ch. 6 δ is the disturbance d of Eq. 6.5). It also writes its own δ and e_τ, same layout,
+    on the set channels ``damping_delta`` and ``e_tau`` (SLC's search variables, Fig. 5.4), and takes its gains
+    D from channel ``damping_gain`` when someone writes it (SLC, one tick later: :data:`CHANNELS`); else the
+    feet keep the D they were built with. ``D`` and ``T`` build both feet (one D per axis, or one for all).
+    """
+
+    def __init__(self, D=DAMPING_D_FLAT, T: float = DAMPING_T, channel: str = "foot_damping",
+                 name: str = "foot_damping", period: float | None = None):
+        super().__init__(name, period)
+        self.feet = {"L": FootDamping(D=D, T=T), "R": FootDamping(D=D, T=T)}
+        self.channel = channel
+
+    def reset(self, snapshot: Snapshot) -> None:
+        for foot in self.feet.values():
+            foot.reset()
+
+    def update(self, snapshot: Snapshot):
+        left, right = self.feet["L"], self.feet["R"]
+        gain = snapshot.get(GAIN)
+        if gain is not None:
+            left.D[:], right.D[:] = gain[:2], gain[2:]
+        deltas = {f: law.step(snapshot[f"tau_d_{f}"], snapshot[f"tau_{f}"]) for f, law in self.feet.items()}
+        self.log(snapshot["t"], **{f"{self.name}.delta_L": deltas["L"], f"{self.name}.delta_R": deltas["R"],
+                                   f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
+        delta = np.concatenate([deltas["L"], deltas["R"]])
+        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.concatenate([left.e_tau, right.e_tau])}

@@ -1,0 +1,315 @@
+"""The LIP-tracking stabilizer HRP2-JSK stands and steps with (seed 000 §5.2.2; Kajita et al. 2010 [55]).
+
+The thesis runs hrpsys-base's Stabilizer, "the balance stabilization of Kajita et al. [55]" (§5.2.2,
+footnote 1), and names two of its foot layers, "Foot torque control" (Eqs. 5.1–5.3, the one SLC learns)
+and "Foot force difference control"; the rest of the stack is [55]'s (Kajita, Morisawa, Miura, Nakaoka,
+Harada, Kaneko, Kanehiro, Yokoi, "Biped walking stabilization based on linear inverted pendulum
+tracking", IROS 2010). One control period (4 ms) here:
+
+1. **LIP tracking** ([55] Eq. 26, hrpsys ``Stabilizer`` EEFM): with the CoM x, its velocity ẋ and the
+   measured ZMP p against their references (per horizontal axis)::
+
+       p_d = p_ref + k1 (x_ref − x) + k2 (ẋ_ref − ẋ) + k3 (p_ref − p)
+
+   k1, k2, k3 (:data:`LIP_K`) are hrpsys-base's defaults for HRP-2 (pole placement in [55] on the LIP
+   ẍ = ω² (x − p) with the ZMP following p_d with the delay ṗ = (p_d − p)/T_p, T_p = 0.04 s); the
+   poles they give our model are :func:`closed_loop_poles` (tested stable).
+2. **ZMP distributor** ([55] §IV, as hrpsys ``ZMPDistributor``'s default): the point p_α of the segment
+   between the two feet's points closest to p_d gives the ratio α = |p_α − a_R| / |a_L − a_R| (clipped to
+   [0, 1]); the feet take f_L = α F, f_R = (1 − α) F of the weight F = M g, and the residual p_d − p_α
+   as each foot's centre-of-pressure offset from its point a_j, i.e. the ankle torques τᵈ_j; the total
+   reaction then has its ZMP at p_d. In single support everything is on the stance foot (α = 1 or 0).
+3. **Foot torque damping** (Eqs. 5.1–5.3): :class:`~shintai.humanoid.balance.foot_damping.FootDampingModule` turns
+   τᵈ − τ into the sole attitude corrections δ (roll, pitch) per foot — as §5.2.2 defines its terms: τ
+   measured by the soles' 6-axis force sensors, τᵈ "from the ZMP distributor of [55]", δ the roll/pitch
+   displacement of the foot frame's attitude R_R, R_L: δ turns the sole about the reference frame's x/y
+   axes (the plans of :mod:`~shintai.humanoid.balance.standing` give the soles no yaw), and τ is read about the
+   *actual* foot's roll/pitch axes (the world reading turned by the sole's yaw, :func:`into_yawed`), so that
+   τ and δ share axes when the feet yaw — on the V-BOARD they turn with the scooter. In world axes a foot's
+   pitch torque leaks into roll by sin ψ and its roll torque into pitch (tested); measured on level 2 of
+   :mod:`~shintai.humanoid.vboard.ride` that leak was half of the yaw divergence (ω doubling every ≈1.5 s, a
+   fall at 12 s; read in the foot frame ≈3 s).
+4. **Foot force difference control** ([55] Eq. 18): :class:`~shintai.humanoid.balance.foot_damping.ForceDifferenceControl`
+   turns Δfᵈ − Δf into sole heights ∓z_ctrl/2, in double support.
+5. The corrected sole poses and the waist placed under the CoM reference → :func:`~shintai.humanoid.robots.leg_ik.legs_ik`
+   → the leg servos' targets (:mod:`shintai.humanoid.balance.standing` wires the modules).
+
+**Sign convention** (chosen, so that Eq. 5.1 as written is negative feedback): τ and f are what each
+foot *exerts on the floor* (the negated reaction of :func:`~shintai.humanoid.robots.hrp2.ft_reaction`),
+τ about the foot's point a_j (the sole site under the ankle), world x (roll) and y (pitch) axes; δ
+rotates the sole about world x and y. Tipping the toe down (δ_pitch > 0) moves the pressure forward
+and raises τ_pitch = f (q_x − a_x), so ∂τ/∂δ > 0 on both axes and δ̇ = (τᵈ − τ)/D converges; likewise
+Δf = f_L − f_R of the exerted forces' z components (downward, −f_z: an overloaded left foot makes Δf
+more negative) makes the existing ``(z_R, z_L) = (−z/2, +z/2)`` of :class:`ForceDifferenceControl` lift
+the overloaded foot (with Δf of the magnitudes it pushes it down: measured, it falls in 1.5 s).
+
+**Measured CoM** (chosen, the simulator's stand-in for hrpsys's IMU + joint-encoder FK): MuJoCo's
+whole-body CoM of the last physics step (``subtree_com`` of the root); on a flat floor with the feet
+flat this is what the IMU + FK estimate gives. Its velocity is the world finite difference over the
+period, low-passed like hrpsys's (ẋ ← 0.9 ẋ + 0.1 Δx/Δt). Like hrpsys (its "foot_origin" frame), the
+CoM and the measured ZMP are compared with their references *relative to the stance feet*: moved by
+(mean reference stance sole point − mean actual one) and turned by −ψ, ψ the stance soles' mean yaw (the
+references have none); the CoM velocity is turned by −ψ too. This is the only reading (hrpsys's
+foot-origin frame; §5.2.2's δ and τ are the foot frame's): on a flat floor the feet keep their yaw and it
+changes little; on the V-BOARD the feet yaw with the scooter — on level 2, and up to 70° during the
+self-boarding's right swing, where the world-axes reading let SLC's run fall (vboard-boarding's notes). In world
+coordinates a foot that lands 13 mm off its reference left a 23 mm CoM offset the LIP feedback kept fighting
+(measured, three steps).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from shintai.core.constants import GRAVITY
+from shintai.core.geometry import wrap_pi
+from shintai.core.runtime import SET, Module, declare
+from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
+from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
+from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.sim.body import MujocoBody
+
+# --- constants ------------------------------------------------------------------------------------
+# LIP feedback gains of [55] Eq. 26 (k1 on the CoM, k2 on its velocity, k3 on the ZMP): hrpsys-base
+# Stabilizer's defaults, −1.41429, −0.404082, −0.18, each × its k_ratio 0.9 (the thesis gives none).
+LIP_K = (-1.41429 * 0.9, -0.404082 * 0.9, -0.18 * 0.9)
+ZMP_DELAY_T = 0.04  # s, T_p of the ZMP's first-order response in [55] (hrpsys eefm_zmp_delay_time_const)
+COM_VEL_FILTER = 0.9  # hrpsys's act_cogvel ← 0.9 act_cogvel + 0.1 (finite difference)
+SIDES = ("l", "r")
+FOOT = {"l": "L", "r": "R"}  # the foot_damping module's names
+# support code on the loop's "support" channel (a number, so it can travel on a channel)
+SUPPORT_CODE = {"lr": 0.0, "l": 1.0, "r": -1.0}
+SUPPORT_NAME = {v: k for k, v in SUPPORT_CODE.items()}
+
+CHANNELS = {
+    **declare("tau_d_L", "tau_d_R", "tau_L", "tau_R", "f_Lz", "f_Rz", "zmp_d", "zmp_act", "sole_dz", kind=SET),
+}
+
+
+def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
+    """[55] Eq. 26 (module docstring): the modified ZMP reference p_d (x, y)."""
+    k1, k2, k3 = k
+    zr, cr, vr, c, v, z = (np.asarray(a, float)[:2] for a in (zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp))
+    return zr + k1 * (cr - c) + k2 * (vr - v) + k3 * (zr - z)
+
+
+def mean_yaw(yaws: list[float]) -> float:
+    """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
+    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws) / len(yaws)
+
+
+def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
+    """A horizontal vector (x, y) of the world in a frame yawed by ψ: Rz(−ψ) (x, y). The stabilizer's
+    foot-origin frame (module docstring): world readings into the frame of feet that have turned by ψ."""
+    c, s = math.cos(psi), math.sin(psi)
+    return c * x + s * y, -s * x + c * y
+
+
+def closed_loop_poles(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> np.ndarray:
+    """Poles of [55]'s error system under Eq. 26: e = (x − x_ref, ẋ − ẋ_ref, p − p_ref),
+    ė₁ = e₂, ė₂ = ω² (e₁ − e₃), ė₃ = (−k1 e₁ − k2 e₂ − (1 + k3) e₃) / T_p, ω² = g / z_c."""
+    if not (zc > 0 and tp > 0 and g > 0):
+        raise ValueError(f"closed_loop_poles: zc, tp and g must be > 0, got {zc!r}, {tp!r}, {g!r}")
+    k1, k2, k3 = k
+    w2 = g / zc
+    a = np.array([[0.0, 1.0, 0.0], [w2, 0.0, -w2], [-k1 / tp, -k2 / tp, -(1.0 + k3) / tp]])
+    return np.linalg.eigvals(a)
+
+
+class Distribution(NamedTuple):
+    """The distributor's output: ``alpha`` (left share), per side ``fz`` (N, exerted downward on the
+    floor, so positive) and ``tau_d`` (roll, pitch) N·m exerted about the foot's point."""
+
+    alpha: float
+    fz: dict
+    tau_d: dict
+
+
+def distribute(zmp_d, points: dict, support: str, total_fz: float) -> Distribution:
+    """The ZMP distributor of [55] §IV (module docstring, step 2). ``points``: side → the foot's (x, y)
+    point a_j; ``support``: "lr", "l" or "r"; ``total_fz`` the weight to share (N)."""
+    if support not in SUPPORT_CODE:
+        raise ValueError(f"distribute: support is 'lr', 'l' or 'r', got {support!r}")
+    if not (math.isfinite(total_fz) and total_fz >= 0):
+        raise ValueError(f"distribute: total_fz must be a finite force ≥ 0 N, got {total_fz!r}")
+    px, py = float(zmp_d[0]), float(zmp_d[1])
+    lx, ly = float(points["l"][0]), float(points["l"][1])
+    rx, ry = float(points["r"][0]), float(points["r"][1])
+    if support == "l":
+        alpha = 1.0
+    elif support == "r":
+        alpha = 0.0
+    else:
+        ux, uy = lx - rx, ly - ry
+        n2 = ux * ux + uy * uy
+        alpha = min(1.0, max(0.0, ((px - rx) * ux + (py - ry) * uy) / n2)) if n2 > 0 else 0.5
+    ax, ay = rx + alpha * (lx - rx), ry + alpha * (ly - ry)  # p_α
+    dx, dy = px - ax, py - ay  # each foot's pressure centre q_j = a_j + (p_d − p_α)
+    fz = {"l": alpha * total_fz, "r": (1.0 - alpha) * total_fz}
+    # exerted torque about a_j of a downward force f at q_j: (−d_y f, d_x f) (roll, pitch)
+    tau_d = {s: np.array([-dy * f, dx * f]) for s, f in fz.items()}
+    return Distribution(alpha, fz, tau_d)
+
+
+class FootWrench(NamedTuple):
+    """What a foot exerts on the floor, about its sole point: ``fz`` (N, + pushing down), ``tau``
+    (roll, pitch) N·m; ``point`` the sole site (world) the torque is about."""
+
+    fz: float
+    tau: np.ndarray
+    point: np.ndarray
+
+
+class FootSensors:
+    """Both feet's exerted wrenches (sign convention: module docstring) from the ankle F/T sensors: the
+    quasi-static reaction of :func:`~shintai.humanoid.robots.hrp2.ft_reaction` (foot weight compensated),
+    moved from the sensor site to the sole point, negated. Ids and masses are looked up once and the
+    arithmetic is on Python floats (it runs every 4 ms tick; ``ft_reaction`` costs ≈0.15 ms a foot)."""
+
+    def __init__(self, body: MujocoBody):
+        m = body.model
+        self.body = body
+        self.rows = {}
+        for s in SIDES:
+            site, sole = body.id("site", f"{s}_ankle_ft"), body.id("site", f"{s}_sole")
+            link = int(m.site_bodyid[site])
+            weight = (m.body_subtreemass[link] * m.opt.gravity).tolist()
+            f_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_force")])
+            t_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_torque")])
+            self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
+
+    def yaw(self, side: str) -> float:
+        """The sole's yaw in the world (rad): the angle of its x axis projected on the floor."""
+        r = self.body.data.site_xmat[self.rows[side][1]]
+        return math.atan2(float(r[3]), float(r[0]))
+
+    def read(self) -> dict[str, FootWrench]:
+        d = self.body.data
+        sensors = d.sensordata
+        out = {}
+        for s, (site, sole, link, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
+            r = d.site_xmat[site].tolist()
+            fx, fy, fz = sensors[f_adr:f_adr + 3].tolist()
+            tx, ty, tz = sensors[t_adr:t_adr + 3].tolist()
+            px, py, pz = d.site_xpos[site].tolist()
+            cx, cy, cz = d.subtree_com[link].tolist()
+            cx, cy, cz = cx - px, cy - py, cz - pz
+            # reaction about the sensor: f = −R f_s − m g, τ = −R τ_s − (c × m g)
+            Fx = -(r[0] * fx + r[1] * fy + r[2] * fz) - gx
+            Fy = -(r[3] * fx + r[4] * fy + r[5] * fz) - gy
+            Fz = -(r[6] * fx + r[7] * fy + r[8] * fz) - gz
+            Tx = -(r[0] * tx + r[1] * ty + r[2] * tz) - (cy * gz - cz * gy)
+            Ty = -(r[3] * tx + r[4] * ty + r[5] * tz) - (cz * gx - cx * gz)
+            sx, sy, sz = d.site_xpos[sole].tolist()
+            lx, ly, lz = px - sx, py - sy, pz - sz  # sensor − sole point
+            tau_x = Tx + ly * Fz - lz * Fy  # the reaction torque about the sole point
+            tau_y = Ty + lz * Fx - lx * Fz
+            out[s] = FootWrench(Fz, np.array([-tau_x, -tau_y]), np.array([sx, sy, sz]))
+        return out
+
+
+def foot_wrenches(body: MujocoBody, snapshot=None) -> dict[str, FootWrench]:
+    """Both feet's exerted wrenches, about their sole points (:class:`FootSensors`; the body's current
+    data, which is what a snapshot taken now holds)."""
+    return FootSensors(body).read()
+
+
+class StabilizerModule(Module):
+    """Steps 1, 2 and 4 of the module docstring in the control loop; step 3 is the
+    :class:`~shintai.humanoid.balance.foot_damping.FootDampingModule` of the next stage, which reads what this
+    writes. Reads ``com_ref`` (x, y, z), ``zmp_ref`` (x, y), ``sole_ref`` (2 × 3: left, right sole
+    points) and ``support`` (:data:`SUPPORT_CODE`); writes (:data:`CHANNELS`) ``tau_d_L/R``,
+    ``tau_L/R`` (roll, pitch; a swinging foot gets 0 and 0, so its δ only decays by −δ/T), ``f_Lz``,
+    ``f_Rz`` (the SLC's landing guards), ``zmp_d`` (p_d), ``zmp_act`` (measured ZMP, NaN in the air) and
+    ``sole_dz`` (left, right height corrections of the force difference control).
+
+    ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights."""
+
+    def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
+                 name: str = "stabilizer", period: float = CONTROL_PERIOD):
+        super().__init__(name, period)
+        self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
+        if len(self.k) != 3 or not all(math.isfinite(v) for v in self.k):
+            raise ValueError(f"stabilizer: k is three finite gains (k1, k2, k3), got {k!r}")
+        self.weight = float(body.model.body_subtreemass[body.id("body", "waist")] * GRAVITY)
+        self._root = body.id("body", "waist")
+        self.force_difference = ForceDifferenceControl(dt=period)
+        self.sensors = FootSensors(body)
+        self.com = [0.0, 0.0, 0.0]
+        self.com_vel = [0.0, 0.0, 0.0]
+        self._prev_ref = None
+        self._zero = np.zeros(2)
+
+    def reset(self, snapshot) -> None:
+        self.com = self.body.data.subtree_com[self._root].tolist()
+        self.com_vel = [0.0, 0.0, 0.0]
+        self._prev_ref = None
+        self.force_difference.z_ctrl = 0.0
+
+    def update(self, snapshot):
+        dt = self.period
+        com = self.body.data.subtree_com[self._root].tolist()
+        prev, v = self.com, self.com_vel
+        a = 1.0 - COM_VEL_FILTER
+        self.com_vel = [COM_VEL_FILTER * v[i] + a * (com[i] - prev[i]) / dt for i in range(3)]
+        self.com = com
+        cr = snapshot["com_ref"].tolist()
+        zr = snapshot["zmp_ref"].tolist()
+        prev_ref = self._prev_ref if self._prev_ref is not None else cr
+        vr = [(cr[0] - prev_ref[0]) / dt, (cr[1] - prev_ref[1]) / dt]
+        self._prev_ref = cr
+        support = SUPPORT_NAME[float(snapshot["support"])]
+        w = self.sensors.read()
+        soles = snapshot["sole_ref"].tolist()
+        # the foot-origin frame: actual CoM, ZMP and torques relative to the actual stance feet (their mean
+        # point and mean yaw), re-expressed on the reference stance feet, which have no yaw (module docstring)
+        stance = [i for i, side in enumerate(SIDES) if side in support]
+        n = len(stance)
+        yaw = {s: self.sensors.yaw(s) for s in SIDES}
+        psi = mean_yaw([yaw[SIDES[i]] for i in stance])
+        ax = sum(w[SIDES[i]].point[0] for i in stance) / n
+        ay = sum(w[SIDES[i]].point[1] for i in stance) / n
+        rx = sum(soles[i][0] for i in stance) / n
+        ry = sum(soles[i][1] for i in stance) / n
+
+        def to_ref(x, y):  # a world point into the reference stance frame: Rz(−ψ)(p − a) + r
+            x, y = into_yawed(x - ax, y - ay, psi)
+            return x + rx, y + ry
+
+        # measured ZMP of the feet in contact (the sole points on the floor plane): Σ(a f + (τ_y, −τ_x)) / Σ f
+        num_x = num_y = total = 0.0
+        for x in w.values():
+            if x.fz > CONTACT_FZ:
+                num_x += x.point[0] * x.fz + x.tau[1]
+                num_y += x.point[1] * x.fz - x.tau[0]
+                total += x.fz
+        act = np.array(to_ref(num_x / total, num_y / total)) if total > 0 else np.full(2, np.nan)
+        k1, k2, k3 = self.k
+        if self.lip and total > 0:
+            cx, cy = to_ref(com[0], com[1])
+            vx, vy = into_yawed(self.com_vel[0], self.com_vel[1], psi)
+            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act[0]),
+                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act[1])])
+        else:
+            zmp_d = np.array(zr[:2])
+        dist = distribute(zmp_d, {"l": soles[0], "r": soles[1]}, support, self.weight)
+        out = {"zmp_d": zmp_d, "zmp_act": act}
+        for s in SIDES:
+            on = s in support
+            out[f"tau_d_{FOOT[s]}"] = dist.tau_d[s] if on else self._zero
+            # τ about the foot's own roll and pitch axes, the axes δ turns it about
+            out[f"tau_{FOOT[s]}"] = np.array(into_yawed(*w[s].tau.tolist(), yaw[s])) if on else self._zero
+            out[f"f_{FOOT[s]}z"] = np.array(w[s].fz)
+        dz = (0.0, 0.0)
+        if self.use_force_difference:
+            # Δf of the exerted vertical forces (downward: −f_z), see the sign convention
+            z_r, z_l = self.force_difference.step(dist.fz["r"] - dist.fz["l"], w["r"].fz - w["l"].fz, support == "lr")
+            dz = (z_l, z_r)
+        out["sole_dz"] = np.array(dz)
+        if self.recorder is not None:
+            self.log(snapshot["t"], **{f"{self.name}.zmp_d": zmp_d, f"{self.name}.zmp_act": act,
+                                       f"{self.name}.com": np.array(com), f"{self.name}.alpha": dist.alpha})
+        return out

@@ -1,0 +1,161 @@
+"""Switching the search indices between two manipulators (seed 000 §3.4.4, Eq. 3.19, Fig. 3.14; role
+tables of §3.5.2).
+
+Motion measurement, method (a) of §3.4.4 (there is no sensor on the tricycle): the handle and crank
+angles come from the robot's own forward kinematics of its hand and foot points. The thesis gives no
+algorithm (spec §6 item 10); ours is the least-squares angle of one rotation about the known axis
+that carries the points' θ = 0 directions onto the measured points (:func:`fit_angle`).
+
+Switching rule, Eq. 3.19: θ_*^SW = θ_*^init + kπ, θ_h^init = 0, θ_c^init = π/2 + δ_c. When the
+measured angle passes a switching angle the two limbs exchange the offline (active) and online
+(passive) index. Roles (§3.5.2): arms — left active on −Θ_H ≤ θ_h ≤ 0, right on 0 ≤ θ_h ≤ Θ_H; legs —
+right active on π/2 + δ_c ≤ θ_c < 3π/2 + δ_c (mod 2π), left otherwise.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from shintai.core.geometry import wrap_pi
+from shintai.humanoid.constants import TRICYCLE, TricycleSpec
+from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
+from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
+from shintai.sim.ik import cross
+
+Y_AXIS = np.array([0.0, 1.0, 0.0])
+
+
+def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> float:
+    """Method (a): the rotation angle θ about the axis (``axis_point``, ``axis_dir``) that best maps the
+    θ = 0 directions ``zero_dirs`` onto the measured ``points`` (least squares, in (−π, π]).
+
+    With w_k the measured point and z_k the θ = 0 direction, both projected on the plane normal to the
+    unit axis a, Σ‖w_k − R(θ) z_k‖² is smallest at θ = atan2(Σ a·(z_k × w_k), Σ z_k·w_k). The radius
+    drops out, so a contact point off the pedal axle along the crank arm does not bias θ.
+    """
+    a = np.asarray(axis_dir, dtype=float)
+    a = a / np.linalg.norm(a)
+    zs = [_on_plane(np.asarray(z, dtype=float), a) for z in zero_dirs]
+    if len(zs) != len(points):
+        raise ValueError(f"fit_angle: {len(points)} points but {len(zs)} zero directions")
+    return _fit(points, zs, np.asarray(axis_point, dtype=float), a)
+
+
+def _on_plane(z: np.ndarray, a: np.ndarray) -> np.ndarray:
+    return z - a * (a @ z)
+
+
+def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) -> float:
+    """:func:`fit_angle` with the unit axis ``a`` and the projected θ = 0 directions ``zs`` given
+    (constant per model: the per-tick estimates take them from a cache)."""
+    num = den = 0.0
+    for p, z in zip(points, zs):
+        w = np.asarray(p, dtype=float) - axis_point
+        w = w - a * (a @ w)
+        num += a @ cross(z, w)
+        den += z @ w
+    if num == 0.0 and den == 0.0:
+        raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
+    return float(np.arctan2(num, den))
+
+
+_CRANK_ZERO: dict = {}  # (leg, axis bytes) -> (unit axis, projected θ_c = 0 direction)
+
+
+def _crank_zero(leg: str, axis_dir) -> tuple[np.ndarray, np.ndarray]:
+    key = (leg, np.asarray(axis_dir, dtype=float).tobytes())
+    hit = _CRANK_ZERO.get(key)
+    if hit is None:
+        a = np.asarray(axis_dir, dtype=float)
+        a = a / np.linalg.norm(a)
+        hit = _CRANK_ZERO[key] = (a, _on_plane(v(PEDAL_PHASE_OFFSET[leg]), a))
+    return hit
+
+
+def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
+    """θ_c ∈ [0, 2π) from the foot points on the pedals (``{"left": p, "right": p}`` or one of them).
+
+    At θ_c = 0 the left pedal points forward (φ = π/2) and the right one backward (module
+    :mod:`shintai.humanoid.tricycle.active`); θ_c turns about +y.
+    """
+    zero = [_crank_zero(leg, axis_dir) for leg in feet]
+    if not zero:
+        raise ValueError("estimate_crank_angle: no foot points")
+    angle = _fit(list(feet.values()), [z for _, z in zero], np.asarray(crank_centre, dtype=float), zero[0][0])
+    return float(np.mod(angle, 2 * np.pi))
+
+
+def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
+    """θ_h from the hand points on the grips (``{"left": p, "right": p}`` or one of them), in the
+    vehicle frame, about the steering axis of the tricycle's nominal model."""
+    axis_point, zero, axis = _handle_model(t)
+    return _fit(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
+
+
+@functools.lru_cache(maxsize=8)
+def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
+    """The nominal steering axis point, each grip's θ_h = 0 direction from it projected on the plane
+    normal to the axis, and the unit axis (constant: computed once per tricycle model;
+    :func:`estimate_handle_angle` runs every control tick)."""
+    axis_point = steer_point(t)
+    a = steer_axis(t)
+    a = a / np.linalg.norm(a)
+    return axis_point, {s: _on_plane(grip_position(0.0, s, t) - axis_point, a) for s in ("l", "r")}, a
+
+
+def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:
+    """Eq. 3.19: the switching angles θ^init + kπ, k ∈ Z, that lie in [lo, hi)."""
+    k = np.arange(np.ceil((lo - theta_init) / np.pi), np.ceil((hi - theta_init) / np.pi))
+    return theta_init + k * np.pi
+
+
+def active_leg(theta_c: float, delta_c: float) -> str:
+    """The stepping (active) leg at general crank angle θ_c (§3.5.2 role table)."""
+    return "right" if np.pi / 2 + delta_c <= np.mod(theta_c, 2 * np.pi) < 3 * np.pi / 2 + delta_c else "left"
+
+
+def active_arm(theta_h: float, heading: float = 0.0) -> str:
+    """The active arm at handle angle θ_h (§3.5.2): left on −Θ_H ≤ θ_h < 0, right on 0 < θ_h ≤ Θ_H.
+    At θ_h = θ_h^init = 0, where the table gives both, the arm of the side the handle is heading to
+    (the sign of ``heading``; left if it is 0 too — our choice)."""
+    side = theta_h if theta_h != 0 else heading
+    return "right" if side > 0 else "left"
+
+
+class SwitchingDiagnostic:
+    """Fig. 3.14 for one limb pair: measure the angle by method (a) and tell when the roles swap.
+
+    ``estimate(snapshot) -> angle`` is the method-(a) estimate, unwrapped here (θ_c is unbounded,
+    Eq. 3.3) into ``angle``. ``role_of(angle) -> side`` is the role table, whose changes are the
+    switching angles of Eq. 3.19. :meth:`guard_to` makes the guard of a role
+    :class:`~shintai.core.runtime.Switcher` transition: it holds once the table gives the new side
+    on both sides of a band of ±``hysteresis`` around the measured angle — a band we add so that
+    estimation noise at a switching angle cannot make the roles chatter (the thesis is silent on it).
+    Switches are kept in ``log`` as (t, unwrapped angle, new active side).
+    """
+
+    def __init__(self, estimate: Callable[[dict], float], role_of: Callable[[float], str], hysteresis: float):
+        self.estimate = estimate
+        self.role_of = role_of
+        self.hysteresis = hysteresis
+        self.angle: float | None = None
+        self.log: list[tuple[float, float, str]] = []
+
+    def measure(self, snapshot) -> float:
+        measured = self.estimate(snapshot)
+        self.angle = measured if self.angle is None else self.angle + wrap_pi(measured - self.angle)
+        return self.angle
+
+    def guard_to(self, side: str) -> Callable[[dict], bool]:
+        def guard(snapshot) -> bool:
+            angle = self.measure(snapshot)
+            h = self.hysteresis
+            swap = self.role_of(angle - h) == side == self.role_of(angle + h)
+            if swap:
+                self.log.append((float(snapshot["t"]), angle, side))
+            return swap
+
+        return guard

@@ -1,0 +1,18 @@
+"""Constants of the V-BOARD unit (seed 000 chs. 5–6, §7.4.2), each with its source; the scooter's own
+specification (App. A.1.2) is :data:`shintai.humanoid.constants.VBOARD`."""
+
+D_VBOARD = 40.0  # N·m·s/rad, the damping gain SLC reached boarding the V-BOARD (§5.4.2: '約 D = 40.0'), and
+# §6.4.1 rides with '第5章で獲得した足部トルクダンピング制御系まわりのゲイン/パラメータ'. Probe: D = 22 rocks the
+# boards by ±15°, D = 40 holds them within 0.15° rms
+EXCITE_AMPLITUDE = 6.0e-5  # rad per control period, chosen: a 1 s half-period moves the boards 0.86°, v ±0.3 m/s
+EXCITE_PERIOD = 2.0  # s, chosen: the square wave's period (a triangle of θ, ≈ T_v of Table 6.2 per half)
+LEVELS = (1, 2, 3)
+START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
+PLANTS = ("board", "table6.2")
+MODES = ("corrected", "saturated", "plain")
+VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
+EXCITE_S = 8.0  # s, chosen: the length of each run's excitation
+THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression intercept, as humanoid.vboard-levels
+START_S = 2.0  # s, chosen: the excitation starts after the lift has let go (≈1.0 s) and the stack has settled
+PEAK_SMOOTH_S = 0.04  # s, chosen: J_τ smoothed over 10 ticks before its peaks are sought (it is a 4 ms signal)
+PEAK_GAP_S = 0.2  # s, chosen: two J_τ peaks are ≥ this apart (the thesis's are 0.4 s apart, §5.4.2)
