@@ -155,6 +155,10 @@ class Scenario:
     notes_path: Path | None = None  # the scenario's account, <body>/notes/<name>.md
     covers: tuple[str, ...] = ()  # the coverage rows (thesis experiments) it reproduces
     stochastic: bool = False  # its result depends on the seed: `reproduce --seeds N` gives mean ± std
+    # `make demo`'s shortened run, if any: --set overrides (KEY -> text) the demo applies. Its results are
+    # labelled a demo variant on the page and never enter the reproduction table.
+    demo_params: dict[str, str] = field(default_factory=dict)
+    estimate_s: float | None = None  # wall time of a default run on 2 cores (for progress; measured, declared)
 
     def films(self, params: dict) -> bool:
         """Whether ``--video`` can film this scenario with these parameters."""
@@ -196,6 +200,20 @@ def notes_file(scenario_id: str, module_file: str | None) -> Path | None:
     return Path(module_file).resolve().parent.parent / "notes" / f"{scenario_id.split('.', 1)[-1]}.md"
 
 
+def checked_demo(sc: Scenario) -> Scenario:
+    """A scenario whose demo overrides are valid (a declaration error, raised at import, if not)."""
+    if sc.demo_params:
+        if not sc.demo:
+            raise ValueError(f"scenario {sc.id!r}: demo_params= without demo=True")
+        try:
+            sc.resolve(sc.demo_params)
+        except ParameterError as exc:
+            raise ValueError(f"scenario {sc.id!r}: demo_params: {exc}") from None
+    if sc.estimate_s is not None and not sc.estimate_s > 0:
+        raise ValueError(f"scenario {sc.id!r}: estimate_s must be positive, got {sc.estimate_s!r}")
+    return sc
+
+
 def _register(sc: Scenario) -> Scenario:
     old = SCENARIOS.get(sc.id)
     if old is not None and old.notes_path != sc.notes_path:
@@ -209,13 +227,16 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
                metrics: Callable | None = None, plots: Callable | None = None, compute: Callable | None = None,
                filmed: Sequence[str] | Callable[[dict], Sequence[str]] | None = None, constraints=(),
                demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True,
-               covers: Sequence[str] = (), stochastic: bool = False) -> Scenario:
+               covers: Sequence[str] = (), stochastic: bool = False, demo_params: dict | None = None,
+               estimate_s: float | None = None) -> Scenario:
     """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
 
     Either ``rig(params, variant, seed) -> Rig`` (``seed`` the run's, from which every random source derives) with ``metrics(runs, params) -> dict`` (and optionally
     ``plots(ctx, runs, params)``, ``variants``, ``filmed``), or ``compute(ctx) -> dict`` for an
     experiment that is not one loop per run. ``constraints``: ``(holds(params), message)`` pairs
-    checked with the parameters (a violation is a parameter error, exit 2).
+    checked with the parameters (a violation is a parameter error, exit 2). ``demo_params``: the ``--set``
+    overrides of the demo's shortened run (a demo variant: labelled as such, never in the reproduction
+    table); ``estimate_s``: a default run's wall time, for the progress line of runs of many scenarios.
     """
     if (rig is None) == (compute is None):
         raise ValueError(f"scenario {id!r}: declare rig= (with metrics=) or compute=, not both")
@@ -232,20 +253,24 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
             return metrics(ctx.runs, ctx.params)
 
     module_file = sys._getframe(1).f_globals.get("__file__")
-    return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                              demo_video, tuple(constraints), plots, notes_file(id, module_file), tuple(covers),
-                              stochastic))
+    return _register(checked_demo(Scenario(
+        id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video, demo_video,
+        tuple(constraints), plots, notes_file(id, module_file), tuple(covers), stochastic,
+        {str(k): str(v) for k, v in (demo_params or {}).items()}, estimate_s)))
 
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
              demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=(),
-             covers: Sequence[str] = (), stochastic: bool = False):
+             covers: Sequence[str] = (), stochastic: bool = False, demo_params: dict | None = None,
+             estimate_s: float | None = None):
     """Decorator registering ``compute(ctx) -> metrics`` as a scenario (:func:`experiment` with ``compute=``)."""
 
     def register(fn):
         module_file = sys.modules[fn.__module__].__dict__.get("__file__") if fn.__module__ in sys.modules else None
-        _register(Scenario(id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                           demo_video, tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic))
+        _register(checked_demo(Scenario(
+            id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video, demo_video,
+            tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic,
+            {str(k): str(v) for k, v in (demo_params or {}).items()}, estimate_s)))
         return fn
 
     return register

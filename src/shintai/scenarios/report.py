@@ -103,7 +103,8 @@ def provenance(result: dict[str, Any]) -> str:
 def coverage(results: list[dict[str, Any]]) -> list[RowStatus]:
     """The status of every coverage row, from the results in this report (rows whose scenarios are not in
     it get the status :data:`NOT_RUN_HERE`)."""
-    by_id = {r["scenario"]: r for r in results}
+    by_id = {r["scenario"]: r for r in results if "demo_variant" not in r}  # a shortened run reproduces nothing
+    shortened = {r["scenario"] for r in results if "demo_variant" in r}
     covering = {sid: tuple(sc.covers) for sid, sc in SCENARIOS.items()}
     for r in results:  # the covers a result was produced with
         covering[r["scenario"]] = tuple(r.get("covers", covering.get(r["scenario"], ())))
@@ -111,7 +112,10 @@ def coverage(results: list[dict[str, Any]]) -> list[RowStatus]:
     for row in all_rows().values():
         ids = [sid for sid, keys in covering.items() if row.key in keys]
         if ids and not all(sid in by_id for sid in ids):
-            statuses.append(RowStatus(row, NOT_RUN_HERE, f"not in this report: {', '.join(ids)}", tuple(ids), []))
+            short = [sid for sid in ids if sid in shortened]
+            reason = (f"only a shortened demo run of {', '.join(short)} here (not a reproduction)" if short
+                      else f"not in this report: {', '.join(ids)}")
+            statuses.append(RowStatus(row, NOT_RUN_HERE, reason, tuple(ids), []))
         else:
             statuses.append(status_of(row, by_id, {sid: covering[sid] for sid in ids}))
     return statuses
