@@ -154,9 +154,9 @@ def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, 
 
     output_folder(out)
 
-    def films(sid):
+    def films(sid):  # with the parameters it runs with (a demo variant's, in the demo)
         sc = registry.SCENARIOS[sid]
-        return video and sc.demo_video and sc.films(sc.resolve())
+        return video and sc.demo_video and sc.films(sc.resolve(sc.demo_params if demo else None))
 
     def seeds_of(sid):
         return list(range(seed, seed + seeds)) if seeds > 1 and registry.SCENARIOS[sid].stochastic else None

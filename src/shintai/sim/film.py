@@ -11,7 +11,8 @@ EGL, writing its slice with imageio-ffmpeg — and the slices joined in order in
 Frames per film: one every ``speed / fps`` seconds of sim time (``speed`` > 1 is a time-lapse), and at
 most ``max_frames``: a longer run keeps every k-th recorded frame (k the smallest integer that fits), so
 the film becomes a ×(speed·k) time-lapse. The factor, the frame count and the sim time are written beside
-the video (``video.json`` for ``video.mp4``), and the report page prints them under the video.
+the video (``video.json`` for ``video.mp4``, with its middle frame as ``video.poster.jpg``), and the report
+page prints them under the video.
 
 The renderer's costly options are set for speed where a viewer does not see the difference
 (:func:`fast_options`): the offscreen buffer is the frame's size, the shadow map about 1.5× the frame's
@@ -161,6 +162,9 @@ class FilmRecorder:
         meta = {"fps": self.fps, "frames": self.frames, "speed": self.speed * self.factor, "sim_s": sim_s,
                 "width": self.width, "height": self.height}
         self.path.with_suffix(".json").write_text(json.dumps(meta) + "\n")
+        if self.frames:  # a still for the page: the film's middle frame
+            with imageio.get_reader(self.path) as reader:
+                imageio.imwrite(self.path.with_suffix(".poster.jpg"), reader.get_data(self.frames // 2), quality=85)
 
     def __enter__(self) -> FilmRecorder:
         return self
