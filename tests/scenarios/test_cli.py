@@ -131,7 +131,10 @@ def test_report_carries_each_scenarios_account(tmp_path):
     write_report(tmp_path, ["core.minjerk"])
     assert "### core.minjerk (pass)" in (tmp_path / "REPORT.md").read_text()
     assert notes.splitlines()[0] in (tmp_path / "REPORT.md").read_text()
-    assert "<details><summary>notes</summary>" in (tmp_path / "index.html").read_text()
+    from shintai.scenarios.markdown import to_html
+
+    page = (tmp_path / "index.html").read_text()
+    assert 'id="notes-core.minjerk"' in page and to_html(notes) in page  # rendered as HTML
 
 
 def test_bench_writes_json(tmp_path):
