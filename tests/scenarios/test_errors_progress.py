@@ -84,6 +84,8 @@ def test_a_demo_variant_runs_shortened_is_labelled_and_stays_out_of_the_table(de
     assert result["demo_variant"] == {"params": {"t": "0.05"}} and "--set t=0.05" in result["command"]
     row = [s for s in coverage(load_results(tmp_path, ["test.demo-toy"])) if s.row.key == "001:fig3.6"][0]
     assert row.status == "not run here" and "demo" in row.reason
+    page = (tmp_path / "index.html").read_text()
+    assert "demo variant: t=0.05" in page  # the card says what the demo changed
     # a reproduction of the same scenario runs it at its defaults
     assert reproduce(["test.demo-toy"], tmp_path, "serial", 0, video=False, title="t", quiet=True) == 0
     assert "demo_variant" not in json.loads((tmp_path / "test.demo-toy" / "metrics.json").read_text())

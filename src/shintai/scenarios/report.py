@@ -113,7 +113,7 @@ def coverage(results: list[dict[str, Any]]) -> list[RowStatus]:
         ids = [sid for sid, keys in covering.items() if row.key in keys]
         if ids and not all(sid in by_id for sid in ids):
             short = [sid for sid in ids if sid in shortened]
-            reason = (f"only a shortened demo run of {', '.join(short)} here (not a reproduction)" if short
+            reason = (f"only the demo variant of {', '.join(short)} here (not a reproduction)" if short
                       else f"not in this report: {', '.join(ids)}")
             statuses.append(RowStatus(row, NOT_RUN_HERE, reason, tuple(ids), []))
         else:
@@ -326,7 +326,8 @@ def card(body: str, results: list[dict[str, Any]], out: Path, statuses: list[Row
     demo = ""
     if "demo_variant" in r:
         sets = ", ".join(f"{k}={v}" for k, v in r["demo_variant"].get("params", {}).items())
-        demo = f' <span class="badge demo" title="not a reproduction: {e(sets)}">shortened demo run</span>'
+        demo = (f' <span class="badge demo" title="the demo\'s own run, not a reproduction">demo variant'
+                f'{": " + e(sets) if sets else ""}</span>')
     others = ""
     if len(results) > 1:
         passed = sum(status(x) == "pass" for x in results)
@@ -393,7 +394,7 @@ def write_html(out: Path, results: list[dict[str, Any]], statuses: list[RowStatu
         thesis = "<br>".join(folded(f"{q}: {t}") for q, t, _, _ in thesis_vs_ours(r)) or "—"
         mine = "<br>".join(e(f"{m}: {o}") for _, _, o, m in thesis_vs_ours(r) if m) or "—"
         checks = "<br>".join(e(c) for c in checks_text(r).split("; "))
-        demo = "<br><b>shortened demo run</b> (not a reproduction)" if "demo_variant" in r else ""
+        demo = "<br><b>demo variant</b> (not a reproduction)" if "demo_variant" in r else ""
         if notes_text(r):
             notes.append(f'<details class="notes" id="notes-{e(sid)}"><summary>{e(sid)} ({e(status(r))})</summary>'
                          f'{to_html(notes_text(r))}</details>')
