@@ -193,7 +193,7 @@ def ensure_writable(path: Path) -> None:
 
 # -- rendering (in worker processes or here) ----------------------------------------------------------
 #
-# Workers are `python -m shintai.sim.film JOB` processes rather than multiprocessing's: a spawned
+# Workers are fresh `python -c WORKER JOB` processes rather than multiprocessing's: a spawned
 # multiprocessing child re-imports the caller's __main__ (a script without a main guard would start
 # workers without end), and a forked one inherits whatever GL context its parent made. Each worker
 # renders a contiguous slice of the frames into its own MP4 segment (the encoding is parallel too);
@@ -245,13 +245,15 @@ def render_frames(model: mujoco.MjModel, frames: list, path: Path, fps: float, w
             job.with_suffix(".job").write_bytes(pickle.dumps(
                 (blob, frames[bounds[w]:bounds[w + 1]], str(job.with_suffix(".mp4")), fps, width, height, camera)))
             jobs.append(job)
-            procs.append(subprocess.Popen([sys.executable, "-m", "shintai.sim.film", str(job.with_suffix(".job"))],
+            procs.append(subprocess.Popen([sys.executable, "-c", WORKER, str(job.with_suffix(".job"))],
                                           env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True))
         written, failures = 0, []
         for proc in procs:
             out, err = proc.communicate()
-            if proc.returncode == 0:
+            if proc.returncode == 0 and out.split() and out.split()[-1].isdigit():
                 written += int(out.split()[-1])
+            elif proc.returncode == 0:
+                failures.append(f"a worker wrote no frame count (its output: {out.strip()[-200:]!r})")
             else:
                 failures.append((err.strip().splitlines() or [f"exit status {proc.returncode}"])[-1])
         if failures:
@@ -267,10 +269,14 @@ def render_frames(model: mujoco.MjModel, frames: list, path: Path, fps: float, w
     return written
 
 
-def _worker(job_file: str) -> None:
+WORKER = "import sys; from shintai.sim.film import render_job; render_job(sys.argv[1])"
+
+
+def render_job(job_file: str) -> None:
+    """A worker's work: render the slice a job file holds into its MP4 segment; print the frames written."""
     blob, frames, out, fps, width, height, camera = pickle.loads(Path(job_file).read_bytes())
     print(render_here(pickle.loads(blob), frames, Path(out), fps, width, height, camera))
 
 
-if __name__ == "__main__":
-    _worker(sys.argv[1])
+if __name__ == "__main__":  # python -m shintai.sim.film JOB works too
+    render_job(sys.argv[1])
