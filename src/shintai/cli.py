@@ -61,13 +61,18 @@ def cmd_list(args) -> int:
     return 0
 
 
-def print_result(result: dict, out: Path) -> None:
+def print_result(result: dict, out: Path, filmed: bool = False) -> None:
     for c in result.get("checks", []):
         mark = "ok  " if c["ok"] else "FAIL"
         print(f"  {mark} {c['name']}: {c['value']} {c['op']} {c['threshold']}  [{c['basis']}]")
     if "error" in result:
         print(f"shintai: error: {result['scenario']}: {result['error']} (partial results kept in {out})",
               file=sys.stderr)
+    from shintai.scenarios.report import video_caption
+
+    for video in sorted(out.glob("*.mp4")) if filmed else ():
+        caption = video_caption(video.with_suffix(".json"))
+        print(f"  film {video}" + (f" ({caption})" if caption else ""))
     print(f"{result['scenario']}: {'pass' if result['ok'] else 'FAIL'} "
           f"(sim {result['sim_time_s']:.3g} s, wall {result['wall_time_s']:.3g} s) -> {out}/metrics.json")
 
@@ -81,7 +86,7 @@ def cmd_run(args) -> int:
     out = Path(args.out) if args.out else Path("out") / args.id
     result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet,
                           view=args.view)
-    print_result(result, out)
+    print_result(result, out, filmed=args.video)
     return 0 if result["ok"] else 1
 
 
