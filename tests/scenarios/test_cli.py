@@ -147,7 +147,7 @@ def test_demo_videos_only_where_default_parameters_render():
     registry.load_all()
     for sc in registry.SCENARIOS.values():
         if sc.demo and sc.demo_video and sc.video:
-            params = sc.resolve()
+            params = sc.resolve(sc.demo_params)  # the parameters the demo runs it with
             assert params.get("plant", "mujoco") == "mujoco", f"{sc.id}: the demo would ask a non-MuJoCo plant for video"
 
 
