@@ -91,6 +91,24 @@ def test_a_demo_variant_runs_shortened_is_labelled_and_stays_out_of_the_table(de
     assert "demo_variant" not in json.loads((tmp_path / "test.demo-toy" / "metrics.json").read_text())
 
 
+def test_a_demo_variant_tells_checks_it_did_not_measure_from_checks_that_fail(tmp_path):
+    from shintai.scenarios.registry import Check
+
+    experiment("test.demo-checks", "nowhere", "a toy whose demo variant skips a metric", rig=short_rig,
+               metrics=lambda runs, params: {"steps": runs["run"].steps, **({"long_m": 1.0} if params["t"] > 0.1 else {})},
+               params=[Param("t", 0.5, lo=0.01, hi=1.0)], demo=True, demo_params={"t": 0.05},
+               checks=[Check("steps", ">", 1, "consistency: it ran"), Check("steps", ">", 10, "consistency: long enough"),
+                       Check("long_m", "<", 2.0, "consistency: only a long run measures it")])
+    try:
+        assert reproduce(["test.demo-checks"], tmp_path, "serial", 0, video=False, title="t", quiet=True, demo=True,
+                         checks_only_ran=True) == 0
+    finally:
+        registry.SCENARIOS.pop("test.demo-checks")
+    page = (tmp_path / "index.html").read_text()
+    assert "✗ 1 check fails, 1 hold, 1 not measured by this variant" in page
+    assert "fails steps 5 (needs &gt; 10)" in page  # the why-line names what it measured and got wrong
+
+
 def test_demo_params_are_checked_when_declared():
     with pytest.raises(ValueError, match="demo_params= without demo=True"):
         experiment("test.bad-demo", "nowhere", "x", rig=short_rig, metrics=dict, params=[Param("t", 0.5)],
