@@ -117,3 +117,10 @@ def test_demo_params_are_checked_when_declared():
         experiment("test.bad-demo", "nowhere", "x", rig=short_rig, metrics=dict, params=[Param("t", 0.5, hi=1.0)],
                    demo=True, demo_params={"t": 5})
     assert "test.bad-demo" not in registry.SCENARIOS
+
+
+def test_report_md_also_leads_with_the_bodies(demo_toy, tmp_path):
+    assert reproduce(["test.demo-toy"], tmp_path, "serial", 0, video=False, title="t", quiet=True, demo=True) == 0
+    text = (tmp_path / "REPORT.md").read_text()
+    assert text.index("## Bodies") < text.index("## Summary per thesis") < text.index("## Thesis experiments")
+    assert "`test.demo-toy`: a toy with a shortened demo run — 0/0 checks hold — demo variant, not a reproduction" in text

@@ -130,10 +130,30 @@ def summary_counts(statuses: list[RowStatus]) -> dict[str, dict[str, int]]:
     return out
 
 
+def body_lines(out: Path, results: list[dict[str, Any]], statuses: list[RowStatus]) -> list[str]:
+    """One line per body, as the page's cards: its headline scenario, what it reproduces, its checks, its film."""
+    by_body: dict[str, list[dict[str, Any]]] = {}
+    for r in results:
+        by_body.setdefault(body_of(r["scenario"]), []).append(r)
+    lines = []
+    for body in [b for b in BODIES if b in by_body] + sorted(b for b in by_body if b not in BODIES):
+        r = headline(by_body[body], out)
+        checks = r.get("checks", [])
+        held = sum(c["ok"] for c in checks)
+        state = ("the run erred" if "error" in r else f"{held}/{len(checks)} checks hold")
+        why = "" if status(r) == "pass" else f" ({cell(first_sentence(why_failed(r, statuses)))})"
+        films = [f"[{v.name}]({r['scenario']}/{v.name})" + (f", {video_caption(v.with_suffix('.json'))}"
+                 if video_caption(v.with_suffix(".json")) else "") for v in media(out, r["scenario"])[0]]
+        demo = " — demo variant, not a reproduction" if "demo_variant" in r else ""
+        lines.append(f"- **{BODIES.get(body, (body,))[0]}** — `{r['scenario']}`: {summary_of(r['scenario'])} — "
+                     f"{state}{why}{demo}" + (f" — film {'; '.join(films)}" if films else ""))
+    return lines
+
+
 def write_markdown(out: Path, results: list[dict[str, Any]], statuses: list[RowStatus], title: str) -> Path:
     passed = sum(status(r) == "pass" for r in results)
     counts = summary_counts(statuses)
-    lines = [f"# {title}", "", "## Summary per thesis", "",
+    lines = [f"# {title}", "", "## Bodies", "", *body_lines(out, results, statuses), "", "## Summary per thesis", "",
              "Thesis experiments (every experiment and result figure/table has a row) by status; only reproduction "
              "checks decide.", "", "| thesis | " + " | ".join(STATUSES) + " |", "|---|" + "---|" * len(STATUSES)]
     for seed, name in SEEDS.items():
@@ -273,15 +293,23 @@ def why_failed(result: dict[str, Any], statuses: list[RowStatus]) -> str:
     return "; ".join(dict.fromkeys(reasons)) or (f"fails {checks}" if checks else "")
 
 
+def first_sentence(text: str, limit: int = 150) -> str:
+    """``text`` up to its last sentence or clause end within ``limit`` characters (else its last word)."""
+    if len(text) <= limit:
+        return text
+    ends = [i + 1 for i, ch in enumerate(text[:limit]) if ch in ".;:" and (i + 1 == len(text) or text[i + 1] == " ")]
+    space = text.rfind(" ", 0, limit)
+    cut = ends[-1] if ends and ends[-1] > 40 else (space if space > 40 else limit)
+    return text[:cut].rstrip(" ;:") + " …"
+
+
 def one_line(text: str, limit: int = 150) -> str:
     """Escaped: the first sentence (or clause) of ``text`` up to ``limit`` characters; the rest folds into
     ``<details>``."""
     e = html.escape
     if len(text) <= limit:
         return e(text)
-    ends = [i + 1 for i, ch in enumerate(text[:limit]) if ch in ".;:" and (i + 1 == len(text) or text[i + 1] == " ")]
-    cut = ends[-1] if ends and ends[-1] > 40 else (text.rfind(" ", 0, limit) if text.rfind(" ", 0, limit) > 40 else limit)
-    return f"{e(text[:cut].rstrip(' ;:'))} … <details><summary>why, in full</summary>{e(text)}</details>"
+    return f"{e(first_sentence(text, limit))} <details><summary>why, in full</summary>{e(text)}</details>"
 
 
 KEY_PICTURE = ("view", "3d", "path", "pose", "snapshot", "walk")  # a picture of the robot, before a plot
