@@ -61,13 +61,18 @@ def cmd_list(args) -> int:
     return 0
 
 
-def print_result(result: dict, out: Path) -> None:
+def print_result(result: dict, out: Path, filmed: bool = False) -> None:
     for c in result.get("checks", []):
         mark = "ok  " if c["ok"] else "FAIL"
         print(f"  {mark} {c['name']}: {c['value']} {c['op']} {c['threshold']}  [{c['basis']}]")
     if "error" in result:
         print(f"shintai: error: {result['scenario']}: {result['error']} (partial results kept in {out})",
               file=sys.stderr)
+    from shintai.scenarios.report import video_caption
+
+    for video in sorted(out.glob("*.mp4")) if filmed else ():
+        caption = video_caption(video.with_suffix(".json"))
+        print(f"  film {video}" + (f" ({caption})" if caption else ""))
     print(f"{result['scenario']}: {'pass' if result['ok'] else 'FAIL'} "
           f"(sim {result['sim_time_s']:.3g} s, wall {result['wall_time_s']:.3g} s) -> {out}/metrics.json")
 
@@ -81,7 +86,7 @@ def cmd_run(args) -> int:
     out = Path(args.out) if args.out else Path("out") / args.id
     result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet,
                           view=args.view)
-    print_result(result, out)
+    print_result(result, out, filmed=args.video)
     return 0 if result["ok"] else 1
 
 
@@ -89,37 +94,90 @@ def run_one(job: tuple) -> dict:
     """Run one scenario for ``reproduce`` (module level so process and Ray executors can ship it)."""
     from shintai.scenarios.runner import run_scenario
 
-    sid, out, seed, video = job
-    result = run_scenario(sid, out, seed=seed, video=video, quiet=True)
+    sid, out, seed, video, *demo = job
+    overrides = demo[0] if demo else None  # a demo variant's --set overrides
+    result = run_scenario(sid, out, overrides, seed=seed, video=video, quiet=True, demo_variant=bool(overrides))
     return {"scenario": sid, "ok": result["ok"], "error": result.get("error")}
 
 
+def expected_walls(ids: list[str], out: Path) -> dict[str, float]:
+    """Each scenario's expected wall time, for a time-left estimate that knows runs differ in length: the
+    previous run's in ``out`` (its metrics.json), else the scenario's declared ``estimate_s``, else the
+    median of the others (1 s if none is known)."""
+    known = {}
+    for sid in ids:
+        try:
+            wall = json.loads((out / sid / "metrics.json").read_text()).get("wall_time_s")
+        except (OSError, ValueError):
+            wall = None
+        wall = wall if isinstance(wall, (int, float)) and wall > 0 else registry.SCENARIOS[sid].estimate_s
+        if wall:
+            known[sid] = float(wall)
+    values = sorted(known.values())
+    fallback = values[len(values) // 2] if values else 1.0
+    return {sid: known.get(sid, fallback) for sid in ids}
+
+
+class WeightedProgress:
+    """``progress(done, total)`` for an executor's map over scenario jobs, as the fraction of the expected
+    wall time finished: a job counts as finished once its metrics.json is newer than the start (the
+    executor only reports counts); where that cannot be seen (a remote cluster), the count's fraction."""
+
+    def __init__(self, bar, jobs: list[tuple], walls: dict[str, float]):
+        self.bar, self.jobs, self.walls = bar, jobs, walls
+        self.total = sum(walls[j[0]] for j in jobs) or 1.0
+        self.start = time.time()
+
+    def finished(self) -> list[tuple]:
+        done = []
+        for job in self.jobs:
+            try:
+                if (Path(job[1]) / "metrics.json").stat().st_mtime >= self.start:
+                    done.append(job)
+            except OSError:
+                pass
+        return done
+
+    def __call__(self, done: int, total: int) -> None:
+        seen = self.finished()
+        fraction = (sum(self.walls[j[0]] for j in seen) / self.total if len(seen) == done
+                    else done / max(total, 1))
+        self.bar(1.0 if done == total else min(fraction, 0.999), f"{done}/{total} runs done")
+
+
 def reproduce(ids: list[str], out: Path, executor: str, seed: int, video: bool, title: str,
-              address: str | None = None, checks_only_ran: bool = False, seeds: int = 1, quiet: bool = False) -> int:
+              address: str | None = None, checks_only_ran: bool = False, seeds: int = 1, quiet: bool = False,
+              demo: bool = False) -> int:
     """Run ``ids`` (a stochastic scenario ``seeds`` times, seeds ``seed`` … ``seed + seeds − 1``, combined
-    as mean ± std) on an executor, then write REPORT.md and index.html from what finished."""
+    as mean ± std) on an executor, then write REPORT.md and index.html from what finished. ``demo``: run
+    each scenario's declared demo variant (``demo_params``), labelled as such."""
     from shintai.evolve.executors import make_executor
     from shintai.scenarios.report import write_report
     from shintai.scenarios.seeds import write_combined
 
-    out.mkdir(parents=True, exist_ok=True)
+    from shintai.scenarios.runner import output_folder
 
-    def films(sid):
+    output_folder(out)
+
+    def films(sid):  # with the parameters it runs with (a demo variant's, in the demo)
         sc = registry.SCENARIOS[sid]
-        return video and sc.demo_video and sc.films(sc.resolve())
+        return video and sc.demo_video and sc.films(sc.resolve(sc.demo_params if demo else None))
 
     def seeds_of(sid):
         return list(range(seed, seed + seeds)) if seeds > 1 and registry.SCENARIOS[sid].stochastic else None
 
+    def demo_of(sid):
+        return (registry.SCENARIOS[sid].demo_params or None) if demo else None
+
     jobs = []
     for sid in ids:
         many = seeds_of(sid)
-        jobs += ([(sid, str(out / sid / f"seed-{s}"), s, films(sid) and s == seed) for s in many] if many
-                 else [(sid, str(out / sid), seed, films(sid))])
-    bar = Progress("reproduce", quiet=quiet)
-
-    def progress(done, total):
-        bar(done / total, f"{done}/{total} runs done")
+        jobs += ([(sid, str(out / sid / f"seed-{s}"), s, films(sid) and s == seed, demo_of(sid)) for s in many]
+                 if many else [(sid, str(out / sid), seed, films(sid), demo_of(sid))])
+    # the longest runs first: a pool then ends with short ones instead of waiting on one long straggler
+    walls = expected_walls(ids, out)
+    jobs.sort(key=lambda job: -walls[job[0]])
+    progress = WeightedProgress(Progress("reproduce", quiet=quiet), jobs, walls)
 
     summaries = []
     try:
@@ -152,7 +210,7 @@ def cmd_reproduce(args) -> int:
 def cmd_demo(args) -> int:
     ids = [sid for sid in sorted(registry.SCENARIOS) if registry.SCENARIOS[sid].demo]
     return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo",
-                     checks_only_ran=True, quiet=args.quiet)
+                     checks_only_ran=True, quiet=args.quiet, demo=True)
 
 
 def cmd_bench(args) -> int:

@@ -131,7 +131,10 @@ def test_report_carries_each_scenarios_account(tmp_path):
     write_report(tmp_path, ["core.minjerk"])
     assert "### core.minjerk (pass)" in (tmp_path / "REPORT.md").read_text()
     assert notes.splitlines()[0] in (tmp_path / "REPORT.md").read_text()
-    assert "<details><summary>notes</summary>" in (tmp_path / "index.html").read_text()
+    from shintai.scenarios.markdown import to_html
+
+    page = (tmp_path / "index.html").read_text()
+    assert 'id="notes-core.minjerk"' in page and to_html(notes) in page  # rendered as HTML
 
 
 def test_bench_writes_json(tmp_path):
@@ -144,7 +147,7 @@ def test_demo_videos_only_where_default_parameters_render():
     registry.load_all()
     for sc in registry.SCENARIOS.values():
         if sc.demo and sc.demo_video and sc.video:
-            params = sc.resolve()
+            params = sc.resolve(sc.demo_params)  # the parameters the demo runs it with
             assert params.get("plant", "mujoco") == "mujoco", f"{sc.id}: the demo would ask a non-MuJoCo plant for video"
 
 

@@ -28,6 +28,8 @@ def test_short_run_holds_its_checks_and_renders(tmp_path):
     assert code == 0, [c for c in m["checks"] if not c["ok"]]
     assert m["metrics"]["escape_reference_shift_m"] < -0.009
     assert (tmp_path / "video.mp4").stat().st_size > 5000 and (tmp_path / "wall_force.png").exists()
+    film = json.loads((tmp_path / "video.json").read_text())  # rendered after the run: what it shows
+    assert film["frames"] >= 2 and film["speed"] >= 1 and (tmp_path / "video.poster.jpg").is_file()
 
 
 def test_an_update_period_off_the_control_step_is_a_parameter_error(tmp_path):

@@ -68,7 +68,7 @@ class Rig:
     references). Stop rule: ``duration`` seconds of body time and/or ``until`` (a body time, or a
     predicate on the snapshot tested after each step). ``record`` maps ``n`` to a function of the
     snapshot returning the signals to record every ``n`` steps. ``view``: camera options for the
-    video (:class:`~shintai.sim.render.VideoRecorder`). ``state``: whatever ``metrics`` and ``plots``
+    video (:class:`~shintai.sim.film.FilmRecorder`: camera, ``fps``, ``speed``, ``max_frames``). ``state``: whatever ``metrics`` and ``plots``
     read afterwards (controllers, schedules, laws).
     """
 
@@ -103,16 +103,20 @@ class Run:
         return self.rig.state
 
 
-VIDEO_DEFAULTS = {"fps": 15, "width": 480, "height": 360}
+# a film's defaults: 15 fps at 480×360, at most 300 frames (20 s; a longer run becomes a time-lapse)
+VIDEO_DEFAULTS = {"fps": 15, "width": 480, "height": 360, "max_frames": 300}
 
 
 def film(ctx, body: Body, variant: str | None = None, **view):
     """The one video idiom: a recorder filming ``body``'s MuJoCo model into ``video.mp4`` (or
     ``video_<variant>.mp4``) when the run asked for ``--video``, and MuJoCo's own viewer showing it live
-    when it asked for ``--view``; a null context otherwise."""
+    when it asked for ``--view``; a null context otherwise. The film is rendered when the block ends, on
+    worker processes, from the recorded trajectory (:class:`~shintai.sim.film.FilmRecorder`); ``view``
+    may set ``fps``, ``width``, ``height``, the camera, ``speed`` (a time-lapse factor) and ``max_frames``."""
     if not (ctx.video or getattr(ctx, "view", False)):
         return contextlib.nullcontext()
-    from shintai.sim.render import VideoRecorder, mujoco_of
+    from shintai.sim.film import FilmRecorder
+    from shintai.sim.render import mujoco_of
 
     mj = mujoco_of(body)
     if mj is None:
@@ -120,7 +124,7 @@ def film(ctx, body: Body, variant: str | None = None, **view):
     stack = contextlib.ExitStack()
     if ctx.video:
         path = ctx.out / ("video.mp4" if variant is None else f"video_{variant}.mp4")
-        stack.enter_context(VideoRecorder(mj, path, **{**VIDEO_DEFAULTS, **view}))
+        stack.enter_context(FilmRecorder(mj, path, **{**VIDEO_DEFAULTS, **view}))
     if getattr(ctx, "view", False):
         from shintai.sim.viewer import LiveViewer
 

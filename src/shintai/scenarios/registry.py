@@ -158,6 +158,10 @@ class Scenario:
     rig: Callable | None = None  # rig(params, variant, seed) of a declared experiment (None for a compute)
     variants: Callable[[dict], Sequence[str]] | None = None  # its variants' names from the parameters
     smoke: dict[str, Any] | None = None  # `--set` overrides of the registry test's short run (tests/scenarios)
+    # `make demo`'s shortened run, if any: --set overrides (KEY -> text) the demo applies. Its results are
+    # labelled a demo variant on the page and never enter the reproduction table.
+    demo_params: dict[str, str] = field(default_factory=dict)
+    estimate_s: float | None = None  # wall time of a default run on 2 cores (for progress; measured, declared)
 
     def films(self, params: dict) -> bool:
         """Whether ``--video`` can film this scenario with these parameters."""
@@ -199,6 +203,20 @@ def notes_file(scenario_id: str, module_file: str | None) -> Path | None:
     return Path(module_file).resolve().parent.parent / "notes" / f"{scenario_id.split('.', 1)[-1]}.md"
 
 
+def checked_demo(sc: Scenario) -> Scenario:
+    """A scenario whose demo overrides are valid (a declaration error, raised at import, if not)."""
+    if sc.demo_params:
+        if not sc.demo:
+            raise ValueError(f"scenario {sc.id!r}: demo_params= without demo=True")
+        try:
+            sc.resolve(sc.demo_params)
+        except ParameterError as exc:
+            raise ValueError(f"scenario {sc.id!r}: demo_params: {exc}") from None
+    if sc.estimate_s is not None and not sc.estimate_s > 0:
+        raise ValueError(f"scenario {sc.id!r}: estimate_s must be positive, got {sc.estimate_s!r}")
+    return sc
+
+
 def _register(sc: Scenario) -> Scenario:
     old = SCENARIOS.get(sc.id)
     if old is not None and old.notes_path != sc.notes_path:
@@ -212,14 +230,17 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
                metrics: Callable | None = None, plots: Callable | None = None, compute: Callable | None = None,
                filmed: Sequence[str] | Callable[[dict], Sequence[str]] | None = None, constraints=(),
                demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True,
-               covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None) -> Scenario:
+               covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None,
+               demo_params: dict | None = None, estimate_s: float | None = None) -> Scenario:
     """Declare and register one scenario (see :mod:`shintai.scenarios.experiment`).
 
     Either ``rig(params, variant, seed) -> Rig`` (``seed`` the run's, from which every random source derives) with ``metrics(runs, params) -> dict`` (and optionally
     ``plots(ctx, runs, params)``, ``variants``, ``filmed``), or ``compute(ctx) -> dict`` for an
     experiment that is not one loop per run. ``constraints``: ``(holds(params), message)`` pairs
     checked with the parameters (a violation is a parameter error, exit 2). ``smoke``: the parameter overrides
-    (as ``--set`` would give them) of the short run the registry test makes of every experiment.
+    (as ``--set`` would give them) of the short run the registry test makes of every experiment. ``demo_params``:
+    the ``--set`` overrides of the demo's shortened run (a demo variant: labelled as such, never in the reproduction
+    table); ``estimate_s``: a default run's wall time, for the progress line of runs of many scenarios.
     """
     if (rig is None) == (compute is None):
         raise ValueError(f"scenario {id!r}: declare rig= (with metrics=) or compute=, not both")
@@ -239,9 +260,11 @@ def experiment(id: str, source: str, summary: str, *, params=(), checks=(), thes
             return metrics(ctx.runs, ctx.params)
 
     module_file = sys._getframe(1).f_globals.get("__file__")
-    return _register(Scenario(id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                              demo_video, tuple(constraints), plots, notes_file(id, module_file), tuple(covers),
-                              stochastic, rig, names_of if rig is not None else None, _smoke(id, smoke)))
+    return _register(checked_demo(Scenario(
+        id, source, summary, run, tuple(params), tuple(checks), dict(thesis or {}), demo, video, demo_video,
+        tuple(constraints), plots, notes_file(id, module_file), tuple(covers), stochastic,
+        rig=rig, variants=names_of if rig is not None else None, smoke=_smoke(id, smoke),
+        demo_params={str(k): str(v) for k, v in (demo_params or {}).items()}, estimate_s=estimate_s)))
 
 
 def _smoke(scenario_id: str, smoke: dict[str, Any] | None) -> dict[str, str] | None:
@@ -255,14 +278,16 @@ def _smoke(scenario_id: str, smoke: dict[str, Any] | None) -> dict[str, str] | N
 
 def scenario(id: str, source: str, summary: str, params=(), checks=(), thesis=None,
              demo: bool = False, video: bool | Callable[[dict], bool] = False, demo_video: bool = True, constraints=(),
-             covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None):
+             covers: Sequence[str] = (), stochastic: bool = False, smoke: dict[str, Any] | None = None,
+             demo_params: dict | None = None, estimate_s: float | None = None):
     """Decorator registering ``compute(ctx) -> metrics`` as a scenario (:func:`experiment` with ``compute=``)."""
 
     def register(fn):
         module_file = sys.modules[fn.__module__].__dict__.get("__file__") if fn.__module__ in sys.modules else None
-        _register(Scenario(id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video,
-                           demo_video, tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic,
-                           smoke=_smoke(id, smoke)))
+        _register(checked_demo(Scenario(
+            id, source, summary, fn, tuple(params), tuple(checks), dict(thesis or {}), demo, video, demo_video,
+            tuple(constraints), None, notes_file(id, module_file), tuple(covers), stochastic, smoke=_smoke(id, smoke),
+            demo_params={str(k): str(v) for k, v in (demo_params or {}).items()}, estimate_s=estimate_s)))
         return fn
 
     return register

@@ -163,12 +163,32 @@ def scenario_notes(sc: Scenario) -> str:
     return inspect.getdoc(sc.run) or inspect.getdoc(inspect.getmodule(sc.run)) or ""
 
 
+def output_folder(out: str | Path, flag: str = "--out") -> Path:
+    """Make the output folder ``out``, or raise a one-line ParameterError saying why it cannot be one (a
+    file on the way, no permission, a read-only file system)."""
+    from shintai.scenarios.registry import ParameterError
+
+    out = Path(out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        where = f" ({exc.filename})" if exc.filename and str(exc.filename) != str(out) else ""
+        raise ParameterError(f"{flag} {out}: cannot make the folder: {exc.strerror or exc}{where}") from None
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise ParameterError(f"{flag} {out}: the folder is not writable")
+    return out
+
+
 def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dict[str, str] | None = None,
-                 seed: int = 0, video: bool = False, quiet: bool = False, view: bool = False) -> dict[str, Any]:
+                 seed: int = 0, video: bool = False, quiet: bool = False, view: bool = False,
+                 demo_variant: bool = False) -> dict[str, Any]:
     """Run one scenario, write its outputs, and return the content of ``metrics.json``.
 
-    Raises :class:`~shintai.scenarios.registry.ParameterError` for a bad id or ``--set`` before
-    anything runs. Any error during the run is caught and recorded (``"error"``), never lost.
+    Raises :class:`~shintai.scenarios.registry.ParameterError` for a bad id, ``--set`` or output folder
+    before anything runs. Any error during the run is caught and recorded (``"error"``), never lost.
+    ``demo_variant``: the run is the demo's shortened one (``overrides`` are the scenario's
+    ``demo_params``); ``metrics.json`` says so under ``"demo_variant"`` and the report keeps it out of the
+    reproduction table.
     """
     sc = get(scenario_id)
     params = sc.resolve(overrides)
@@ -186,8 +206,7 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
         if not display_available():
             raise ParameterError("--view: no display to open the viewer on (DISPLAY is not set); "
                                  "use --video to film the run instead")
-    out = Path(out) if out is not None else Path("out") / sc.id
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out if out is not None else Path("out") / sc.id)
     ctx = RunContext(sc, params, seed, out, video=video, quiet=quiet, view=view)
     t0 = time.perf_counter()
     error = None
@@ -215,6 +234,8 @@ def run_scenario(scenario_id: str, out: str | Path | None = None, overrides: dic
         "command": command_line(sc.id, overrides, seed),
         "commit": source_commit(),
     }
+    if demo_variant:
+        result["demo_variant"] = {"params": dict(overrides or {})}
     if ctx.extra:
         result["extra"] = ctx.extra
     if error is not None:

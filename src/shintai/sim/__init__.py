@@ -12,6 +12,7 @@ import os
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 from shintai.sim.body import MujocoBody  # noqa: E402  (must follow the MUJOCO_GL default)
+from shintai.sim.film import FilmRecorder  # noqa: E402
 from shintai.sim.render import VideoRecorder, render_png  # noqa: E402
 
-__all__ = ["MujocoBody", "VideoRecorder", "render_png"]
+__all__ = ["FilmRecorder", "MujocoBody", "VideoRecorder", "render_png"]

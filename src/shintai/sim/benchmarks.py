@@ -1,4 +1,5 @@
-"""Benchmark of the MuJoCo body: what MujocoBody and the Loop add on top of bare ``mj_step``.
+"""Benchmarks of the MuJoCo body: what MujocoBody and the Loop add on top of bare ``mj_step``; films
+rendered after the run against rendering during it.
 
 The model is a mid-size chain (hinge links with position servos and an IMU/force sensor set), the
 kind of body the humanoids and snakes are. All variants take the same physics steps; times are
@@ -7,7 +8,9 @@ per physics step except ``snapshot_us`` (per call).
 
 from __future__ import annotations
 
+import tempfile
 import time
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -91,4 +94,57 @@ def body_overhead(steps: int = 4000, links: int = 15, repeats: int = 5) -> dict:
     for name in ("body_step", "loop_step", "loop_4_substeps"):
         out[f"ratio_{name}_vs_bare"] = best[name] / best["bare_mj_step"]
     out.update(links=links, physics_steps=steps)
+    return out
+
+
+def lit_chain_xml(links: int = 15) -> str:
+    """:func:`chain_xml` on a lit checker floor, with MuJoCo's default visual quality (4096² shadow map, 4×
+    multisampling): the kind of scene the films show."""
+    floor = ('<asset><texture name="grid" type="2d" builtin="checker" width="512" height="512" rgb1=".2 .3 .4" '
+             'rgb2=".1 .2 .3"/><material name="grid" texture="grid" texrepeat="4 4"/></asset>')
+    scene = ('<light pos="0 0 4" dir="0 0 -1" castshadow="true"/>'
+             '<geom name="floor" type="plane" size="3 3 0.1" material="grid"/>')
+    return chain_xml(links).replace("<worldbody>", floor + "<worldbody>" + scene)
+
+
+def filmed_run(recorder, links: int, seconds: float, fps: float, **options) -> tuple[float, int]:
+    """Wall time of a Loop run of ``seconds`` filmed by ``recorder`` (rendering included), and its frames."""
+    from shintai.scenarios.experiment import VIDEO_DEFAULTS
+
+    body = MujocoBody(mujoco.MjModel.from_xml_string(lit_chain_xml(links)), 5)
+    command = {"ctrl": np.sin(np.arange(body.model.nu))}
+    loop = Loop(body, [FunctionModule(lambda snapshot: command, name="hold")])
+    size = {k: VIDEO_DEFAULTS[k] for k in ("width", "height")}
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        with recorder(body, Path(tmp) / "video.mp4", fps=fps, track="link7", **size, **options) as rec:
+            loop.run(seconds)
+        wall = time.perf_counter() - t0
+    return wall, rec.frames
+
+
+@benchmark("sim.film-fps", "frames per second of a filmed run: rendered after the run on workers vs during it")
+def film_fps(seconds: float = 4.0, fps: float = 30.0, links: int = 15, repeats: int = 2) -> dict:
+    """One filmed run three ways, same frames (no cap): today's :class:`~shintai.sim.render.VideoRecorder`
+    (renders in the loop, the model's visual options), :class:`~shintai.sim.film.FilmRecorder` on one
+    process (the fast options only), and on the default workers (all the cores). Frames per second of wall
+    time, simulation included (it is the same in all three), and the ratios to today's. The three are
+    interleaved and the best of ``repeats`` kept, to damp the noise of other processes."""
+    from shintai.sim.film import FilmRecorder, default_workers
+    from shintai.sim.render import VideoRecorder
+
+    frames = int(seconds * fps) + 1
+    runs = {"during_run": (VideoRecorder, {}), "after_run_1_worker": (FilmRecorder, {"workers": 1, "max_frames": None}),
+            "after_run_workers": (FilmRecorder, {"max_frames": None})}
+    best = dict.fromkeys(runs, float("inf"))
+    for _ in range(repeats):
+        for name, (recorder, options) in runs.items():
+            wall, n = filmed_run(recorder, links, seconds, fps, **options)
+            if n != frames:
+                raise RuntimeError(f"{name}: {n} frames, expected {frames}")
+            best[name] = min(best[name], wall)
+    out = {f"{name}_fps": frames / wall for name, wall in best.items()}
+    for name in ("after_run_1_worker", "after_run_workers"):
+        out[f"ratio_{name}_vs_during_run"] = out[f"{name}_fps"] / out["during_run_fps"]
+    out.update(frames=frames, workers=default_workers(frames))
     return out

@@ -9,7 +9,10 @@ free camera follows at a fixed distance and angle (good for robots that move awa
 MuJoCo's default free camera looks at the whole model.
 
 A :class:`VideoRecorder` attaches itself to the body: every ``body.step()`` calls its
-:meth:`VideoRecorder.capture`, so a ``Loop.run`` is recorded without changes to the loop.
+:meth:`VideoRecorder.capture`, so a ``Loop.run`` is recorded without changes to the loop. It renders during
+the run, one frame at a time, with the model's own visual options; the runner's films use
+:class:`shintai.sim.film.FilmRecorder` instead (render after the run, on worker processes; benchmark
+``sim.film-fps`` compares the two).
 """
 
 from __future__ import annotations

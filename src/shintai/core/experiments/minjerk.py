@@ -106,6 +106,7 @@ def hoff_arbib_deviation(rng, dt: float) -> float:
         Check("hoff_arbib_max_dev", "<=", 1e-6, "the online Hoff–Arbib law integrates to the same quintic (RK4 at dt)", kind="consistency"),
     ],
     demo=True,
+    estimate_s=1.0,
     smoke={"trials": 20, "retargets": 3},
 )
 def minjerk_scenario(ctx):

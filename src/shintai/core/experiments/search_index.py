@@ -34,6 +34,7 @@ COUPLED_XD = np.array([1.0, 2.0])
         Check("sign_matrix_probed_ok", "==", 1, "thesis §2.4.1: sgn acquired by probing equals the declared one", kind="consistency"),
     ],
     demo=True,
+    estimate_s=1.0,
     constraints=[(lambda p: p["plant_slope"] != 0, "plant_slope must be non-zero: x would not depend on ρ")],
     smoke={},
 )

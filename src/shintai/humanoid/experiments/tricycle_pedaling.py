@@ -203,5 +203,6 @@ experiment(
     },
     rig=rig, variants=variants, filmed=(AP,), metrics=metrics, plots=draw,
     demo=True,
+    estimate_s=13.0,
     video=True,
 )

@@ -27,6 +27,7 @@ from shintai.scenarios.registry import Check, ThesisValue, scenario
                                            "climbed_thesis_legs"),
     },
     demo=True,
+    estimate_s=1.0,
     video=True,
 )
 def avoid_known(ctx) -> dict:

@@ -38,6 +38,7 @@ from shintai.sim.corner import AXES, CONTROL_STEP, build_corner, passive_loop, p
     thesis={"sgn_passive": ThesisValue("−E = diag(−1, −1, −1) (derived from the sign rule, §3.4.3)", "seed 000 Eq. 3.17",
                                        "sign_is_minus_identity")},
     demo=True,
+    estimate_s=8.0,
     video=True,
     constraints=[(lambda p: is_multiple(p["update_s"], CONTROL_STEP),
                   f"update_s must be a whole multiple of the {1000 * CONTROL_STEP:g} ms control step")],

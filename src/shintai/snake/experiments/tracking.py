@@ -66,6 +66,7 @@ experiment(
     rig=rig, variants=variants, filmed=("mujoco",), metrics=metrics, plots=plots,
     demo=True,
     video=lambda params: params["plant"] == "mujoco",
-    demo_video=False,  # the demo runs the kinematic plant; only plant=mujoco renders
+    demo_params={"plant": "mujoco"},  # the demo films the physical snake (the thesis's own runs are kinematic)
+    estimate_s=60.0,
     smoke={"duration_s": 1.0},
 )

@@ -148,5 +148,7 @@ experiment(
     ],
     rig=rig, variants=variants, filmed=filmed, metrics=metrics, plots=plots,
     demo=True,
+    demo_params={"modes": "all_l,all_ll", "ablation": "false"},  # 4 of the 17 runs, the filmed all_ll.pitch kept
+    estimate_s=255.0,
     video=True,
 )
