@@ -108,4 +108,5 @@ experiment(
             "switch_time_s": ThesisValue(4.0, "seed 000 §6.4.2: the difference shows at the switching at '4[s]' "
                                           "(Fig. 6.17, Fig. 6.16's data)", None)},
     rig=rig, variants=MODES, filmed=("saturated",), metrics=metrics, plots=plots.integrator_comparison, video=True,
+    stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )

@@ -102,4 +102,5 @@ experiment(
                                     "t_done_s"),
             "riding_phase_s": ThesisValue(1.5, f"{SEC}: 'Riding Phase by SLC : 4 ≤ t ≤ 5.5'", "riding_phase_s")},
     rig=rig, variants=("solc",), filmed=("solc",), metrics=metrics, plots=plots.solc, video=True,
+    stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )

@@ -155,4 +155,5 @@ experiment(
             "eta_v": ThesisValue(1e-7, "seed 000 Table 6.6: diag(10⁻⁷, 10⁻⁷, 10⁻⁷) for v", None),
             "eta_omega": ThesisValue(1e-9, "seed 000 Table 6.6: diag(10⁻⁹, 10⁻⁹, 10⁻⁹) for ω", None)},
     rig=rig, variants=variants, filmed=("learn", "boarding"), metrics=metrics, plots=plots.speed_governing, video=True,
+    stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )

@@ -34,4 +34,5 @@ experiment(
     thesis={"speed_diverged": ThesisValue(1, "seed 000 §7.3.3, Fig. 7.7 (4): 'Divergence of Speed'",
                                           "speed_diverged")},
     rig=rig, metrics=metrics, plots=plots.no_learning, video=True,
+    stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )

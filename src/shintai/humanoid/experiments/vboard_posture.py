@@ -81,4 +81,5 @@ experiment(
     ],
     thesis={},
     rig=rig, variants=("with", "without"), filmed=("with", "without"), metrics=metrics, plots=plots.posture, video=True,
+    stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )
