@@ -113,7 +113,7 @@ SHARED_IMPORTS_UNIT = {("shintai.humanoid.robots.kenshiro", "shintai.humanoid.tr
 FOLDERS_NOT_YET_SPLIT = {"snake"}
 FLAT_BY_DESIGN = ("experiments",)  # one scenario per file, flat under the body (DESIGN.md)
 PRIVATE_IMPORTS_NOT_YET_GONE: set[tuple[str, str]] = set()
-PARAMS_READERS_NOT_YET_GONE = {"shintai.snake.plots_two_plane", "shintai.snake.two_plane_runs"}
+PARAMS_READERS_NOT_YET_GONE: set[str] = set()
 EXPERIMENTS_STILL_DRAWING = {
     "shintai.core.experiments.minjerk", "shintai.core.experiments.search_index", "shintai.nervous.experiments.cla_teach",
     "shintai.nervous.experiments.clients", "shintai.nervous.experiments.fig_c1",
