@@ -115,11 +115,9 @@ FLAT_BY_DESIGN = ("experiments",)  # one scenario per file, flat under the body 
 PRIVATE_IMPORTS_NOT_YET_GONE: set[tuple[str, str]] = set()
 PARAMS_READERS_NOT_YET_GONE: set[str] = set()
 EXPERIMENTS_STILL_DRAWING = {
-    "shintai.core.experiments.minjerk", "shintai.core.experiments.search_index", "shintai.nervous.experiments.cla_teach",
-    "shintai.nervous.experiments.clients", "shintai.nervous.experiments.fig_c1",
     "shintai.quadruped.experiments.generalization", "shintai.quadruped.experiments.replay",
     "shintai.quadruped.experiments.sensing_ablation", "shintai.quadruped.experiments.swing_order",
-    "shintai.quadruped.experiments.train", "shintai.sim.experiments.wall_force"}
+    "shintai.quadruped.experiments.train"}
 TESTS_NOT_YET_MIRRORED = {"nervous/test_diagnosis.py", "nervous/test_sequence.py"}  # of nervous/plugins/
 PACKAGE_MAPS_NOT_YET_WRITTEN = {"shintai", "shintai.core", "shintai.evolve", "shintai.gym", "shintai.nervous",
                                 "shintai.nervous.plugins", "shintai.quadruped", "shintai.scenarios", "shintai.sim",
