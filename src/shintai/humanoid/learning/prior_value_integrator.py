@@ -28,9 +28,9 @@ import math
 import numpy as np
 
 from shintai.humanoid.law_params import check_real
+from shintai.humanoid.constants import R_SAT_V
 
 MODES = ("corrected", "plain", "saturated")
-R_SAT_V = 1.5  # r_sat^v of the comparison in §6.4.2 (Fig. 6.17)
 
 
 class PriorValueIntegrator:

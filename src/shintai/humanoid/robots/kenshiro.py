@@ -40,22 +40,13 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import (
-    KENSHIRO,
-    PHYSICS_TIMESTEP,
-    SCENE,
-    SERVO_DAMPRATIO,
-    SERVO_SATURATION_ERROR,
-    SOLE,
-    TRICYCLE,
-    KenshiroSpec,
-)
+from shintai.humanoid.constants import (KENSHIRO, KenshiroSpec, PHYSICS_TIMESTEP, SCENE, SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR, SKIN, SOLE, TRICYCLE)
 from shintai.humanoid.tricycle.vehicle import add_crank
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_ft_sensor, add_hinge, add_servo, add_visual, fill_keyframe, scene_spec, set_joints
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each leg
-SKIN = [0.85, 0.75, 0.55, 1]
 JOINTS = ("hip_pitch", "knee_pitch", "ankle_pitch")
 PEDAL_HALF_THICKNESS = TRICYCLE.pedal_size[2] / 2
 HIP_HEIGHT = TRICYCLE.crank_height + KENSHIRO.d_cz  # m above the floor; the crank as on the tricycle
