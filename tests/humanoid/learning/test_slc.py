@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Body, Loop, declare
-from shintai.humanoid.balance.foot_damping import (CHANNELS as DAMPING_CHANNELS, FootDamping, FootDampingModule,
-    damping_step)
+from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
+from shintai.humanoid.balance.foot_damping import FootDamping, FootDampingModule, damping_step
 from shintai.humanoid.constants import DAMPING_D_FLAT, SLC_D0
 from shintai.humanoid.learning.slc import (F_THRE, SLC, LandingWindow, SLCParams, SLCSchedule, slc_cost,
     slc_gradient, slc_update)

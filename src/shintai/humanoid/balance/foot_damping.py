@@ -23,13 +23,18 @@ Units: τ in N·m, δ in rad, D in N·m·s/rad (the thesis gives D without units
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from shintai.core.runtime import SET, Channel, Module, Snapshot, declare
-from shintai.humanoid.constants import (CONTROL_PERIOD, DAMPING_D_FLAT, DAMPING_T, DELTA_LIMIT, FORCE_DIFF_D,
-    FORCE_DIFF_LIMIT, FORCE_DIFF_T)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    DAMPING_D_FLAT,
+    DAMPING_T,
+    DELTA_LIMIT,
+    FORCE_DIFF_D,
+    FORCE_DIFF_LIMIT,
+    FORCE_DIFF_T,
+)
 from shintai.humanoid.law_params import check_real
 
 # --- constants ------------------------------------------------------------------------------------

@@ -42,8 +42,15 @@ import scipy.linalg
 
 from shintai.core.constants import GRAVITY
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid.constants import (CONTROL_PERIOD, PLAN_HOLD_S, PREVIEW_QE, PREVIEW_R, PREVIEW_TIME,
-    STEP_DOUBLE_S, STEP_SINGLE_S)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    PLAN_HOLD_S,
+    PREVIEW_QE,
+    PREVIEW_R,
+    PREVIEW_TIME,
+    STEP_DOUBLE_S,
+    STEP_SINGLE_S,
+)
 
 
 CHANNELS = declare("com_ref", "zmp_ref", kind=SET)  # what PreviewModule writes (loop channels)

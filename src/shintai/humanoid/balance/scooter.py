@@ -23,11 +23,29 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.core.geometry import rot_xy, rot_y
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid.balance.foot_attitude import pitch as rot_pitch, quat_to_rot
+from shintai.humanoid.balance.foot_attitude import pitch as rot_pitch
+from shintai.humanoid.balance.foot_attitude import quat_to_rot
 from shintai.humanoid.balance.stabilizer import SIDES as FEET
-from shintai.humanoid.balance.standing import CHANNELS as STANDING_CHANNELS, LegIKModule
-from shintai.humanoid.constants import (ACC_NOISE, COM_ITERATIONS, CONTROL_PERIOD, GYRO_NOISE, HRP2_LINKS, LIFT_C,
-    LIFT_CR, LIFT_GAP, LIFT_K, LIFT_KR, LIFT_SPEED, STANDING_POSTURE, VO_LATENCY, VO_NOISE, VO_PERIOD, V_PERIOD)
+from shintai.humanoid.balance.standing import CHANNELS as STANDING_CHANNELS
+from shintai.humanoid.balance.standing import LegIKModule
+from shintai.humanoid.constants import (
+    ACC_NOISE,
+    COM_ITERATIONS,
+    CONTROL_PERIOD,
+    GYRO_NOISE,
+    HRP2_LINKS,
+    LIFT_C,
+    LIFT_CR,
+    LIFT_GAP,
+    LIFT_K,
+    LIFT_KR,
+    LIFT_SPEED,
+    STANDING_POSTURE,
+    VO_LATENCY,
+    VO_NOISE,
+    VO_PERIOD,
+    V_PERIOD,
+)
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.learning.speed_governing import LinearVelocityFilter, plant_inputs

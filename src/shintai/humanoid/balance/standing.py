@@ -38,11 +38,26 @@ import numpy as np
 
 from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
-from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS, FootDampingModule
-from shintai.humanoid.constants import (BOARDING_CROUCH, BOARDING_STEP_X, CONTROL_PERIOD, DAMPING_D_FLAT, DAMPING_T,
-    FLOOR, PLAN_HOLD_S, SETTLE_S, SOLE, SWING_DELAY, SWING_HEIGHT, VBOARD)
-from shintai.humanoid.balance.preview import CHANNELS as PREVIEW_CHANNELS, Footstep, PreviewModule, zmp_plan
-from shintai.humanoid.balance.stabilizer import CHANNELS as STABILIZER_CHANNELS, SIDES, SUPPORT_CODE, StabilizerModule
+from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
+from shintai.humanoid.balance.foot_damping import FootDampingModule
+from shintai.humanoid.balance.preview import CHANNELS as PREVIEW_CHANNELS
+from shintai.humanoid.balance.preview import Footstep, PreviewModule, zmp_plan
+from shintai.humanoid.balance.stabilizer import CHANNELS as STABILIZER_CHANNELS
+from shintai.humanoid.balance.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
+from shintai.humanoid.constants import (
+    BOARDING_CROUCH,
+    BOARDING_STEP_X,
+    CONTROL_PERIOD,
+    DAMPING_D_FLAT,
+    DAMPING_T,
+    FLOOR,
+    PLAN_HOLD_S,
+    SETTLE_S,
+    SOLE,
+    SWING_DELAY,
+    SWING_HEIGHT,
+    VBOARD,
+)
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik

@@ -13,11 +13,11 @@ from shintai.humanoid.constants import DEG, TRICYCLE
 from shintai.humanoid.tricycle import plots
 from shintai.humanoid.tricycle.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
 from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
+from shintai.humanoid.tricycle.constants import GREY, ODOMETRY_SETTLE_S, STEER_S
 from shintai.humanoid.tricycle.localisation import LOCALISATION, Localiser, box_map
 from shintai.humanoid.tricycle.navigation import crank_rate
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.humanoid.tricycle.constants import GREY, ODOMETRY_SETTLE_S, STEER_S
 
 ROOM = (Obstacle("wall_front", (0.05, 2.2, 0.5), (4.5, -0.4, 0.5), GREY),
         Obstacle("wall_right", (2.8, 0.05, 0.5), (1.7, -2.6, 0.5), GREY),

@@ -13,12 +13,12 @@ from shintai.humanoid.constants import (
     WAIT_FRACTION_IMPROVED,
 )
 from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.constants import THESIS_SPEED_RATIO
 from shintai.humanoid.tricycle.operation import OperationSchedule
 from shintai.humanoid.tricycle.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
 from shintai.humanoid.tricycle.rig import F_TRG
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.humanoid.tricycle.constants import THESIS_SPEED_RATIO
 
 THESIS_S_PER_REV_ORIGINAL = 164.0 / (12.8 / TRICYCLE.travel_per_rev)  # 31.4 s per crank revolution (D_c = 2.45 m)
 PASSIVE_F_TRG = {"original": F_TRG, "improved": F_TRG_PASSIVE_LEG_IMPROVED}

@@ -12,8 +12,6 @@ from shintai.humanoid.unicycle.constants import LEARNED_TRAJ, LEARNED_V, P0_M, P
 from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-# (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
-
 
 def rig(params, variant, seed):
     ride_push = None

@@ -10,15 +10,15 @@ import numpy as np
 
 from shintai.core.runtime import FunctionModule
 from shintai.humanoid.balance.foot_damping import FootDamping
-from shintai.humanoid.constants import DAMPING_T, DELTA_LIMIT, SLC_D0, SLC_ETA, SLC_Q, SLC_R
 from shintai.humanoid.balance.standing import CHANNELS
+from shintai.humanoid.constants import DAMPING_T, DELTA_LIMIT, SLC_D0, SLC_ETA, SLC_Q, SLC_R
 from shintai.humanoid.learning.slc import SLCParams, slc_cost
 from shintai.humanoid.vboard import plots
 from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
+from shintai.humanoid.vboard.constants import AFTER_S
 from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.humanoid.vboard.constants import AFTER_S
 
 VARIANTS = ("fixed_d", "slc")
 

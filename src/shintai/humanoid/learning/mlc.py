@@ -33,8 +33,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from shintai.core.search_index import MatrixGain, SearchIndex
-from shintai.humanoid.constants import (CONTROL_PERIOD, ETA_OMEGA, ETA_V, K_OMEGA, K_V, MLC_ETA_MAX, SIGMA_OMEGA,
-    SIGMA_V, TERMINATION_K, T_L, T_OMEGA, T_V)
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    ETA_OMEGA,
+    ETA_V,
+    K_OMEGA,
+    K_V,
+    MLC_ETA_MAX,
+    SIGMA_OMEGA,
+    SIGMA_V,
+    TERMINATION_K,
+    T_L,
+    T_OMEGA,
+    T_V,
+)
 from shintai.humanoid.law_params import check_real
 
 # --- constants ----------------------------------------------------------------------------------------

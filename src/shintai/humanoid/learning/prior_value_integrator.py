@@ -27,8 +27,8 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.law_params import check_real
 from shintai.humanoid.constants import R_SAT_V
+from shintai.humanoid.law_params import check_real
 
 MODES = ("corrected", "plain", "saturated")
 

@@ -46,9 +46,15 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
 from shintai.humanoid.constants import (
     F_THRE,  # landing threshold of the start/stop guards (§5.4.1)
+    SLC_AIR_TIME,
+    SLC_D0,
+    SLC_D_MIN,
+    SLC_ETA,
+    SLC_ETA_MAX,
+    SLC_Q,
+    SLC_R,
 )
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.constants import SLC_AIR_TIME, SLC_D0, SLC_D_MIN, SLC_ETA, SLC_ETA_MAX, SLC_Q, SLC_R
 
 
 def slc_cost(e_tau, delta, Q: float = SLC_Q, R: float = SLC_R):

@@ -30,9 +30,14 @@ from scipy.signal import lfilter
 from shintai.core.runtime import Body, declare
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,  # Δt ≈ 4 ms of the speed-governing system too (§6.2.2)
+    K_OMEGA,
+    K_V,
+    MIX,
+    T_F,
+    T_OMEGA,
+    T_V,
 )
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.constants import K_OMEGA, K_V, MIX, T_F, T_OMEGA, T_V
 
 
 class LinearVelocityFilter:

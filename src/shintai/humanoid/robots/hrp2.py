@@ -40,9 +40,29 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import (ARMATURE_BIG, ARMATURE_SMALL, ARMATURE_SPLIT, ARM_JOINTS, BLUE, GREY,
-    HRP2_LINKS, HRP2_MASSES, Hrp2Links, JointSpec, LEG_JOINTS, NECK_JOINTS, SCENE, SERVO_DAMPRATIO,
-    SERVO_SATURATION_ERROR, SOLE, STANDING_POSTURE, SUBSTEPS, WAIST_JOINTS, WHITE, joint_range)
+from shintai.humanoid.constants import (
+    ARMATURE_BIG,
+    ARMATURE_SMALL,
+    ARMATURE_SPLIT,
+    ARM_JOINTS,
+    BLUE,
+    GREY,
+    HRP2_LINKS,
+    HRP2_MASSES,
+    LEG_JOINTS,
+    NECK_JOINTS,
+    SCENE,
+    SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR,
+    SOLE,
+    STANDING_POSTURE,
+    SUBSTEPS,
+    WAIST_JOINTS,
+    WHITE,
+    Hrp2Links,
+    JointSpec,
+    joint_range,
+)
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import (
     add_ft_sensor,

@@ -40,8 +40,17 @@ import math
 import mujoco
 import numpy as np
 
-from shintai.humanoid.constants import (KENSHIRO, KenshiroSpec, PHYSICS_TIMESTEP, SCENE, SERVO_DAMPRATIO,
-    SERVO_SATURATION_ERROR, SKIN, SOLE, TRICYCLE)
+from shintai.humanoid.constants import (
+    KENSHIRO,
+    PHYSICS_TIMESTEP,
+    SCENE,
+    SERVO_DAMPRATIO,
+    SERVO_SATURATION_ERROR,
+    SKIN,
+    SOLE,
+    TRICYCLE,
+    KenshiroSpec,
+)
 from shintai.humanoid.tricycle.vehicle import add_crank
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_ft_sensor, add_hinge, add_servo, add_visual, fill_keyframe, scene_spec, set_joints

@@ -71,8 +71,8 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.tricycle.active import grip_plan
-from shintai.humanoid.tricycle.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.tricycle.constants import DARK, OBSTACLE_GROUP, SEAT, SOLE_BIT, WHEEL_BIT
+from shintai.humanoid.tricycle.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
 from shintai.humanoid.tricycle.passive import ActiveImpedance
 from shintai.humanoid.tricycle.riding import (
     ANKLE_FT,

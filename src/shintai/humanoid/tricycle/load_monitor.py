@@ -33,8 +33,8 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
-from shintai.humanoid.tricycle.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
 from shintai.humanoid.tricycle.constants import AFTER_S, BEFORE_S, SETTLE_S
+from shintai.humanoid.tricycle.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
 
 
 class LoadMonitor:

@@ -49,9 +49,9 @@ from shintai.humanoid.constants import (
     WHEEL,
     TricycleSpec,
 )
+from shintai.humanoid.tricycle.constants import DARK, FRAME, METAL
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, quat_axis, scene_spec, set_joints
-from shintai.humanoid.tricycle.constants import DARK, FRAME, METAL
 
 Y_AXIS_QUAT = [math.cos(math.pi / 4), math.sin(math.pi / 4), 0, 0]  # turns a cylinder's z axis onto y
 CAPSULE, CYLINDER, BOX = mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_CYLINDER, mujoco.mjtGeom.mjGEOM_BOX

@@ -29,6 +29,7 @@ V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'
 LEARNED_TRAJ = (9.05e-5, 3.93e-4, 2.47e-5)
 LEARNED_V = (2.86e-7, 1.20e-6, 6.63e-8)
 TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body time, ≈1 s after the lift lets go
+# (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
 
 # --- the numbers of unicycle/vehicle.py ---------------------------------------------------------------------------
 SHELL = [0.95, 0.95, 0.97, 1]

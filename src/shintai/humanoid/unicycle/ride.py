@@ -35,8 +35,8 @@ import numpy as np
 from shintai.core.geometry import roll_of, rot_x
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.balance.foot_attitude import quat_to_rot
-from shintai.humanoid.balance.scooter import (CHANNELS as RIDE_CHANNELS, ChestPitchIK, FootPitch, Lift,
-    ScooterSensors, posture_on_pads)
+from shintai.humanoid.balance.scooter import CHANNELS as RIDE_CHANNELS
+from shintai.humanoid.balance.scooter import ChestPitchIK, FootPitch, Lift, ScooterSensors, posture_on_pads
 from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Push, Standing
 from shintai.humanoid.constants import CONTROL_PERIOD, SCENE, SIGMA_V, SUBSTEPS

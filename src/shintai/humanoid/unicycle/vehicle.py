@@ -45,9 +45,9 @@ import numpy as np
 
 from shintai.core.constants import GRAVITY
 from shintai.humanoid.constants import HRP2_MASS, SCENE, SOLE, SUBSTEPS, WHEEL
+from shintai.humanoid.unicycle.constants import METAL, RUBBER, SHELL, TYRE
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, scene_spec
-from shintai.humanoid.unicycle.constants import METAL, RUBBER, SHELL, TYRE
 
 SIDES = {"r": -1.0, "l": 1.0}
 ROOT = ("ninebot_x", "ninebot_y", "ninebot_z", "ninebot_yaw", "ninebot_roll")

@@ -30,9 +30,19 @@ import math
 import numpy as np
 from scipy.signal import find_peaks
 
-from shintai.humanoid.constants import (BOARDING_CROUCH, BOARDING_STEP_X, DAMPING_T, DELTA_LIMIT, HRP2_LINKS, SCENE,
-    STANDING_POSTURE, SUBSTEPS, VBOARD, VboardSpec)
 from shintai.humanoid.balance.standing import SoleStep, Standing, platform_steps, settle_on_floor, stand_geometry
+from shintai.humanoid.constants import (
+    BOARDING_CROUCH,
+    BOARDING_STEP_X,
+    DAMPING_T,
+    DELTA_LIMIT,
+    HRP2_LINKS,
+    SCENE,
+    STANDING_POSTURE,
+    SUBSTEPS,
+    VBOARD,
+    VboardSpec,
+)
 from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
 from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
 from shintai.humanoid.vboard.constants import PEAK_GAP_S, PEAK_SMOOTH_S

@@ -69,9 +69,9 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.constants import SCENE, SOLE, SUBSTEPS, VBOARD, VBOARD_HOLD_SERVO, WHEEL, VboardSpec
+from shintai.humanoid.vboard.constants import HOUSING, METAL, RUBBER, SWITCH_MARGIN, TYRE
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, scene_spec, set_joints
-from shintai.humanoid.vboard.constants import HOUSING, METAL, RUBBER, SWITCH_MARGIN, TYRE
 
 SIDES = {"r": -1.0, "l": 1.0}  # y sign of each half
 ROOT = ("vboard_x", "vboard_y", "vboard_z", "vboard_yaw", "vboard_roll")
