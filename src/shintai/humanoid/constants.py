@@ -720,6 +720,7 @@ TERMINATION_K = 3  # consecutive mini-batches (Eq. 6.32, "k = 3")
 # Chosen (Eq. 6.32 gives no numbers): σ — an RMS error of 1 cm/s for v and 0.01 rad/s for ω over a batch;
 # ε — a gradient whose step η‖∇J‖ moves the gains by less than 1e-6 (the thesis's gains are O(1e-3), Fig. 6.15).
 SIGMA_V, SIGMA_OMEGA = 1e-4, 1e-4
+EPS_V, EPS_OMEGA = 1e-6 / ETA_V[0], 1e-6 / ETA_OMEGA[0]
 
 MLC_ETA_MAX = 1.0  # chosen upper end of the learning-rate range; A must be positive definite (Table 6.4)
 

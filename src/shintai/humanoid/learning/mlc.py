@@ -36,6 +36,8 @@ from shintai.core.search_index import MatrixGain, SearchIndex
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,
     ETA_OMEGA,
+    EPS_OMEGA,
+    EPS_V,
     ETA_V,
     K_OMEGA,
     K_V,
@@ -48,9 +50,6 @@ from shintai.humanoid.constants import (
     T_V,
 )
 from shintai.humanoid.law_params import check_real
-
-# --- constants ----------------------------------------------------------------------------------------
-EPS_V, EPS_OMEGA = 1e-6 / ETA_V[0], 1e-6 / ETA_OMEGA[0]
 
 
 @dataclass(frozen=True)
