@@ -35,8 +35,7 @@ import numpy as np
 from shintai.gym.riding import RideEnv
 
 # --- the adapter to the humanoid package (re-point these imports after the humanoid move) ------------------
-from shintai.humanoid.constants import VBOARD
-from shintai.humanoid.balance.scooter import V_PERIOD
+from shintai.humanoid.constants import VBOARD, V_PERIOD
 from shintai.humanoid.learning.speed_governing import foot_pitch_increments
 from shintai.humanoid.vboard.constants import EXCITE_AMPLITUDE, VIEW
 from shintai.humanoid.vboard.ride import VboardRide

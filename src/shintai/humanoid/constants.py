@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from shintai.core.constants import GRAVITY  # noqa: F401  (9.81 m/s², shared by every body)
 
 DEG = math.pi / 180.0
@@ -648,3 +650,106 @@ FOOT_FOLLOW_F_TRG = IMPEDANCE["passive_leg"].f_trg[2]
 FALL_TILT = 30 * DEG
 # §3.5.4 (E7): the wait for a commanded motion to complete was cut to 80 % of the original's.
 WAIT_FRACTION_IMPROVED = 0.8
+
+# --- the numbers of balance/foot_damping.py -----------------------------------------------------------------------
+DAMPING_T = 1.5  # s, T of Eq. 5.1 (Table 5.2; also hrpsys-base's eefm_rot_time_const default)
+DAMPING_D_FLAT = 22.0  # N·m·s/rad, D "adaptive on a flat floor" and the SLC start value D₀ (§5.4.1)
+# hrpsys-base's default rotation damping gain is 100 (20·5); the thesis's robot ran with 22.0 on the floor.
+DELTA_LIMIT = 10 * math.pi / 180  # rad; chosen: hrpsys-base eefm_rot_compensation_limit (thesis: no value)
+# Force difference control: no value in the thesis; hrpsys-base defaults (eefm_pos_damping_gain z,
+# eefm_pos_time_const_support z, 2 × eefm_pos_compensation_limit).
+FORCE_DIFF_D = 3500.0  # N·s/m
+FORCE_DIFF_T = 1.5  # s
+FORCE_DIFF_LIMIT = 0.05  # m
+
+# --- the numbers of balance/preview.py ----------------------------------------------------------------------------
+# Preview control parameters. The thesis gives none (§5.4 only cites [84][85]).
+PREVIEW_TIME = 1.6  # s, N_L·T: hrpsys-base AutoBalancer's default (PreviewController.h, d = 1.6), also
+# the preview used with Kajita 2003's example parameters (T = 5 ms, z_c = 0.814 m, Q_e = 1, R = 1e-6) in
+# its common reproductions; the gains G_p have decayed below 1 % of their peak by then (tested)
+PREVIEW_QE = 1.0  # Q_e, ZMP error weight: Kajita 2003's example and hrpsys-base's default q = 1
+PREVIEW_R = 1e-6  # R, jerk increment weight: Kajita 2003's example and hrpsys-base's default r = 1e-6
+# Q_x = 0 (Kajita 2003's example): the state increments are not penalised.
+# Footstep timing: chosen, because not in the thesis (Fig. 5.6 shows the boarding but no timing):
+# hrpsys-base's GaitGenerator defaults, default_step_time 1.0 s with double-support ratios 0.1 before
+# + 0.1 after (GaitGenerator.h): 0.2 s double support and 0.8 s single support per step.
+STEP_DOUBLE_S = 0.2
+STEP_SINGLE_S = 0.8
+# s, chosen: the ZMP rests this long at the start and the end; > 3/ω = 0.87 s of the LIP (ω = √(g/z_c)).
+# Starting at rest 1 s before the first shift costs a 2.8 mm transient of the cart-table ZMP.
+PLAN_HOLD_S = 1.0
+
+# --- the numbers of balance/scooter.py ----------------------------------------------------------------------------
+LIFT_GAP = 0.02  # m, chosen: the soles hang this far above the pads when the lowering starts
+LIFT_SPEED = 0.05  # m/s, chosen: a hand-cranked care lift (§6.4.1 '介護用リフト') lowers at a few cm/s
+V_PERIOD = 0.024  # s, v's sampling period and latency (Table 6.1, '*': latency = period)
+VO_LATENCY = 0.010  # s, chosen: the thesis gives x_VO's period (10 ms) only; one period, like the '*' rows
+VO_NOISE = 1.0e-3  # m, chosen: ZED visual odometry's position jitter, white, per sample
+ACC_NOISE = 0.05  # m/s², chosen: a MEMS accelerometer's white noise at 250 Hz
+LIFT_K, LIFT_C = 2.0e4, 2.0e3  # N/m, N·s/m, chosen: the harness's stiffness and damping (each axis)
+LIFT_KR, LIFT_CR = 2.0e3, 2.0e2  # N·m/rad, N·m·s/rad, chosen: its hold of the waist's attitude
+GYRO_NOISE = 0.005  # rad/s, chosen: a MEMS gyro's white noise at 250 Hz
+
+COM_ITERATIONS = 3  # waist moves then IK; the mass centre settles over the axle to < 1 mm in 2–3
+
+# --- the numbers of balance/stabilizer.py -------------------------------------------------------------------------
+# LIP feedback gains of [55] Eq. 26 (k1 on the CoM, k2 on its velocity, k3 on the ZMP): hrpsys-base
+# Stabilizer's defaults, −1.41429, −0.404082, −0.18, each × its k_ratio 0.9 (the thesis gives none).
+LIP_K = (-1.41429 * 0.9, -0.404082 * 0.9, -0.18 * 0.9)
+ZMP_DELAY_T = 0.04  # s, T_p of the ZMP's first-order response in [55] (hrpsys eefm_zmp_delay_time_const)
+COM_VEL_FILTER = 0.9  # hrpsys's act_cogvel ← 0.9 act_cogvel + 0.1 (finite difference)
+
+# --- the numbers of balance/standing.py ---------------------------------------------------------------------------
+SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
+# chosen: the swing moves horizontally only for s ∈ [0.35, 0.65]; at s = 0.35 (and 0.65) the sole is
+# 0.85 of the way up to (down from) its apex: 25 mm above the V-BOARD deck's 0.12 m with SWING_HEIGHT (tested)
+SWING_DELAY = 0.35
+
+# m, chosen: the CoM lowered for the 0.30 m step up (at the stand height the trailing leg is out of
+# reach once the CoM is ≈0.15 m ahead of it, before it lifts: measured, 58 ticks out of reach)
+BOARDING_CROUCH = 0.05
+BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 15 mm past platform_body's near edge
+
+SETTLE_S = 0.1  # s, chosen: the keyframe's soles touch the floor at zero penetration (≈15 N a foot)
+
+# --- the numbers of learning/mlc.py -------------------------------------------------------------------------------
+T_L = 2.0  # s, mini-batch length (§6.3.2: 2/0.004 = 500 samples)
+ETA_V = (1e-7, 1e-7, 1e-7)  # (η_P, η_I, η_D) for v (Table 6.6)
+ETA_OMEGA = (1e-9, 1e-9, 1e-9)  # for ω (Table 6.6)
+TERMINATION_K = 3  # consecutive mini-batches (Eq. 6.32, "k = 3")
+# Chosen (Eq. 6.32 gives no numbers): σ — an RMS error of 1 cm/s for v and 0.01 rad/s for ω over a batch;
+# ε — a gradient whose step η‖∇J‖ moves the gains by less than 1e-6 (the thesis's gains are O(1e-3), Fig. 6.15).
+SIGMA_V, SIGMA_OMEGA = 1e-4, 1e-4
+EPS_V, EPS_OMEGA = 1e-6 / ETA_V[0], 1e-6 / ETA_OMEGA[0]
+
+MLC_ETA_MAX = 1.0  # chosen upper end of the learning-rate range; A must be positive definite (Table 6.4)
+
+# --- the numbers of learning/prior_value_integrator.py ------------------------------------------------------------
+R_SAT_V = 1.5  # r_sat^v of the comparison in §6.4.2 (Fig. 6.17)
+
+# --- the numbers of learning/slc.py -------------------------------------------------------------------------------
+SLC_Q = 0.1  # weight of e_τ² (Table 5.2)
+SLC_R = 1.0e5  # weight of δ² (Table 5.2)
+SLC_ETA = 0.01  # learning rate η (Table 5.2) → Q′ = 1e-3, R′ = 1e3
+SLC_D0 = 22.0  # D at the start, the flat-floor value (§5.4.1)
+SLC_D_MIN = 1.0  # chosen: floor under D (not in the text; D divides Eqs. 5.1 and 5.17)
+# s, chosen: how long f_z must stay ≤ F_thre for the foot to count as in the air, which arms its landing
+# guard (§5.4.1 guards foot *placements*; the thesis gives no hysteresis). Longer than the lift-off
+# jitter and chatter (one to two 4 ms ticks, measured on the boarding), far shorter than a swing (0.8 s).
+SLC_AIR_TIME = 0.1
+SLC_ETA_MAX = 1.0  # chosen: η ∈ (0, 1]; Table 5.1 needs A = η > 0, the thesis runs 0.01
+
+# --- the numbers of learning/speed_governing.py -------------------------------------------------------------------
+VO_PERIOD = 0.010  # s, x_VO sampling (Table 6.1)
+T_V, T_OMEGA = 1.1, 0.6  # s, identified lags (Table 6.2)
+K_V, K_OMEGA = 5.88e2, 1.39e4  # identified gains (Table 6.2); units of u as the thesis's (see module doc)
+T_F = 0.5  # s, chosen: Eq. 6.3's T_f is not given; 0.5 s keeps a 0.05 m/s² accelerometer bias to 2.5 cm/s
+MIX = np.array([[1.0, 1.0], [1.0, -1.0]])  # Eq. 6.5
+
+# --- the numbers of robots/hrp2.py --------------------------------------------------------------------------------
+WHITE = [0.92, 0.92, 0.94, 1]
+BLUE = [0.22, 0.36, 0.72, 1]
+GREY = [0.35, 0.35, 0.38, 1]
+
+# --- the numbers of robots/kenshiro.py ----------------------------------------------------------------------------
+SKIN = [0.85, 0.75, 0.55, 1]

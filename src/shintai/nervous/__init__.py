@@ -4,5 +4,6 @@
 (descriptions generated from the model, §6.3.2), :mod:`~shintai.nervous.protocol` and
 :mod:`~shintai.nervous.commands` (the line rules of C.2.1), :mod:`~shintai.nervous.nerve` (the plugin loop,
 §6.3.4), :mod:`~shintai.nervous.server` (the socket server, §6.3.3), :mod:`~shintai.nervous.plugins`,
-:mod:`~shintai.nervous.client` (``NerveClient``). The protocol with a session: ``README.md`` here.
+:mod:`~shintai.nervous.client` (``NerveClient``), :mod:`~shintai.nervous.plots` (the experiments' figures).
+The protocol with a session: ``README.md`` here.
 """

@@ -172,7 +172,7 @@ def plot_redundancy(ctx, runs: dict, name: str = "redundancy") -> None:
         ax[0].set_title("dash-dot: front shifts (with null space)", fontsize=9)
 
 
-def plot_two_plane(ctx, runs: dict, params) -> None:
+def plot_two_plane(ctx, runs: dict, null_space: bool) -> None:
     """The pictures of a §4.5 condition (the first run; both runs where they are compared), and the transition
     events of each run for the report."""
     series = {variant: TwoPlaneRun.of(run) for variant, run in runs.items()}
@@ -182,6 +182,6 @@ def plot_two_plane(ctx, runs: dict, params) -> None:
     plot_head(ctx, main)
     plot_redundancy(ctx, series)
     plot_edge(ctx, series)
-    if params["null_space"]:
+    if null_space:
         plot_motion(ctx, series["no_null_space"], name="motion_no_null_space")
     ctx.extra["events"] = {variant: run.events for variant, run in series.items()}

@@ -223,21 +223,20 @@ def thesis_values(cond: TwoPlaneCondition, figure: str) -> dict:
     }
 
 
-def variants(params) -> tuple[str, ...]:
+def variants(null_space: bool) -> tuple[str, ...]:
     """Table 4.1's k_v and the k_v = 0 rerun, or the rerun alone (``null_space`` false)."""
-    return ("with_null_space", "no_null_space") if params["null_space"] else ("no_null_space",)
+    return ("with_null_space", "no_null_space") if null_space else ("no_null_space",)
 
 
-def condition_rig(cond: TwoPlaneCondition):
-    """``rig(params, variant, seed)`` of a §4.5 condition."""
-    return lambda params, variant, seed: two_plane_rig(cond, params["duration_s"],
-                                                 None if variant == "with_null_space" else 0.0)
+def condition_rig(cond: TwoPlaneCondition, duration_s: float, variant: str):
+    """The rig of a §4.5 condition for one variant (``no_null_space``: k_v = 0)."""
+    return two_plane_rig(cond, duration_s, None if variant == "with_null_space" else 0.0)
 
 
-def condition_metrics(runs: dict, params) -> dict:
+def condition_metrics(runs: dict, null_space: bool) -> dict:
     """The first run's metrics; with ``null_space``, the k_v = 0 run's too, named ``*_no_nullspace`` (unit last)."""
     series = {variant: TwoPlaneRun.of(run) for variant, run in runs.items()}
     metrics = next(iter(series.values())).metrics()
-    if params["null_space"]:
+    if null_space:
         metrics.update(per_variant({"no_nullspace": series["no_null_space"].metrics()}))
     return metrics

@@ -3,15 +3,9 @@
 import numpy as np
 import pytest
 
-from shintai.humanoid.balance.foot_damping import (
-    DAMPING_D_FLAT,
-    DAMPING_T,
-    DELTA_LIMIT,
-    FootDamping,
-    ForceDifferenceControl,
-    damping_controller_gain,
-    damping_step,
-)
+from shintai.humanoid.balance.foot_damping import (FootDamping, ForceDifferenceControl, damping_controller_gain,
+    damping_step)
+from shintai.humanoid.constants import DAMPING_D_FLAT, DAMPING_T, DELTA_LIMIT
 
 DT = 0.004
 

@@ -6,19 +6,9 @@ import numpy as np
 import pytest
 
 from shintai.core.runtime import Loop, Module
-from shintai.humanoid.balance.preview import (
-    CHANNELS,
-    PREVIEW_TIME,
-    CartTable,
-    Footstep,
-    PreviewController,
-    PreviewModule,
-    generate,
-    hrp2_com_height,
-    preview_gains,
-    zmp_plan,
-)
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.balance.preview import (CHANNELS, CartTable, Footstep, PreviewController, PreviewModule,
+    generate, hrp2_com_height, preview_gains, zmp_plan)
+from shintai.humanoid.constants import CONTROL_PERIOD, PREVIEW_TIME
 
 ZC = 0.82  # about HRP2's (test_hrp2_com_height), fixed so the other tests do not build the model
 

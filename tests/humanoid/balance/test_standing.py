@@ -9,28 +9,11 @@ import pytest
 from shintai.core.runtime import FunctionModule
 from shintai.humanoid.balance.foot_attitude import measured_zmp, two_foot_zmp
 from shintai.humanoid.balance.preview import hrp2_com_height
-from shintai.humanoid.balance.stabilizer import (
-    LIP_K,
-    StabilizerModule,
-    closed_loop_poles,
-    distribute,
-    foot_wrenches,
-    lip_feedback,
-)
-from shintai.humanoid.balance.standing import (
-    BOARDING_CROUCH,
-    BOARDING_STEP_X,
-    PLATFORM_HEIGHT,
-    SWING_DELAY,
-    FootstepModule,
-    SoleStep,
-    Standing,
-    platform_body,
-    platform_steps,
-    push_recovery,
-    swing_point,
-)
-from shintai.humanoid.constants import VBOARD
+from shintai.humanoid.balance.stabilizer import (StabilizerModule, closed_loop_poles, distribute, foot_wrenches,
+    lip_feedback)
+from shintai.humanoid.balance.standing import (PLATFORM_HEIGHT, FootstepModule, SoleStep, Standing, platform_body,
+    platform_steps, push_recovery, swing_point)
+from shintai.humanoid.constants import BOARDING_CROUCH, BOARDING_STEP_X, LIP_K, SWING_DELAY, VBOARD
 from shintai.humanoid.robots.hrp2 import ft_reaction
 
 FEET = {"l": np.array([0.0, 0.06]), "r": np.array([0.0, -0.06])}

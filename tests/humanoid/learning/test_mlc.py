@@ -7,17 +7,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from shintai.core.runtime import Loop
-from shintai.humanoid.learning.mlc import (
-    ETA_OMEGA,
-    ETA_V,
-    MLC,
-    MLC_OMEGA,
-    MLC_V,
-    MLCParams,
-    Sensitivity,
-    recursion_coefficients,
-)
-from shintai.humanoid.learning.speed_governing import K_V, T_V, IdentifiedScooterPlant, pid_loop_stable
+from shintai.humanoid.constants import ETA_OMEGA, ETA_V, K_V, T_V
+from shintai.humanoid.learning.mlc import MLC, MLC_OMEGA, MLC_V, MLCParams, Sensitivity, recursion_coefficients
+from shintai.humanoid.learning.speed_governing import IdentifiedScooterPlant, pid_loop_stable
 from shintai.humanoid.vboard.governor import SpeedGovernor
 
 DT = 0.004

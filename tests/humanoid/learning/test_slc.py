@@ -7,18 +7,10 @@ import pytest
 
 from shintai.core.runtime import Body, Loop, declare
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
-from shintai.humanoid.balance.foot_damping import DAMPING_D_FLAT, FootDamping, FootDampingModule, damping_step
-from shintai.humanoid.learning.slc import (
-    F_THRE,
-    SLC,
-    SLC_D0,
-    LandingWindow,
-    SLCParams,
-    SLCSchedule,
-    slc_cost,
-    slc_gradient,
-    slc_update,
-)
+from shintai.humanoid.balance.foot_damping import FootDamping, FootDampingModule, damping_step
+from shintai.humanoid.constants import DAMPING_D_FLAT, SLC_D0
+from shintai.humanoid.learning.slc import (F_THRE, SLC, LandingWindow, SLCParams, SLCSchedule, slc_cost,
+    slc_gradient, slc_update)
 
 DT = 0.004
 Q, R, T = 0.1, 1.0e5, 1.5

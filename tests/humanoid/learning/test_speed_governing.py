@@ -6,22 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from shintai.humanoid.learning.speed_governing import (
-    K_OMEGA,
-    K_V,
-    T_OMEGA,
-    T_V,
-    IdentifiedScooterPlant,
-    LinearVelocityFilter,
-    SpeedPlant,
-    characteristic_polynomial,
-    foot_pitch_increments,
-    identify_plant,
-    pid_loop_stable,
-    plant_inputs,
-    routh_hurwitz,
-    stability_flag,
-)
+from shintai.humanoid.constants import K_OMEGA, K_V, T_OMEGA, T_V
+from shintai.humanoid.learning.speed_governing import (IdentifiedScooterPlant, LinearVelocityFilter, SpeedPlant,
+    characteristic_polynomial, foot_pitch_increments, identify_plant, pid_loop_stable, plant_inputs, routh_hurwitz,
+    stability_flag)
 
 DT = 0.004
 

@@ -8,20 +8,9 @@ import numpy as np
 import pytest
 
 from shintai.humanoid.constants import NAVIGATION, SCENE, THETA_H_MAX, TRICYCLE, WHEELBASE
-from shintai.humanoid.tricycle.navigation import (
-    OBSTACLE_GROUP,
-    Costmap,
-    DepthSensor,
-    DynamicWindow,
-    crank_rate,
-    crank_reference,
-    footprint_points,
-    global_path,
-    handle_reference,
-    integrate_pose,
-    osi_references,
-    tricycle_rates,
-)
+from shintai.humanoid.tricycle.constants import OBSTACLE_GROUP
+from shintai.humanoid.tricycle.navigation import (Costmap, DepthSensor, DynamicWindow, crank_rate, crank_reference,
+    footprint_points, global_path, handle_reference, integrate_pose, osi_references, tricycle_rates)
 from shintai.sim.spec import scene_spec
 
 D_C = TRICYCLE.travel_per_rev

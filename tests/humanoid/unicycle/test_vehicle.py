@@ -118,7 +118,7 @@ def test_lip_tracking_reverses_a_static_correction_of_p_d_star():
     """Why ``humanoid.unicycle-learning``'s as-written variant runs away (its notes): at rest (p = x, ẋ = 0) the LIP law
     p* = p_ref + k1 (x_ref − x) + k3 (p_ref − p) + c with p* = x has x = c / (1 + k1 + k3), of the opposite sign for
     hrpsys's gains, while shifting both references by c ('reference') gives x = c."""
-    from shintai.humanoid.balance.stabilizer import LIP_K
+    from shintai.humanoid.constants import LIP_K
 
     k1, _, k3 = LIP_K
     c = 0.01

@@ -8,7 +8,8 @@ import pytest
 from shintai.core.constants import GRAVITY
 from shintai.core.recorder import Recorder
 from shintai.core.runtime import Loop
-from shintai.humanoid.balance.scooter import V_PERIOD, VO_LATENCY, ScooterSensors
+from shintai.humanoid.balance.scooter import ScooterSensors
+from shintai.humanoid.constants import V_PERIOD, VO_LATENCY
 from shintai.humanoid.vboard.ride import VboardRide
 from shintai.humanoid.vboard.vehicle import scooter_velocity
 from shintai.scenarios.registry import ParameterError

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.core.interpolation import Segment, SequencePlayer, hoff_arbib_jerk
+from shintai.core.plots import plot_minjerk
 from shintai.scenarios.registry import Check, Param, scenario
 
 def _random_boundary(rng, dof):
@@ -117,7 +118,7 @@ def minjerk_scenario(ctx):
     for t, x, v, a in samples:
         ctx.recorder.record(t, x=x, v=v, a=a)
     ctx.sim_time_s = samples[-1][0]
-    _plot_minjerk(ctx, samples)
+    plot_minjerk(ctx, samples)
     return {
         "max_boundary_error": boundary_error(rng, p["trials"]),
         "max_jump_pos": float(jumps[0]),
@@ -127,12 +128,3 @@ def minjerk_scenario(ctx):
         "queue_arrival_error": queue_arrival_error(rng, p["dt"]),
         "hoff_arbib_max_dev": hoff_arbib_deviation(rng, p["dt"]),
     }
-
-
-def _plot_minjerk(ctx, samples):
-    t = np.array([s[0] for s in samples])
-    with ctx.figure("minjerk", 3, 1, figsize=(8, 7), sharex=True) as (fig, ax):
-        for i, label in enumerate(("position", "velocity", "acceleration")):
-            ax[i].plot(t, np.array([s[1 + i] for s in samples]), lw=1)
-            ax[i].set_ylabel(label)
-        ax[2].set_xlabel("t [s] (re-targeted mid-motion: every curve stays continuous)")

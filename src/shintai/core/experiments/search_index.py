@@ -8,6 +8,7 @@ import numpy as np
 
 from shintai.core.linear_plant import LinearPlant, run_control_index, run_learning_index
 from shintai.core.search_index import estimate_sign_matrix, is_decoupled
+from shintai.core.plots import plot_search_index
 from shintai.scenarios.registry import Check, Param, scenario
 
 COUPLED_G = np.array([[-2.0, 0.4], [0.3, -1.5]])  # diagonally dominant, decreasing in its own ρ_i
@@ -57,7 +58,7 @@ def search_index_scenario(ctx):
         ctx.recorder.record(k, scalar_error=e1[k, 0], scalar_rho=r1[k, 0], coupled_error=e2[k],
                             coupled_rho=r2[k], cost=J[k])
     ctx.sim_time_s = float(steps)
-    _plot_search_index(ctx, e1, r1, e_wrong, e2, J, scalar)
+    plot_search_index(ctx, e1, r1, e_wrong, e2, J, scalar)
     return {
         "final_error": float(max(abs(e1[-1, 0]), np.abs(e2[-1]).max())),
         "monotone_error": int(m1.error_increases == 0 and m2.error_increases == 0),
@@ -70,26 +71,3 @@ def search_index_scenario(ctx):
         "coupled_decoupling_holds": int(is_decoupled(A2, sgn2)),
         "scalar_contraction": float(abs(1 - p["gain"] * abs(g))),
     }
-
-
-def _plot_search_index(ctx, e1, r1, e_wrong, e2, J, scalar):
-    with ctx.figure("search_index", 2, 2, figsize=(10, 7)) as (fig, ax):
-        k = np.arange(len(e1))
-        eps = 1e-16  # exact zeros (converged to machine precision) drawn at the floor of the log axis
-        ax[0, 0].semilogy(k, np.maximum(np.abs(e1[:, 0]), eps), label="scalar, right sign")
-        ax[0, 0].semilogy(k, np.maximum(np.abs(e2[:, 0]), eps), label="coupled x₁")
-        ax[0, 0].semilogy(k, np.maximum(np.abs(e2[:, 1]), eps), label="coupled x₂")
-        ax[0, 0].semilogy(np.arange(len(e_wrong)), np.abs(e_wrong[:, 0]), "r--", label="scalar, wrong sign")
-        ax[0, 0].set(xlabel="step k", ylabel="|x − x_d|", title="error (Eq. 2.22)")
-        ax[0, 0].legend(fontsize=8)
-        ax[0, 1].semilogy(k[1:], np.maximum(np.abs(np.diff(r1[:, 0])), eps), label="scalar")
-        ax[0, 1].set(xlabel="step k", ylabel="|ρ_{k+1} − ρ_k|", title="increments (Eq. 2.28)")
-        ax[1, 0].semilogy(np.arange(len(J)), np.maximum(J, eps))
-        ax[1, 0].set(xlabel="step k", ylabel="J(x_k)", title="learning index (Eq. 2.33)")
-        g, c, xd = scalar["G"][0][0], scalar["c"][0], scalar["x_d"][0]
-        rr = np.linspace(min(r1[:, 0].min(), 0) - 0.5, max(r1[:, 0].max(), 0) + 0.5, 50)
-        ax[1, 1].plot(rr, g * rr + c, "k-", lw=0.8, label="plant x(ρ)")
-        ax[1, 1].axhline(xd, color="g", lw=0.8, label="x_d")
-        ax[1, 1].plot(r1[:8, 0], e1[:8, 0] + xd, "o-", ms=3, label="(ρ_k, x_k)")
-        ax[1, 1].set(xlabel="ρ", ylabel="x", title="steps in (ρ, x) space (Fig. 2.14)")
-        ax[1, 1].legend(fontsize=8)

@@ -23,24 +23,21 @@ Units: τ in N·m, δ in rad, D in N·m·s/rad (the thesis gives D without units
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from shintai.core.runtime import SET, Channel, Module, Snapshot, declare
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    DAMPING_D_FLAT,
+    DAMPING_T,
+    DELTA_LIMIT,
+    FORCE_DIFF_D,
+    FORCE_DIFF_LIMIT,
+    FORCE_DIFF_T,
+)
 from shintai.humanoid.law_params import check_real
 
 # --- constants ------------------------------------------------------------------------------------
-DAMPING_T = 1.5  # s, T of Eq. 5.1 (Table 5.2; also hrpsys-base's eefm_rot_time_const default)
-DAMPING_D_FLAT = 22.0  # N·m·s/rad, D "adaptive on a flat floor" and the SLC start value D₀ (§5.4.1)
-# hrpsys-base's default rotation damping gain is 100 (20·5); the thesis's robot ran with 22.0 on the floor.
-DELTA_LIMIT = 10 * math.pi / 180  # rad; chosen: hrpsys-base eefm_rot_compensation_limit (thesis: no value)
-# Force difference control: no value in the thesis; hrpsys-base defaults (eefm_pos_damping_gain z,
-# eefm_pos_time_const_support z, 2 × eefm_pos_compensation_limit).
-FORCE_DIFF_D = 3500.0  # N·s/m
-FORCE_DIFF_T = 1.5  # s
-FORCE_DIFF_LIMIT = 0.05  # m
 AXES = ("roll", "pitch")
 GAIN = "damping_gain"
 # δ and e_τ of this tick, and D from one tick earlier (SLC writes D(t+Δt) after this tick's damping step, Fig. 5.4)

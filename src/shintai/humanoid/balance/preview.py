@@ -42,23 +42,16 @@ import scipy.linalg
 
 from shintai.core.constants import GRAVITY
 from shintai.core.runtime import SET, Module, declare
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    PLAN_HOLD_S,
+    PREVIEW_QE,
+    PREVIEW_R,
+    PREVIEW_TIME,
+    STEP_DOUBLE_S,
+    STEP_SINGLE_S,
+)
 
-# Preview control parameters. The thesis gives none (§5.4 only cites [84][85]).
-PREVIEW_TIME = 1.6  # s, N_L·T: hrpsys-base AutoBalancer's default (PreviewController.h, d = 1.6), also
-# the preview used with Kajita 2003's example parameters (T = 5 ms, z_c = 0.814 m, Q_e = 1, R = 1e-6) in
-# its common reproductions; the gains G_p have decayed below 1 % of their peak by then (tested)
-PREVIEW_QE = 1.0  # Q_e, ZMP error weight: Kajita 2003's example and hrpsys-base's default q = 1
-PREVIEW_R = 1e-6  # R, jerk increment weight: Kajita 2003's example and hrpsys-base's default r = 1e-6
-# Q_x = 0 (Kajita 2003's example): the state increments are not penalised.
-# Footstep timing: chosen, because not in the thesis (Fig. 5.6 shows the boarding but no timing):
-# hrpsys-base's GaitGenerator defaults, default_step_time 1.0 s with double-support ratios 0.1 before
-# + 0.1 after (GaitGenerator.h): 0.2 s double support and 0.8 s single support per step.
-STEP_DOUBLE_S = 0.2
-STEP_SINGLE_S = 0.8
-# s, chosen: the ZMP rests this long at the start and the end; > 3/ω = 0.87 s of the LIP (ω = √(g/z_c)).
-# Starting at rest 1 s before the first shift costs a 2.8 mm transient of the cart-table ZMP.
-PLAN_HOLD_S = 1.0
 
 CHANNELS = declare("com_ref", "zmp_ref", kind=SET)  # what PreviewModule writes (loop channels)
 

@@ -28,26 +28,33 @@ from shintai.humanoid.balance.foot_attitude import quat_to_rot
 from shintai.humanoid.balance.stabilizer import SIDES as FEET
 from shintai.humanoid.balance.standing import CHANNELS as STANDING_CHANNELS
 from shintai.humanoid.balance.standing import LegIKModule
-from shintai.humanoid.constants import CONTROL_PERIOD, HRP2_LINKS, STANDING_POSTURE
+from shintai.humanoid.constants import (
+    ACC_NOISE,
+    COM_ITERATIONS,
+    CONTROL_PERIOD,
+    GYRO_NOISE,
+    HRP2_LINKS,
+    LIFT_C,
+    LIFT_CR,
+    LIFT_GAP,
+    LIFT_K,
+    LIFT_KR,
+    LIFT_SPEED,
+    STANDING_POSTURE,
+    VO_LATENCY,
+    VO_NOISE,
+    VO_PERIOD,
+    V_PERIOD,
+)
 from shintai.humanoid.corrections import ChestPostureControl
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.learning.speed_governing import VO_PERIOD, LinearVelocityFilter, plant_inputs
+from shintai.humanoid.learning.speed_governing import LinearVelocityFilter, plant_inputs
 from shintai.humanoid.robots.hrp2 import LEG, SIDES, side_posture
 from shintai.humanoid.robots.leg_ik import leg_ik
 from shintai.sim import ik
 from shintai.sim.spec import set_joints
 
-LIFT_GAP = 0.02  # m, chosen: the soles hang this far above the pads when the lowering starts
-LIFT_SPEED = 0.05  # m/s, chosen: a hand-cranked care lift (§6.4.1 '介護用リフト') lowers at a few cm/s
-V_PERIOD = 0.024  # s, v's sampling period and latency (Table 6.1, '*': latency = period)
-VO_LATENCY = 0.010  # s, chosen: the thesis gives x_VO's period (10 ms) only; one period, like the '*' rows
-VO_NOISE = 1.0e-3  # m, chosen: ZED visual odometry's position jitter, white, per sample
-ACC_NOISE = 0.05  # m/s², chosen: a MEMS accelerometer's white noise at 250 Hz
-LIFT_K, LIFT_C = 2.0e4, 2.0e3  # N/m, N·s/m, chosen: the harness's stiffness and damping (each axis)
-LIFT_KR, LIFT_CR = 2.0e3, 2.0e2  # N·m/rad, N·m·s/rad, chosen: its hold of the waist's attitude
-GYRO_NOISE = 0.005  # rad/s, chosen: a MEMS gyro's white noise at 250 Hz
 SOLE = {s: f"{s}_sole" for s in SIDES}  # sole sites
-COM_ITERATIONS = 3  # waist moves then IK; the mass centre settles over the axle to < 1 mm in 2–3
 CHANNELS = {**STANDING_CHANNELS, **declare("v", "omega", kind=SET), **declare("foot_pitch", "ref:chest_pitch")}
 
 

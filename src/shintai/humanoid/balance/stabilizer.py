@@ -69,15 +69,10 @@ from shintai.core.geometry import wrap_pi
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
 from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import COM_VEL_FILTER, CONTROL_PERIOD, LIP_K, ZMP_DELAY_T
 from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------
-# LIP feedback gains of [55] Eq. 26 (k1 on the CoM, k2 on its velocity, k3 on the ZMP): hrpsys-base
-# Stabilizer's defaults, −1.41429, −0.404082, −0.18, each × its k_ratio 0.9 (the thesis gives none).
-LIP_K = (-1.41429 * 0.9, -0.404082 * 0.9, -0.18 * 0.9)
-ZMP_DELAY_T = 0.04  # s, T_p of the ZMP's first-order response in [55] (hrpsys eefm_zmp_delay_time_const)
-COM_VEL_FILTER = 0.9  # hrpsys's act_cogvel ← 0.9 act_cogvel + 0.1 (finite difference)
 SIDES = ("l", "r")
 FOOT = {"l": "L", "r": "R"}  # the foot_damping module's names
 # support code on the loop's "support" channel (a number, so it can travel on a channel)

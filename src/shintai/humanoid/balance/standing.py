@@ -39,26 +39,31 @@ import numpy as np
 from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
-from shintai.humanoid.balance.foot_damping import DAMPING_D_FLAT, DAMPING_T, FootDampingModule
+from shintai.humanoid.balance.foot_damping import FootDampingModule
 from shintai.humanoid.balance.preview import CHANNELS as PREVIEW_CHANNELS
-from shintai.humanoid.balance.preview import PLAN_HOLD_S, Footstep, PreviewModule, zmp_plan
+from shintai.humanoid.balance.preview import Footstep, PreviewModule, zmp_plan
 from shintai.humanoid.balance.stabilizer import CHANNELS as STABILIZER_CHANNELS
 from shintai.humanoid.balance.stabilizer import SIDES, SUPPORT_CODE, StabilizerModule
-from shintai.humanoid.constants import CONTROL_PERIOD, FLOOR, SOLE, VBOARD
+from shintai.humanoid.constants import (
+    BOARDING_CROUCH,
+    BOARDING_STEP_X,
+    CONTROL_PERIOD,
+    DAMPING_D_FLAT,
+    DAMPING_T,
+    FLOOR,
+    PLAN_HOLD_S,
+    SETTLE_S,
+    SOLE,
+    SWING_DELAY,
+    SWING_HEIGHT,
+    VBOARD,
+)
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
 from shintai.sim.body import MujocoBody
 
-SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height
-# chosen: the swing moves horizontally only for s ∈ [0.35, 0.65]; at s = 0.35 (and 0.65) the sole is
-# 0.85 of the way up to (down from) its apex: 25 mm above the V-BOARD deck's 0.12 m with SWING_HEIGHT (tested)
-SWING_DELAY = 0.35
 PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen there), what the boarding steps onto
-# m, chosen: the CoM lowered for the 0.30 m step up (at the stand height the trailing leg is out of
-# reach once the CoM is ≈0.15 m ahead of it, before it lifts: measured, 58 ticks out of reach)
-BOARDING_CROUCH = 0.05
-BOARDING_STEP_X = 0.30  # m, chosen: the landing's sole point; its heel 15 mm past platform_body's near edge
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **DAMPING_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
 
@@ -250,9 +255,6 @@ class Push(Module):
 
     def __call__(self) -> None:
         self.apply(self.body.data.time)
-
-
-SETTLE_S = 0.1  # s, chosen: the keyframe's soles touch the floor at zero penetration (≈15 N a foot)
 
 
 def settle_on_floor(body: MujocoBody, seconds: float = SETTLE_S) -> None:

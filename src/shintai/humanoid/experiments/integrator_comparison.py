@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.learning.prior_value_integrator import R_SAT_V
+from shintai.humanoid.constants import CONTROL_PERIOD, R_SAT_V
 from shintai.humanoid.vboard import plots
 from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
 from shintai.humanoid.vboard.governed_ride import (

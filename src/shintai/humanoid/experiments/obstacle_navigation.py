@@ -24,13 +24,12 @@ from shintai.humanoid.tricycle.ch4_drive import (
     vehicle_geoms,
 )
 from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4, trunk_roll, vehicle_pose2d
+from shintai.humanoid.tricycle.constants import EVERY, NAV_GOAL
 from shintai.humanoid.tricycle.localisation import Localiser, box_map
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 WALL = Obstacle("partition", (0.05, 0.65, 0.6), (4.0, -0.35, 0.6), (0.8, 0.8, 0.75, 1.0))
-NAV_GOAL = (8.0, 0.0)
-EVERY = 25  # control ticks between the recorded samples (0.1 s)
 POSES = ("both", "true", "estimated")
 VARIANTS = {"both": ("run", "estimated"), "true": ("run",), "estimated": ("estimated",)}
 

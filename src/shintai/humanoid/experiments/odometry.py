@@ -13,21 +13,17 @@ from shintai.humanoid.constants import DEG, TRICYCLE
 from shintai.humanoid.tricycle import plots
 from shintai.humanoid.tricycle.ch4_drive import CH4_VIEW, DRIVE_PARAM, LEAD_NOTE, MOTOR_NOTE, drive_modules, overturned
 from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Obstacle, build_ch4
+from shintai.humanoid.tricycle.constants import GREY, ODOMETRY_SETTLE_S, STEER_S
 from shintai.humanoid.tricycle.localisation import LOCALISATION, Localiser, box_map
 from shintai.humanoid.tricycle.navigation import crank_rate
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-# The room (ours; the thesis's lab is not described): walls and two pillars the head's depth rays see
-# while the tricycle turns right, all on the known map of the localisation.
-GREY = (0.75, 0.75, 0.7, 1.0)
 ROOM = (Obstacle("wall_front", (0.05, 2.2, 0.5), (4.5, -0.4, 0.5), GREY),
         Obstacle("wall_right", (2.8, 0.05, 0.5), (1.7, -2.6, 0.5), GREY),
         Obstacle("wall_left", (1.5, 0.05, 0.5), (3.0, 1.8, 0.5), GREY),
         Obstacle("pillar_a", (0.15, 0.15, 0.6), (3.0, 0.3, 0.6)),
         Obstacle("pillar_b", (0.15, 0.15, 0.6), (2.6, -1.7, 0.6)))
-STEER_S = 2.5  # s: the handle is turned to θ_h before the crank moves (STEER_RATE 15°/s → 1.7 s), chosen
-SETTLE_S = 1.5  # s: standing still after the stop before the run ends, chosen
 ESTIMATES = ("wheel", "visual", "localisation")
 
 
@@ -55,7 +51,7 @@ def rig(params, variant, seed):
         loc.update(snap)
 
     def done(snap):
-        return overturned(body) or (state.stopped_at is not None and float(snap["t"]) > state.stopped_at + SETTLE_S)
+        return overturned(body) or (state.stopped_at is not None and float(snap["t"]) > state.stopped_at + ODOMETRY_SETTLE_S)
 
     def signals(snap):
         return {"handle": snap["q:handle"], "crank": snap["q:crank"]}

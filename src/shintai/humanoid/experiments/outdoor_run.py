@@ -13,14 +13,13 @@ from shintai.humanoid.constants import (
     WAIT_FRACTION_IMPROVED,
 )
 from shintai.humanoid.tricycle import plots
+from shintai.humanoid.tricycle.constants import THESIS_SPEED_RATIO
 from shintai.humanoid.tricycle.operation import OperationSchedule
 from shintai.humanoid.tricycle.ride import MODEL_ERROR_PARAMS, Ride, ride_metrics, route_goals
 from shintai.humanoid.tricycle.rig import F_TRG
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-# §3.5.4: E6 12.8 m in 164 s, E7 27.5 m in ≈72 s; the seed states only 7.8×10⁻² m/s, the rest is derived by us
-THESIS_SPEED_RATIO = (27.5 / 72.0) / (12.8 / 164.0)  # 4.89
 THESIS_S_PER_REV_ORIGINAL = 164.0 / (12.8 / TRICYCLE.travel_per_rev)  # 31.4 s per crank revolution (D_c = 2.45 m)
 PASSIVE_F_TRG = {"original": F_TRG, "improved": F_TRG_PASSIVE_LEG_IMPROVED}
 TITLES = {"original": "E6 original: sequential, Δt = 0.8 s, passive f^trg_z = 150 N",

@@ -9,13 +9,12 @@ import math
 import numpy as np
 
 from shintai.humanoid.vboard import plots
-from shintai.humanoid.vboard.constants import PLANTS, VIEW
+from shintai.humanoid.vboard.constants import PLANTS, TAIL_S, VIEW
 from shintai.humanoid.vboard.governed_ride import governor_series, plant_values
 from shintai.humanoid.vboard.solc import PHASES, solc_ride, switch_times
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
-TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch), as speed-governing
 AXES = ("v", "omega")
 SEC, ROW = "thesis §7.4.2", "000:fig7.19"
 

@@ -12,13 +12,12 @@ import numpy as np
 
 from shintai.humanoid.constants import CONTROL_PERIOD, DEG
 from shintai.humanoid.vboard import plots
-from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY
+from shintai.humanoid.vboard.constants import D_VBOARD, PLANTS, START_DELAY, TAIL_S
 from shintai.humanoid.vboard.governed_ride import governed_rig, governor_series, ui_jumps, unstable_intervals
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 R, F15, F16 = "reproduction", "000:fig6.15", "000:fig6.16"
-TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch)
 AXES = ("v", "omega")
 
 

@@ -8,17 +8,9 @@ import math
 import numpy as np
 
 from shintai.humanoid.unicycle import plots
-from shintai.humanoid.unicycle.constants import P0_M, PLACEMENTS
+from shintai.humanoid.unicycle.constants import LEARNED_TRAJ, LEARNED_V, P0_M, PLACEMENTS, TAP_AT_S, TAP_N, V_STEP
 from shintai.humanoid.unicycle.rig import P0_PARAM, summary, unicycle_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-
-V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'
-# the gains ``humanoid.unicycle-learning`` learned at its defaults, variant reference (the as-written variant's
-# run away; notes): (K_P, K_I, K_D) of C_traj and of C_v — measured, copied here; re-measure when that scenario changes
-LEARNED_TRAJ = (9.05e-5, 3.93e-4, 2.47e-5)
-LEARNED_V = (2.86e-7, 1.20e-6, 6.63e-8)
-TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body time, ≈1 s after the lift lets go
-# (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
 
 
 def rig(params, variant, seed):

@@ -9,17 +9,18 @@ from types import SimpleNamespace
 import numpy as np
 
 from shintai.core.runtime import FunctionModule
-from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT, FootDamping
+from shintai.humanoid.balance.foot_damping import FootDamping
 from shintai.humanoid.balance.standing import CHANNELS
-from shintai.humanoid.learning.slc import SLC_D0, SLC_ETA, SLC_Q, SLC_R, SLCParams, slc_cost
+from shintai.humanoid.constants import DAMPING_T, DELTA_LIMIT, SLC_D0, SLC_ETA, SLC_Q, SLC_R
+from shintai.humanoid.learning.slc import SLCParams, slc_cost
 from shintai.humanoid.vboard import plots
 from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
+from shintai.humanoid.vboard.constants import AFTER_S
 from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 VARIANTS = ("fixed_d", "slc")
-AFTER_S = 2.0  # s of standing after the plan's end (the robot on the scooter), if it has not fallen
 
 
 def rig(params, variant, seed):

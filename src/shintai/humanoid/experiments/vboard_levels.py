@@ -5,16 +5,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.humanoid.balance.scooter import LIFT_SPEED
-from shintai.humanoid.constants import DEG
+from shintai.humanoid.constants import DEG, LIFT_SPEED
 from shintai.humanoid.vboard import plots
-from shintai.humanoid.vboard.constants import D_VBOARD
+from shintai.humanoid.vboard.constants import D_VBOARD, EARLY_S
 from shintai.humanoid.vboard.ride import VboardRide, theta_o, touchdown
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
-EARLY_S = 0.5  # s after boarding: Fig. 6.3-(b1)'s window '0.0[s]-0.5[s](搭乗直後)'
 
 
 def rig(params, variant, seed):

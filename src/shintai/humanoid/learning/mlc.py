@@ -33,20 +33,23 @@ from dataclasses import dataclass
 import numpy as np
 
 from shintai.core.search_index import MatrixGain, SearchIndex
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import (
+    CONTROL_PERIOD,
+    ETA_OMEGA,
+    EPS_OMEGA,
+    EPS_V,
+    ETA_V,
+    K_OMEGA,
+    K_V,
+    MLC_ETA_MAX,
+    SIGMA_OMEGA,
+    SIGMA_V,
+    TERMINATION_K,
+    T_L,
+    T_OMEGA,
+    T_V,
+)
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.learning.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
-
-# --- constants ----------------------------------------------------------------------------------------
-T_L = 2.0  # s, mini-batch length (§6.3.2: 2/0.004 = 500 samples)
-ETA_V = (1e-7, 1e-7, 1e-7)  # (η_P, η_I, η_D) for v (Table 6.6)
-ETA_OMEGA = (1e-9, 1e-9, 1e-9)  # for ω (Table 6.6)
-TERMINATION_K = 3  # consecutive mini-batches (Eq. 6.32, "k = 3")
-# Chosen (Eq. 6.32 gives no numbers): σ — an RMS error of 1 cm/s for v and 0.01 rad/s for ω over a batch;
-# ε — a gradient whose step η‖∇J‖ moves the gains by less than 1e-6 (the thesis's gains are O(1e-3), Fig. 6.15).
-SIGMA_V, SIGMA_OMEGA = 1e-4, 1e-4
-EPS_V, EPS_OMEGA = 1e-6 / ETA_V[0], 1e-6 / ETA_OMEGA[0]
-ETA_MAX = 1.0  # chosen upper end of the learning-rate range; A must be positive definite (Table 6.4)
 
 
 @dataclass(frozen=True)
@@ -68,7 +71,7 @@ class MLCParams:
         if len(self.eta) != 3:
             raise ValueError(f"eta must be (eta_P, eta_I, eta_D), got {self.eta!r}")
         for name, e in zip(("eta_P", "eta_I", "eta_D"), self.eta, strict=True):
-            check_real(name, e, 0.0, ETA_MAX, low_open=True)
+            check_real(name, e, 0.0, MLC_ETA_MAX, low_open=True)
         check_real("eps", self.eps, 0.0, low_open=True)
         check_real("sigma", self.sigma, 0.0, low_open=True)
         if int(self.k) != self.k or self.k < 1:

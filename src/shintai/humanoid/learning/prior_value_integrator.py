@@ -27,10 +27,10 @@ import math
 
 import numpy as np
 
+from shintai.humanoid.constants import R_SAT_V
 from shintai.humanoid.law_params import check_real
 
 MODES = ("corrected", "plain", "saturated")
-R_SAT_V = 1.5  # r_sat^v of the comparison in §6.4.2 (Fig. 6.17)
 
 
 class PriorValueIntegrator:

@@ -46,20 +46,15 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.core.search_index import MatrixGain, QuadraticCost, SearchIndex
 from shintai.humanoid.constants import (
     F_THRE,  # landing threshold of the start/stop guards (§5.4.1)
+    SLC_AIR_TIME,
+    SLC_D0,
+    SLC_D_MIN,
+    SLC_ETA,
+    SLC_ETA_MAX,
+    SLC_Q,
+    SLC_R,
 )
 from shintai.humanoid.law_params import check_real
-
-# --- constants (Table 5.2 and §5.4.1) ---------------------------------------------------------------
-SLC_Q = 0.1  # weight of e_τ² (Table 5.2)
-SLC_R = 1.0e5  # weight of δ² (Table 5.2)
-SLC_ETA = 0.01  # learning rate η (Table 5.2) → Q′ = 1e-3, R′ = 1e3
-SLC_D0 = 22.0  # D at the start, the flat-floor value (§5.4.1)
-SLC_D_MIN = 1.0  # chosen: floor under D (not in the text; D divides Eqs. 5.1 and 5.17)
-# s, chosen: how long f_z must stay ≤ F_thre for the foot to count as in the air, which arms its landing
-# guard (§5.4.1 guards foot *placements*; the thesis gives no hysteresis). Longer than the lift-off
-# jitter and chatter (one to two 4 ms ticks, measured on the boarding), far shorter than a swing (0.8 s).
-SLC_AIR_TIME = 0.1
-ETA_MAX = 1.0  # chosen: η ∈ (0, 1]; Table 5.1 needs A = η > 0, the thesis runs 0.01
 
 
 def slc_cost(e_tau, delta, Q: float = SLC_Q, R: float = SLC_R):
@@ -80,7 +75,7 @@ def slc_update(D, e_tau, delta, Q_prime: float, R_prime: float):
 @dataclass(frozen=True)
 class SLCParams:
     """Table 5.2 and §5.4.1; every field checked (one ValueError line naming it). Table 5.2's T = 1.5 s belongs
-    to the damping controller (:data:`shintai.humanoid.balance.foot_damping.DAMPING_T`): Eq. 5.17 does not use it."""
+    to the damping controller (:data:`shintai.humanoid.constants.DAMPING_T`): Eq. 5.17 does not use it."""
 
     D0: float = SLC_D0
     Q: float = SLC_Q
@@ -94,7 +89,7 @@ class SLCParams:
         check_real("D0", self.D0, 0.0, low_open=True)
         check_real("Q", self.Q, 0.0, low_open=True)
         check_real("R", self.R, 0.0, low_open=True)
-        check_real("eta", self.eta, 0.0, ETA_MAX, low_open=True)
+        check_real("eta", self.eta, 0.0, SLC_ETA_MAX, low_open=True)
         check_real("F_thre", self.F_thre, 0.0)
         check_real("D_min", self.D_min, 0.0, self.D0, low_open=True)
         check_real("air_time", self.air_time, 0.0)

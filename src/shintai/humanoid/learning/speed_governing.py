@@ -30,15 +30,14 @@ from scipy.signal import lfilter
 from shintai.core.runtime import Body, declare
 from shintai.humanoid.constants import (
     CONTROL_PERIOD,  # Δt ≈ 4 ms of the speed-governing system too (§6.2.2)
+    K_OMEGA,
+    K_V,
+    MIX,
+    T_F,
+    T_OMEGA,
+    T_V,
 )
 from shintai.humanoid.law_params import check_real
-
-# --- constants --------------------------------------------------------------------------------------
-VO_PERIOD = 0.010  # s, x_VO sampling (Table 6.1)
-T_V, T_OMEGA = 1.1, 0.6  # s, identified lags (Table 6.2)
-K_V, K_OMEGA = 5.88e2, 1.39e4  # identified gains (Table 6.2); units of u as the thesis's (see module doc)
-T_F = 0.5  # s, chosen: Eq. 6.3's T_f is not given; 0.5 s keeps a 0.05 m/s² accelerometer bias to 2.5 cm/s
-MIX = np.array([[1.0, 1.0], [1.0, -1.0]])  # Eq. 6.5
 
 
 class LinearVelocityFilter:

@@ -41,10 +41,12 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.constants import (
-    ARM_JOINTS,
     ARMATURE_BIG,
     ARMATURE_SMALL,
     ARMATURE_SPLIT,
+    ARM_JOINTS,
+    BLUE,
+    GREY,
     HRP2_LINKS,
     HRP2_MASSES,
     LEG_JOINTS,
@@ -56,6 +58,7 @@ from shintai.humanoid.constants import (
     STANDING_POSTURE,
     SUBSTEPS,
     WAIST_JOINTS,
+    WHITE,
     Hrp2Links,
     JointSpec,
     joint_range,
@@ -73,9 +76,6 @@ from shintai.sim.spec import (
 )
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each limb
-WHITE = [0.92, 0.92, 0.94, 1]
-BLUE = [0.22, 0.36, 0.72, 1]
-GREY = [0.35, 0.35, 0.38, 1]
 CAPSULE, BOX, SPHERE = mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_BOX, mujoco.mjtGeom.mjGEOM_SPHERE
 
 ARM = [f"{s}_{j.name}" for s in SIDES for j in ARM_JOINTS]

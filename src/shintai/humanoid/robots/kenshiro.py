@@ -46,6 +46,7 @@ from shintai.humanoid.constants import (
     SCENE,
     SERVO_DAMPRATIO,
     SERVO_SATURATION_ERROR,
+    SKIN,
     SOLE,
     TRICYCLE,
     KenshiroSpec,
@@ -55,7 +56,6 @@ from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_ft_sensor, add_hinge, add_servo, add_visual, fill_keyframe, scene_spec, set_joints
 
 SIDES = {"l": 1.0, "r": -1.0}  # y sign of each leg
-SKIN = [0.85, 0.75, 0.55, 1]
 JOINTS = ("hip_pitch", "knee_pitch", "ankle_pitch")
 PEDAL_HALF_THICKNESS = TRICYCLE.pedal_size[2] / 2
 HIP_HEIGHT = TRICYCLE.crank_height + KENSHIRO.d_cz  # m above the floor; the crank as on the tricycle

@@ -1,5 +1,6 @@
 """HRP2-JSK (and Kenshiro) drive the tricycle (seed 000 chs. 3–4, §7.3–7.4, App. A.1.1):
 
+* :mod:`~shintai.humanoid.tricycle.constants` — the unit's own numbers (colours, collision bits, windows), each with its source.
 * :mod:`~shintai.humanoid.tricycle.vehicle` — the tricycle as MjSpec (App. A.1.1).
 * :mod:`~shintai.humanoid.tricycle.riding` — HRP2 seated on it with both hands on the handle, one ``MujocoBody`` (ch. 3).
 * :mod:`~shintai.humanoid.tricycle.hrp2_limbs` — HRP2's hands and feet as the laws' limbs, on the leg IK.

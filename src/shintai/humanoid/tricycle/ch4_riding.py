@@ -11,7 +11,7 @@ Model (:func:`build_ch4`, on top of :func:`shintai.humanoid.tricycle.riding.ridi
   bone, so the translation shows as a roll (the assumption of §4.3.2's detection).
   ``hip="weld"`` keeps :mod:`~shintai.humanoid.tricycle.riding`'s hip weld switched on (the §3.3.2
   assumption), ``hip="contact"`` switches it off so the robot only sits.
-* **obstacles**: static boxes in geom group :data:`~shintai.humanoid.tricycle.navigation.OBSTACLE_GROUP`,
+* **obstacles**: static boxes in geom group :data:`~shintai.humanoid.tricycle.constants.OBSTACLE_GROUP`,
   touching wheels and soles, seen by the depth sensor.
 * **crank motor** (``drive=motor``): a velocity servo on the crank standing in for the legs — NOT the
   thesis's method; scenarios label it. The feet then ride the pedals (active impedance, 150 N each).
@@ -71,8 +71,8 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
 from shintai.humanoid.tricycle.active import grip_plan
+from shintai.humanoid.tricycle.constants import DARK, OBSTACLE_GROUP, SEAT, SOLE_BIT, WHEEL_BIT
 from shintai.humanoid.tricycle.hrp2_limbs import BAR_IN_HAND, CRANK_AXIS_IN_SOLE, VehicleFrame
-from shintai.humanoid.tricycle.navigation import OBSTACLE_GROUP
 from shintai.humanoid.tricycle.passive import ActiveImpedance
 from shintai.humanoid.tricycle.riding import (
     ANKLE_FT,
@@ -86,13 +86,11 @@ from shintai.humanoid.tricycle.riding import (
     riding_posture,
     riding_spec,
 )
-from shintai.humanoid.tricycle.vehicle import DARK, pedal_position, steer_axis
+from shintai.humanoid.tricycle.vehicle import pedal_position, steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import quat_axis
 
-SEAT = 8  # collision bit: hip pad (contype) – saddle (conaffinity)
-SOLE_BIT, WHEEL_BIT = 2, 4
 REFS = ("ref:theta_h", "ref:crank_rate", "ref:chest_roll", "ref:com_shift", "ref:hip_lift", "ref:foot_fz",
         "ref:foot_fz_l", "ref:foot_fz_r", "ref:crank_target")
 # the loop's reference channels: seen one control period after they are written, 0 until then

@@ -33,13 +33,8 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.robots.hrp2 import SIDES, ft_reaction
+from shintai.humanoid.tricycle.constants import AFTER_S, BEFORE_S, SETTLE_S
 from shintai.humanoid.tricycle.riding import ANKLE_FT, HAND, SOLE, WRIST_FT
-
-# Fig. 7.16 compares the tilted state before the recovery with the state after it; the windows are ours,
-# chosen before the runs: the 2 s before the recovery starts (T1 of Table 7.6), and 2 s from 1 s after it
-# ends (T3, driving again; the first second is RESEAT's transient). The recovery starts at θ_c = kπ and holds
-# the crank, so both windows see the crank near the same phase.
-BEFORE_S, SETTLE_S, AFTER_S = 2.0, 1.0, 2.0
 
 
 class LoadMonitor:

@@ -31,8 +31,7 @@ import numpy as np
 from scipy.ndimage import distance_transform_edt
 
 from shintai.humanoid.constants import NAVIGATION, THETA_H_MAX, TRICYCLE, WHEELBASE, NavigationSpec
-
-OBSTACLE_GROUP = 3  # MuJoCo geom group of environment obstacles (walls, steps, boards)
+from shintai.humanoid.tricycle.constants import OBSTACLE_GROUP
 
 
 # --- the tricycle model, Eqs. 4.15–4.28 ------------------------------------------------------------

@@ -49,12 +49,10 @@ from shintai.humanoid.constants import (
     WHEEL,
     TricycleSpec,
 )
+from shintai.humanoid.tricycle.constants import DARK, FRAME, METAL
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, quat_axis, scene_spec, set_joints
 
-FRAME = [0.75, 0.12, 0.12, 1]
-DARK = [0.12, 0.12, 0.13, 1]
-METAL = [0.6, 0.6, 0.62, 1]
 Y_AXIS_QUAT = [math.cos(math.pi / 4), math.sin(math.pi / 4), 0, 0]  # turns a cylinder's z axis onto y
 CAPSULE, CYLINDER, BOX = mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_CYLINDER, mujoco.mjtGeom.mjGEOM_BOX
 

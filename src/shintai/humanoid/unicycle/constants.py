@@ -21,3 +21,18 @@ VBOARD_V_KP_KD = {"fig6.15": (6.32e-5, 1.08e-4), "fig6.16": (2.93e-4, 2.12e-5)}
 # is placed (chosen: the thesis says the boards-to-wheel relation is unknown to the rider, §7.3.3; with p⁰ exactly
 # under the rider's mass centre the only error left is the stack's own ≈1 mm, see the notes)
 P0_M = 0.01
+
+# --- the numbers of experiments/unicycle_free.py ------------------------------------------------------------------
+V_STEP = 0.3  # m/s, the thesis's step 'v^d = 0.3[m/s]のステップ指令'
+# the gains ``humanoid.unicycle-learning`` learned at its defaults, variant reference (the as-written variant's
+# run away; notes): (K_P, K_I, K_D) of C_traj and of C_v — measured, copied here; re-measure when that scenario changes
+LEARNED_TRAJ = (9.05e-5, 3.93e-4, 2.47e-5)
+LEARNED_V = (2.86e-7, 1.20e-6, 6.63e-8)
+TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body time, ≈1 s after the lift lets go
+# (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
+
+# --- the numbers of unicycle/vehicle.py ---------------------------------------------------------------------------
+SHELL = [0.95, 0.95, 0.97, 1]
+RUBBER = [0.1, 0.1, 0.11, 1]
+TYRE = [0.15, 0.15, 0.16, 1]
+METAL = [0.6, 0.6, 0.62, 1]

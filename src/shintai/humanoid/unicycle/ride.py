@@ -39,9 +39,9 @@ from shintai.humanoid.balance.scooter import CHANNELS as RIDE_CHANNELS
 from shintai.humanoid.balance.scooter import ChestPitchIK, FootPitch, Lift, ScooterSensors, posture_on_pads
 from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Push, Standing
-from shintai.humanoid.constants import CONTROL_PERIOD, SCENE, SUBSTEPS
+from shintai.humanoid.constants import CONTROL_PERIOD, SCENE, SIGMA_V, SUBSTEPS
 from shintai.humanoid.corrections import ChestPostureControl
-from shintai.humanoid.learning.mlc import MLC, MLC_V, SIGMA_V, MLCParams
+from shintai.humanoid.learning.mlc import MLC, MLC_V, MLCParams
 from shintai.humanoid.learning.prior_value_integrator import PID
 from shintai.humanoid.learning.speed_governing import foot_pitch_increments
 from shintai.humanoid.robots.hrp2 import add_hrp2

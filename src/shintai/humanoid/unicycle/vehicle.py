@@ -45,16 +45,13 @@ import numpy as np
 
 from shintai.core.constants import GRAVITY
 from shintai.humanoid.constants import HRP2_MASS, SCENE, SOLE, SUBSTEPS, WHEEL
+from shintai.humanoid.unicycle.constants import METAL, RUBBER, SHELL, TYRE
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, scene_spec
 
 SIDES = {"r": -1.0, "l": 1.0}
 ROOT = ("ninebot_x", "ninebot_y", "ninebot_z", "ninebot_yaw", "ninebot_roll")
 PAD = {s: f"ninebot_board_{s}_top" for s in SIDES}
-SHELL = [0.95, 0.95, 0.97, 1]
-RUBBER = [0.1, 0.1, 0.11, 1]
-TYRE = [0.15, 0.15, 0.16, 1]
-METAL = [0.6, 0.6, 0.62, 1]
 BOX = mujoco.mjtGeom.mjGEOM_BOX
 
 

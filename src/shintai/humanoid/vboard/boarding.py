@@ -17,7 +17,7 @@ centre, as :func:`~shintai.humanoid.vboard.stand.build_vboard_stand` stands the 
 overhangs 25 mm behind the pad and 55 mm ahead of it (the sole's centre is 15 mm ahead of the ankle), and
 the ankle is over the axle, so the foot's pitch torque is what tilts the board.
 
-Scene (chosen): the scooter's axle at ``BOARD_X`` = :data:`~shintai.humanoid.balance.standing.BOARDING_STEP_X`
+Scene (chosen): the scooter's axle at ``BOARD_X`` = :data:`~shintai.humanoid.constants.BOARDING_STEP_X`
 ahead of the standing soles, so the boarding is the box's step plan (0.30 m forward, 0.12 m up,
 onto y = ±0.1175 m) — its housing's near edge 75 mm ahead of the toes. The unloaded halves rest level (no
 drive: the contact switches are off); the left board's drive switches on when the left sole loads it.
@@ -30,17 +30,19 @@ import math
 import numpy as np
 from scipy.signal import find_peaks
 
-from shintai.humanoid.balance.foot_damping import DAMPING_T, DELTA_LIMIT
-from shintai.humanoid.balance.standing import (
+from shintai.humanoid.balance.standing import SoleStep, Standing, platform_steps, settle_on_floor, stand_geometry
+from shintai.humanoid.constants import (
     BOARDING_CROUCH,
     BOARDING_STEP_X,
-    SoleStep,
-    Standing,
-    platform_steps,
-    settle_on_floor,
-    stand_geometry,
+    DAMPING_T,
+    DELTA_LIMIT,
+    HRP2_LINKS,
+    SCENE,
+    STANDING_POSTURE,
+    SUBSTEPS,
+    VBOARD,
+    VboardSpec,
 )
-from shintai.humanoid.constants import HRP2_LINKS, SCENE, STANDING_POSTURE, SUBSTEPS, VBOARD, VboardSpec
 from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
 from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
 from shintai.humanoid.vboard.constants import PEAK_GAP_S, PEAK_SMOOTH_S
@@ -85,7 +87,7 @@ def boarding_stack(p: SLCParams, T: float = DAMPING_T, learn: bool = True, v: Vb
                    window: str | None = None) -> tuple[Standing, SLCSchedule]:
     """The boarding of §5.4.1 ready to run: :func:`boarding_body` settled on the floor, the
     :class:`~shintai.humanoid.balance.standing.Standing` stack on :func:`boarding_steps` (crouched by
-    :data:`~shintai.humanoid.balance.standing.BOARDING_CROUCH`), D₀ = ``p.D0`` and T on every axis of both feet (Table
+    :data:`~shintai.humanoid.constants.BOARDING_CROUCH`), D₀ = ``p.D0`` and T on every axis of both feet (Table
     5.2; §5.4.1: the roll stays at D₀), and SLC in its slot after the foot damping — learning (``learn``) or only
     marking the same window (D = D₀ throughout: Fig. 5.6's run). ``humanoid.vboard-boarding`` runs it, and
     ``humanoid.speed-governing`` rides on after it (Fig. 6.16). ``window``: the channel whose state opens and

@@ -16,3 +16,23 @@ THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression inter
 START_S = 2.0  # s, chosen: the excitation starts after the lift has let go (≈1.0 s) and the stack has settled
 PEAK_SMOOTH_S = 0.04  # s, chosen: J_τ smoothed over 10 ticks before its peaks are sought (it is a 4 ms signal)
 PEAK_GAP_S = 0.2  # s, chosen: two J_τ peaks are ≥ this apart (the thesis's are 0.4 s apart, §5.4.2)
+
+# --- the numbers of experiments/solc.py ---------------------------------------------------------------------------
+TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch), as speed-governing
+
+# --- the numbers of experiments/speed_governing.py ----------------------------------------------------------------
+
+
+# --- the numbers of experiments/vboard_boarding.py ----------------------------------------------------------------
+AFTER_S = 2.0  # s of standing after the plan's end (the robot on the scooter), if it has not fallen
+
+# --- the numbers of experiments/vboard_levels.py ------------------------------------------------------------------
+EARLY_S = 0.5  # s after boarding: Fig. 6.3-(b1)'s window '0.0[s]-0.5[s](搭乗直後)'
+
+# --- the numbers of vboard/vehicle.py -----------------------------------------------------------------------------
+HOUSING = [0.85, 0.86, 0.88, 1]
+RUBBER = [0.1, 0.1, 0.11, 1]
+TYRE = [0.15, 0.15, 0.16, 1]
+METAL = [0.6, 0.6, 0.62, 1]
+
+SWITCH_MARGIN = 0.02  # m, the contact switch's sensing region reaches this far beyond the pad

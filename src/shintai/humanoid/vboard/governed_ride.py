@@ -31,11 +31,10 @@ from dataclasses import replace
 import numpy as np
 
 from shintai.core.recorder import Recorder
-from shintai.humanoid.constants import CONTROL_PERIOD
+from shintai.humanoid.constants import CONTROL_PERIOD, K_OMEGA, K_V, R_SAT_V, T_OMEGA, T_V
 from shintai.humanoid.learning.mlc import MLC_OMEGA, MLC_V, MLCParams
-from shintai.humanoid.learning.prior_value_integrator import R_SAT_V, PriorValueIntegrator
+from shintai.humanoid.learning.prior_value_integrator import PriorValueIntegrator
 from shintai.humanoid.learning.slc import SLCParams
-from shintai.humanoid.learning.speed_governing import K_OMEGA, K_V, T_OMEGA, T_V
 from shintai.humanoid.vboard.boarding import boarding_stack
 from shintai.humanoid.vboard.constants import MODES, PLANTS, START_DELAY, VIEW
 from shintai.humanoid.vboard.governor import GatedGovernor

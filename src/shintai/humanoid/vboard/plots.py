@@ -8,9 +8,7 @@ import math
 
 import numpy as np
 
-from shintai.humanoid.balance.foot_damping import DELTA_LIMIT
-from shintai.humanoid.constants import CONTROL_PERIOD, DEG
-from shintai.humanoid.learning.prior_value_integrator import R_SAT_V
+from shintai.humanoid.constants import CONTROL_PERIOD, DEG, DELTA_LIMIT, R_SAT_V
 from shintai.humanoid.learning.speed_governing import lowpass
 from shintai.humanoid.vboard.governed_ride import governor_series, increase_ticks, replay_integrator, unstable_intervals
 from shintai.humanoid.vboard.governor import AXES

@@ -18,18 +18,9 @@ import numpy as np
 
 from shintai.core.runtime import Module
 from shintai.humanoid.balance.foot_attitude import measured_zmp
-from shintai.humanoid.balance.scooter import (
-    CHANNELS,
-    LIFT_GAP,
-    LIFT_SPEED,
-    ChestPitchControl,
-    ChestPitchIK,
-    FootPitch,
-    Lift,
-    ScooterSensors,
-)
+from shintai.humanoid.balance.scooter import CHANNELS, ChestPitchControl, ChestPitchIK, FootPitch, Lift, ScooterSensors
 from shintai.humanoid.balance.standing import Standing
-from shintai.humanoid.constants import VBOARD
+from shintai.humanoid.constants import LIFT_GAP, LIFT_SPEED, VBOARD
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS
 from shintai.humanoid.vboard.governor import SpeedGovernor

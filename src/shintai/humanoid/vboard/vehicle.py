@@ -69,6 +69,7 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.constants import SCENE, SOLE, SUBSTEPS, VBOARD, VBOARD_HOLD_SERVO, WHEEL, VboardSpec
+from shintai.humanoid.vboard.constants import HOUSING, METAL, RUBBER, SWITCH_MARGIN, TYRE
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, scene_spec, set_joints
 
@@ -78,12 +79,7 @@ BOARD = {s: f"board_{s}" for s in SIDES}  # joints θ_s
 WHEEL_JOINT = {s: f"wheel_{s}" for s in SIDES}
 PAD = {s: f"board_{s}_top" for s in SIDES}  # pad-top sites
 TOUCH = {s: f"board_{s}_touch" for s in SIDES}
-HOUSING = [0.85, 0.86, 0.88, 1]
-RUBBER = [0.1, 0.1, 0.11, 1]
-TYRE = [0.15, 0.15, 0.16, 1]
-METAL = [0.6, 0.6, 0.62, 1]
 CAPSULE, BOX = mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_BOX
-SWITCH_MARGIN = 0.02  # m, the contact switch's sensing region reaches this far beyond the pad
 
 
 # --- Eqs. A.1–A.4 ------------------------------------------------------------------------------

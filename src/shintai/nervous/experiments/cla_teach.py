@@ -10,6 +10,7 @@ import numpy as np
 from shintai.nervous import teaching
 from shintai.nervous.client import NerveClient
 from shintai.nervous.nerve import Nerve
+from shintai.nervous.plots import plot_cla_teach
 from shintai.nervous.server import ServerThread
 from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
@@ -107,26 +108,5 @@ def cla_teach(ctx):
         t, roll, whole = run["trace"]
         for ti, ri, wi in zip(t, roll, whole):
             ctx.recorder.record(float(ti), **{f"{variant}.roll_deg": ri, f"{variant}.whole_spine_deg": wi})
-    plot(ctx, runs)
+    plot_cla_teach(ctx, runs)
     return m
-
-
-def plot(ctx, runs) -> None:
-    with ctx.figure("cla_teach", 2, 1, figsize=(8, 6.5), sharex=True) as (fig, ax):
-        for i, (variant, run) in enumerate(runs.items()):
-            t, roll, whole = run["trace"]
-            ax[0].plot(t, roll, color=f"C{i}", lw=0.6, alpha=0.6)
-            ax[0].plot([r[2] for r in run["rows"]], [r[3] for r in run["rows"]], "o", color=f"C{i}",
-                       label=f"{variant} rotadjust (end of each hold)")
-            for j, axis in enumerate(("roll", "pitch", "yaw")):
-                ax[1].plot(t, whole[:, j], color=f"C{j + 2}", ls="-" if variant == "without" else ":", lw=1,
-                           label=f"{axis}, {variant} rotadjust")
-        for k, truth in enumerate(runs["without"]["truth"]):
-            ax[1].plot([runs["without"]["rows"][0][2]] * 3, truth, "k_", ms=12, label="taught" if k == 0 else None)
-        ax[0].axhline(0, color="0.6", lw=0.8)
-        ax[0].set_ylim(-4, 14)
-        ax[0].set_ylabel("shoulder roll [deg]\n(clavicle accelerometer)")
-        ax[1].set_ylabel("whole-spine angle [deg]\n(simulation truth)")
-        ax[1].set_xlabel("body time [s] (teaching by hand until the seat tilts, then playback)")
-        ax[0].legend(fontsize=7)
-        ax[1].legend(fontsize=6, ncol=3)

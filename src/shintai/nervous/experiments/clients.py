@@ -13,6 +13,7 @@ import numpy as np
 from shintai.nervous import crowd
 from shintai.nervous.client import NerveClient
 from shintai.nervous.nerve import Nerve
+from shintai.nervous.plots import plot_clients
 from shintai.nervous.server import ServerThread
 from shintai.scenarios.registry import REPRODUCTION, Check, Param, ThesisValue, scenario
 
@@ -100,7 +101,7 @@ def clients(ctx):
     replies = sum(v["replies"] for v in seen.values() if v["replies"] is not None)
     watchers = [seen[f"watcher{i}"] for i in range(WATCHERS)]
     outcomes = seen["commander"]["outcomes"]
-    plot(ctx, seen)
+    plot_clients(ctx, seen, WATCHERS)
     return {
         "replies_per_line": replies / lines,
         "both_commanders_served": int(seen["overrider"]["outcome"] == "b:done"
@@ -124,15 +125,3 @@ def _watch_outboxes(server, seconds, out) -> None:
     for _ in range(int(seconds / 0.05)):
         out.append(server.call(lambda: max((len(c.outbox) for c in server.server.connections), default=0)))
         end.wait(0.05)
-
-
-def plot(ctx, seen) -> None:
-    with ctx.figure("clients", 1, 2, figsize=(10, 3.8)) as (fig, ax):
-        names = [f"watcher{i}" for i in range(WATCHERS)]
-        ax[0].bar(names, [seen[n]["received"] / max(seen[n]["span"], 1) for n in names])
-        ax[0].set_ylim(0.9, 1.005)
-        ax[0].set_ylabel("state lines received / packets")
-        rt = seen["commander"]["round_trip_ms"]
-        ax[1].plot(rt, "o-")
-        ax[1].set_xlabel("commander's propocmd #")
-        ax[1].set_ylabel("reply time [ms]")

@@ -9,6 +9,7 @@ import numpy as np
 from shintai.core.interpolation import SequencePlayer
 from shintai.nervous.client import NerveClient
 from shintai.nervous.nerve import Nerve
+from shintai.nervous.plots import plot_fig_c1
 from shintai.nervous.plugins.sequence import VIA_RULES
 from shintai.nervous.server import ServerThread
 from shintai.scenarios.registry import REPRODUCTION, Check, Param, ThesisValue, scenario
@@ -119,25 +120,5 @@ def fig_c1(ctx):
     for label, (t, x, v, measured) in curves.items():
         for ti, xi, vi, mi in zip(t, x, v, measured):
             ctx.recorder.record(float(ti), **{f"{label}.x": xi, f"{label}.v": vi, f"{label}.measured": mi})
-    plot(ctx, curves)
+    plot_fig_c1(ctx, curves, FIG_C1)
     return metrics
-
-
-def plot(ctx, curves) -> None:
-    with ctx.figure("fig_c1", 2, 1, figsize=(8, 6.5), sharex=True) as (fig, ax):
-        styles = {"minjerksequence": ("C0", "-"), "minjerk": ("C1", "--"), "turning": ("C2", ":")}
-        for label, (t, x, v, measured) in curves.items():
-            color, ls = styles[label]
-            ax[0].plot(1e3 * t, x, ls, color=color, label=f"{label} target")
-            ax[1].plot(1e3 * t, v, ls, color=color, label=label)
-        t, x, v, measured = curves["minjerksequence"]
-        ax[0].plot(1e3 * t, measured, color="0.4", lw=0.8, label="minjerksequence, arm joint (servo)")
-        for tk, xk in FIG_C1:
-            ax[0].plot(tk, xk, "ko", ms=4)
-            ax[1].axvline(tk, color="0.85", lw=0.8)
-        ax[0].plot(0, 0, "ko", ms=4, label="App. C.2.2 targets")
-        ax[0].set_ylabel("position [deg]")
-        ax[1].set_ylabel("velocity [deg/s]")
-        ax[1].set_xlabel("time since the targets were sent [ms]")
-        ax[0].legend(fontsize=7)
-        ax[1].legend(fontsize=7)

@@ -8,6 +8,7 @@ import numpy as np
 
 from shintai.core.runtime import is_multiple
 from shintai.core.search_index import StabilityMonitor
+from shintai.sim.plots import plot_wall_force
 from shintai.scenarios.experiment import film
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.sim.corner import AXES, CONTROL_STEP, build_corner, passive_loop, press, probe_sign, shift_wall
@@ -61,7 +62,7 @@ def wall_force_scenario(ctx):
     monitor = StabilityMonitor(tol=1e-3)
     for e in errors[:n]:
         monitor.observe(error=e)
-    _plot_wall(ctx, errors, refs, f_trg, n)
+    plot_wall_force(ctx, errors, refs, f_trg, n)
     return {
         "sign_is_minus_identity": int(np.array_equal(sgn, -np.eye(3))),
         "probed_slope_n_per_m": slope.tolist(),
@@ -83,18 +84,3 @@ def _film(ctx, sgn, slope, f_trg):
         loop.run(2.0)
         shift_wall(body, -p["wall_shift_m"])
         loop.run(2.0)
-
-
-def _plot_wall(ctx, errors, refs, f_trg, n):
-    k = np.arange(len(errors))
-    with ctx.figure("wall_force", 1, 2, figsize=(11, 4)) as (fig, ax):
-        for i, a in enumerate(AXES):
-            ax[0].plot(k, errors[:, i] + f_trg[i], label=f"f_{a} (target {f_trg[i]:g} N)")
-            ax[0].axhline(f_trg[i], color=f"C{i}", ls=":", lw=0.8)
-            ax[1].plot(k, 1000 * (refs[:, i] - refs[0, i]), label=f"ρ_{a}")
-        for axis in ax:
-            axis.axvline(n - 0.5, color="k", lw=0.8, ls="--")
-            axis.set_xlabel("update k (dashed: the x wall moves toward the hand)")
-            axis.legend(fontsize=8)
-        ax[0].set_ylabel("reaction on the hand [N]")
-        ax[1].set_ylabel("reference change [mm]")

@@ -14,6 +14,9 @@ experiment(
     covers=("001:fig4.13",),
     summary="head transition, straddling and connection transitions onto a front plane rolled by −0.107 rad",
     params=PARAMS, checks=checks(), thesis=thesis_values(CONDITION_1, "Fig. 4.13"),
-    rig=condition_rig(CONDITION_1), variants=variants, metrics=condition_metrics, plots=plot_two_plane,
+    rig=lambda params, variant, seed: condition_rig(CONDITION_1, params["duration_s"], variant),
+    variants=lambda params: variants(params["null_space"]),
+    metrics=lambda runs, params: condition_metrics(runs, params["null_space"]),
+    plots=lambda ctx, runs, params: plot_two_plane(ctx, runs, params["null_space"]),
     smoke={"duration_s": 2.0, "null_space": False},
 )
