@@ -54,6 +54,7 @@ from shintai.humanoid.constants import (
     SLC_Q,
     SLC_R,
 )
+from shintai.humanoid.balance.foot_damping import GAIN  # the channel SLC writes: D as [L roll, L pitch, R roll, R pitch]
 from shintai.humanoid.law_params import check_real
 
 
@@ -135,7 +136,6 @@ class SLC:
 
 
 PITCH = 1  # index of pitch in FootDamping's (roll, pitch)
-GAIN = "damping_gain"  # the channel SLC writes: D as [L roll, L pitch, R roll, R pitch]
 WINDOW = ("waiting", "learning", "done")  # the states of the SLC window, coded 0, 1, 2 on a ``window`` channel
 
 

@@ -72,7 +72,8 @@ def metrics_of(run, p) -> dict:
             Param("tension_kgf", 1.0, "teaching tension (§4.2.1: e.g. 1 kgf)", lo=0.1, hi=5.0),
             Param("settle_ms", 1500.0, "the hand holds each taught posture this long [ms]", lo=200.0, hi=1e4),
             Param("move_ms", 1000.0, "playback: time to each posture [ms]", lo=100.0, hi=1e4),
-            Param("hold_ms", 1200.0, "playback: hold at each posture [ms]", lo=0.0, hi=1e4)],
+            Param("hold_ms", 1200.0, "playback: hold at each posture [ms] (a hold is a propocmd, whose time is > 0)",
+                  lo=1.0, hi=1e4)],
     checks=[
         Check("shoulder_roll_last_cycle_with_deg", "<=", 1.0, "consistency: §5.2.2 'shoulders level' (rotadjust's "
               "aim; the thesis shows photographs only): within 1° in the last cycle", kind="consistency"),
@@ -86,7 +87,7 @@ def metrics_of(run, p) -> dict:
             "levelling": ThesisValue("posture sensing → spine correction → motion, repeated; shoulders level "
                                      "(photographs, no number)", "seed 003 §5.2.2")},
     video=False,
-    smoke={"cycles": 1},
+    smoke={"cycles": 1, "settle_ms": 300, "move_ms": 200, "hold_ms": 100},
 )
 def cla_teach(ctx):
     p = ctx.params
