@@ -258,8 +258,10 @@ class GeneticAlgorithm:
     def n_genes(self) -> int:
         return self.lo.size
 
-    def run(self, progress: Progress = None, resume: bool = False) -> GAResult:
-        """Evolve for ``config.generations`` generations; ``progress(done, generations, best)``.
+    def run(self, progress: Progress = None, resume: bool = False,
+            stop: Callable[[History], bool] | None = None) -> GAResult:
+        """Evolve for ``config.generations`` generations, or until ``stop(history)`` holds after a
+        generation (a stopping rule, e.g. convergence); ``progress(done, generations, best)``.
 
         ``done`` counts the generations evaluated so far, the initial population being the first.
         With ``resume=True`` and an existing checkpoint the run continues from it (its config may
@@ -271,7 +273,7 @@ class GeneticAlgorithm:
         else:
             state = self._first_generation()
             self._report(state, progress)
-        while state.generation + 1 < self.config.generations:
+        while state.generation + 1 < self.config.generations and not (stop is not None and stop(state.history)):
             state = self._next_generation(state)
             self._report(state, progress)
         best = state.history.best_genome[-1]

@@ -44,6 +44,7 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
     action = results["action"]
     ep = T.evaluate(action.genome, envs)
     metrics = {"best_fitness": action.best_fitness, "generations": action.generations,
+               "converged": int(T.converged(action.best)),
                **{f"train_{k}": v for k, v in outcome_rates(ep).items()}, "action_wall_s": action.wall_s}
     if "order" in results:
         policy = T.order_policy(results["order"].genome)
@@ -53,6 +54,7 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         free = results["free"]
         free_ep = T.evaluate(free.genome, envs, policy)
         metrics.update(free_best_fitness=free.best_fitness, free_generations=free.generations, free_wall_s=free.wall_s,
+                       free_converged=int(T.converged(free.best)),
                        **{f"free_{k}": v for k, v in outcome_rates(free_ep).items()})
     metrics["reproduces_shipped"] = _shipped_match(settings, results)
     return metrics
@@ -83,6 +85,8 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         Param("executor", "process", "where fitness runs", choices=("serial", "process", "ray")),
         Param("workers", 0, "processes or Ray CPUs (0: all local cores)", lo=0, hi=4096),
         Param("address", "", "Ray cluster address (executor=ray; empty: RAY_ADDRESS or a local Ray)"),
+        Param("converge", True, "stop the action and free stages when the best eq. 9 fitness improved by less "
+              "than 1 % over 200 generations (constants CONVERGENCE_*); the generation counts are then caps"),
         Param("resume", True, "continue from the GA checkpoints in the output folder"),
     ],
     checks=(
@@ -103,7 +107,7 @@ def train_networks(ctx) -> dict:
     p = ctx.params
     settings = T.TrainSettings(p["generations"], p["order_generations"], p["free_generations"], p["mutation_rate"],
                                p["mutation_sigma"], p["population"], p["environments"], ctx.seed, p["init"],
-                               p["order_hidden"])
+                               p["order_hidden"], p["converge"])
     stages = T.STAGES if p["stages"] == "all" else ("action",)
     with make_executor(p["executor"], p["workers"] or None, p["address"] or None) as executor, T.single_threaded_blas():
         results = T.train(ctx.out, settings, executor, p["resume"], stages, _progress(ctx, settings, stages))
