@@ -32,8 +32,9 @@ ROWS = (
         result="§4.2: 'GAの最適化により得られたNNを用いて, 障害物回避のシミュレーションを行った' — no learning curve, "
                "generation count, mutation rate or success rate is printed; the trained networks are shown only by "
                "the walks of §4.2, §5.2 and §6.2",
-        why_not="nothing to compare: the thesis reports no training result (the walks' rows judge the networks); "
-                "mutation, generations, input scaling and the displacement range are ours (constants)",
+        not_comparable="its training's learning curve, generation count, mutation rate or success rate (§4.1.2 "
+                       "prints the population, selection and crossover only); the walks' rows judge the networks, "
+                       "and mutation, generations, input scaling and the displacement range are ours (constants)",
     ),
     Row(
         key="004:fig18",

@@ -219,7 +219,7 @@ def write_html(out: Path, results: list[dict[str, Any]], statuses: list[RowStatu
 <style>body{{font-family:sans-serif;margin:1.5em}}table{{border-collapse:collapse;margin-bottom:1.5em}}
 td,th{{border:1px solid #ccc;padding:6px;vertical-align:top;font-size:13px}}
 tr.pass td:nth-child(5){{color:#080}}tr.fail td:nth-child(5),tr.error td:nth-child(5){{color:#b00;font-weight:bold}}
-tr.reproduced .status{{color:#080}}tr.not-reproduced .status{{color:#b00}}tr.not-yet-built .status{{color:#888}}
+tr.reproduced .status{{color:#080}}tr.not-reproduced .status{{color:#b00}}tr.not-yet-built .status{{color:#888}}tr.not-comparable .status{{color:#a60}}
 img{{margin:2px;border:1px solid #ddd}}pre{{white-space:pre-wrap;max-width:38em;font-size:12px}}
 code{{font-size:11px}}</style></head><body>
 <h1>{e(title)}</h1><div id="selfcheck"></div>
