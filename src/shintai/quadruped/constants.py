@@ -98,6 +98,15 @@ SCENARIO_52 = dict(right=((0.1, 0.85), (0.1, 0.65), (0.5, 0.66), (0.5, 0.86)), z
                    left=((-0.5, 0.75), (-0.5, 0.55), (-0.2, 0.65), (-0.2, 0.85)), z_left=0.30,
                    destination=(-0.15, 2.2))  # seed §5.2 (= §6.2.2)
 
+# Stand-in for the real-robot experiment of seed §4.3 (Figs. 22-27), whose obstacle coordinates are not printed
+# (Fig. 22 is a photograph): the thesis gives a left obstacle the robot cannot climb, a climbable right one
+# and the destination error (-0.0, 1.9) m, and its first cycle is a straight step in y to sense the
+# obstacles ('1回目の歩行は障害物を認識するためにy方向へ直進移動'). Chosen: §5.2's layout (left wall, right
+# 0.12 m: the thesis's simulated layout of that kind) and a first step of ΔYr = 0.15 m (the range's least,
+# COMMAND_RANGE; the length is not printed).
+SCENARIO_43 = dict(SCENARIO_52, destination=(0.0, 1.9))
+FIRST_STEP_STRAIGHT = (0.0, 0.15, 0.0)  # (ΔXr [m], ΔYr [m], Δθr [rad]) of the sensing cycle
+
 # Unseen-environment generator (§6.5 check 8): corner jitter, surmountable heights, destinations.
 JITTER = 0.05  # [m]
 UNSEEN_HEIGHTS = (0.05, 0.13)  # [m]

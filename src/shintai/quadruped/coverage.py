@@ -66,8 +66,13 @@ ROWS = (
         result="§4.3: 9 cycles (the first a straight step to recognise the obstacles), '右方へ移動し、最終的には目的地"
                "である円内にロボットの重心が達している', legs 2 and 4 on the obstacle, final (x_de, y_de) = "
                "(0.137, 0.075) m",
-        not_built="a real-robot experiment whose obstacle coordinates are not printed (Fig. 22 only); "
-                  "quadruped.sensing-ablation runs simulated sensors in the §4.2 environments instead",
+        difference="a stand-in, never the experiment: the real robot's obstacle coordinates are not printed (Fig. 22 "
+                   "is a photograph), so quadruped.real-robot-standin walks §5.2's left-wall layout of ours with the "
+                   "destination (0, 1.9) m, simulated ultrasonic sensors (no downward sensor, no force sensing) and a "
+                   "first straight 150 mm cycle to sense",
+        why_not="in the stand-in our network moves right and reaches the goal without collision (final (−0.043, "
+                "0.090) m against the thesis's (0.137, 0.075) m) but in 11 cycles, not 9, with only leg 2 on the "
+                "obstacle (thesis 2 and 4)",
     ),
     Row(
         key="004:s5.1",
