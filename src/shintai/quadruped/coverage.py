@@ -82,7 +82,12 @@ ROWS = (
         result="§5.1: '胴体の移動量が最小となる遊脚の順番は19通りあった' … 'GAを用いて最適化を行った組み合わせは総計380通り'",
         why_not="only 8 orders are ever optimal in our executor (160 patterns): with the shortest body shift the "
                 "orders often tie exactly (48 % of uniform draws) and a tie rule folds them; Br is not defined in "
-                "the thesis (notes/swing-order.md)",
+                "the thesis (notes/swing-order.md). No body-shift rule tried gives the printed Br of Tables 3–5 (15 "
+                "distinct action/order rows; br_rules.py, RMS error with the best constant factor): shortest shift "
+                "with 10 mm margin (ours) 46 mm, 30/50/80 mm margins 67/112/147 mm, centroids 76 mm, incentres "
+                "79 mm, net displacement 49 mm, the feet's travel 48 mm; a linear fit in (ΔXr, ΔYr, Δθr) on the "
+                "10 rows of 4→2→3→1 leaves 10 mm (22 mm left out one at a time) — so §5.1's optimal orders were "
+                "not recounted",
     ),
     Row(
         key="004:table3",
