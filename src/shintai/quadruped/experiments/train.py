@@ -33,7 +33,8 @@ def _shipped_match(settings: T.TrainSettings, results: dict) -> int | None:
         shipped = {s: T.load_curve(None, s)[2] for s in results}
     except FileNotFoundError:
         return None
-    if any(v != dataclasses.asdict(settings) for v in shipped.values()):
+    # a set made before the stopping rule records no "converge": it ran its budget
+    if any({"converge": False, **v} != dataclasses.asdict(settings) for v in shipped.values()):
         return None
     same = [np.array_equal(np.load(T.TRAINED_DIR / T.FILES[s])["genome"], r.genome) for s, r in results.items()]
     return int(all(same))
@@ -96,6 +97,9 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         Check("order_accuracy", ">=", 0.9, "consistency: accuracy on our own teacher patterns (spec §6.5 check 7: "
               "target assumed; the paper gives none)", kind="consistency"),
         Check("free_success_rate", ">=", 0.9, "consistency: as train_success_rate, for the re-trained network",
+              kind="consistency"),
+        Check("converged", "==", 1, "consistency: the fixed-order stage stopped at its declared rule (best eq. 9 "
+              "improved by < 1 % over 200 generations, constants CONVERGENCE_*), not at the generation cap",
               kind="consistency"),
     ),
     covers=("004:training",),
