@@ -61,7 +61,7 @@ the rule; it is replaced only by a run that does (notes/train.md).
 Trained weights are ``.npz`` files: ``genome`` (and for the swing-order network its ``centres``,
 ``sigmas`` and fitted ``weights``), the learning curve (``best``, ``mean`` per generation) and the
 settings that made them. A trained set ships in ``trained/``; ``shintai run quadruped.train`` with its
-recorded settings (``--set generations=400 free_generations=300 converge=false``) reproduces it.
+recorded settings (``--set generations=400 --set free_generations=300 --set converge=false``) reproduces it.
 """
 
 from __future__ import annotations
