@@ -1,30 +1,87 @@
 #!/usr/bin/env python3
 """Write the README's reproduction table from a ``shintai reproduce`` folder (the same statuses as its REPORT.md).
 
-    python scripts/readme_table.py out/reproduce [README.md]
+    python scripts/readme_table.py out/reproduce [README.md] [--seed 004]
 
 Replaces the block between ``<!-- reproduction:begin ... -->`` and ``<!-- reproduction:end -->``. Rows whose
 scenarios are not in the folder keep the status "not run here": reproduce everything before writing it.
+With ``--seed S`` only thesis S's rows and summary line are rewritten from the folder (a body re-run on its
+own); the other rows are kept as they are, and the commits of both runs are listed.
 """
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
+from shintai.scenarios.coverage import NOT_COMPARABLE, STATUSES, all_rows
 from shintai.scenarios.registry import SCENARIOS, load_all
 from shintai.scenarios.report import README_BEGIN, README_END, coverage, load_results, readme_section
 
+COMMITS = re.compile(r"`shintai reproduce` at (.*)\) -->")
 
-def main(folder: str, readme: str = "README.md") -> int:
+
+def _row_seed(line: str) -> str | None:
+    m = re.match(r"\| (\d{3}):\S+ \|", line)
+    return m.group(1) if m else None
+
+
+def _summary_seed(line: str) -> str | None:
+    m = re.match(r"\| (\d{3}) [^|]* \|( \d+ \|)+$", line)
+    return m.group(1) if m else None
+
+
+def merge_seed(old: str, new: str, seed: str) -> str:
+    """``old``'s block with thesis ``seed``'s rows and summary line taken from ``new``'s (module docstring)."""
+    old_lines, new_lines = old.splitlines(), new.splitlines()
+    header = next(line for line in old_lines if line.startswith("| thesis |"))
+    old_statuses = [c.strip() for c in header.strip("|").split("|")[1:]]
+    rows = all_rows()
+    commits = sorted(set(COMMITS.search(old_lines[0]).group(1).split(", ")) |
+                     set(COMMITS.search(new_lines[0]).group(1).split(", ")))
+    out = [COMMITS.sub(f"`shintai reproduce` at {', '.join(commits)}) -->", new_lines[0])]
+    for line in old_lines[1:]:
+        if line.startswith("| thesis |"):
+            out.append(next(li for li in new_lines if li.startswith("| thesis |")))
+        elif line.startswith("|---|") and len(line) < 40 and out[-1].startswith("| thesis |"):
+            out.append("|---|" + "---|" * len(STATUSES))
+        elif _summary_seed(line) == seed:
+            out.append(next(li for li in new_lines if _summary_seed(li) == seed))
+        elif _summary_seed(line):  # another thesis: its counts under the new columns
+            name, *counts = [c.strip() for c in line.strip("|").split("|")]
+            by_status = dict(zip(old_statuses, counts))
+            for status in STATUSES:
+                if status not in by_status:
+                    if status != NOT_COMPARABLE:
+                        raise ValueError(f"cannot add the column {status!r} to thesis {name!r} without its results")
+                    by_status[status] = str(sum(1 for r in rows.values() if r.seed == line[2:5] and r.not_comparable))
+            out.append(f"| {name} | " + " | ".join(by_status[s] for s in STATUSES) + " |")
+        elif _row_seed(line) == seed:
+            continue
+        else:
+            out.append(line)
+    # thesis seed's rows, in registry order, where its first row stood (every old line before it was kept)
+    first = next(i for i, li in enumerate(old_lines) if _row_seed(li) == seed)
+    return "\n".join(out[:first] + [li for li in new_lines if _row_seed(li) == seed] + out[first:])
+
+
+def main(folder: str, readme: str = "README.md", *options: str) -> int:
+    seed = options[1] if len(options) == 2 and options[0] == "--seed" else None
+    if options and seed is None:
+        print("usage: readme_table.py FOLDER [README.md] [--seed S]", file=sys.stderr)
+        return 2
     load_all()
     out = Path(folder)
     ids = sorted(sid for sid in SCENARIOS if (out / sid / "metrics.json").exists())
     results = load_results(out, ids)
     text = Path(readme).read_text()
     begin, end = text.index(README_BEGIN), text.index(README_END) + len(README_END)
-    Path(readme).write_text(text[:begin] + readme_section(results, coverage(results)) + text[end:])
-    print(f"{readme}: reproduction table from {len(ids)} scenarios in {out}")
+    section = readme_section(results, coverage(results))
+    if seed is not None:
+        section = merge_seed(text[begin:end], section, seed)
+    Path(readme).write_text(text[:begin] + section + text[end:])
+    print(f"{readme}: reproduction table from {len(ids)} scenarios in {out}" + (f" (thesis {seed} only)" if seed else ""))
     return 0
 
 

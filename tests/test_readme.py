@@ -72,3 +72,43 @@ def test_readme_section_is_one_line_per_row():
     assert text.startswith(README_BEGIN) and text.endswith(README_END) and "abc1234" in text
     line = next(li for li in text.splitlines() if li.startswith("| 001:x"))
     assert "§1 \\| Fig. 2" in line and "✓ err_m 0.001 <= 0.005" in line and REPRODUCED in line
+
+
+def test_readme_table_for_one_thesis_keeps_the_other_rows():
+    """``scripts/readme_table.py FOLDER README --seed S`` rewrites thesis S's rows and summary line only; the
+    other theses keep theirs, counted under the current status columns."""
+    import importlib.util
+
+    from shintai.scenarios.coverage import STATUSES
+
+    spec = importlib.util.spec_from_file_location("readme_table", README.parents[0] / "scripts" / "readme_table.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    old = "\n".join([
+        "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at aaa) -->", "",
+        "| thesis | reproduced | reproduced with a stated difference | not reproduced | not yet built |",
+        "|---|---|---|---|---|",
+        "| 001 Nakajima 2020 — wheeled snake | 3 | 1 | 0 | 0 |",
+        "| 004 Yamaguchi — learning quadruped | 0 | 1 | 9 | 2 |", "",
+        "| row | where | scenarios | status | why | our reproduction checks |", "|---|---|---|---|---|---|",
+        "| 001:a | §1 | `snake.a` | reproduced | ok | — |", "| 004:a | §2 | `q.a` | not reproduced | old | — |",
+        "| 004:b | §3 | — | not yet built | old | — |", "| 005:c | §4 | `x.c` | reproduced | kept | — |", "",
+        "<!-- reproduction:end -->"])
+    counts = " | ".join(["1", "1", "8", "1", "1"])
+    new = "\n".join([
+        "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at bbb) -->", "",
+        "| thesis | " + " | ".join(STATUSES) + " |", "|---|" + "---|" * len(STATUSES),
+        "| 001 Nakajima 2020 — wheeled snake | 0 | 0 | 0 | 0 | 4 |",
+        f"| 004 Yamaguchi — learning quadruped | {counts} |", "",
+        "| row | where | scenarios | status | why | our reproduction checks |", "|---|---|---|---|---|---|",
+        "| 001:a | §1 | `snake.a` | not run here | gone | — |", "| 004:a | §2 | `q.a` | reproduced | new | — |",
+        "| 004:b | §3 | `q.b` | not comparable | new | — |", "", "<!-- reproduction:end -->"])
+    merged = script.merge_seed(old, new, "004").splitlines()
+    assert "aaa, bbb" in merged[0]
+    assert merged[2] == new.splitlines()[2] and merged[3] == new.splitlines()[3]
+    assert merged[4] == "| 001 Nakajima 2020 — wheeled snake | 3 | 1 | 0 | 0 | 0 |"
+    assert merged[5] == f"| 004 Yamaguchi — learning quadruped | {counts} |"
+    assert merged[9:13] == ["| 001:a | §1 | `snake.a` | reproduced | ok | — |",
+                            "| 004:a | §2 | `q.a` | reproduced | new | — |",
+                            "| 004:b | §3 | `q.b` | not comparable | new | — |",
+                            "| 005:c | §4 | `x.c` | reproduced | kept | — |"]

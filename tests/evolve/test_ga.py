@@ -267,3 +267,29 @@ def test_serial_process_and_ray_give_identical_results(ray_executor):
     assert_same_result(serial, evolve(rastrigin, config, seed=8, executor=ray_executor))
     with pytest.raises(ItemError, match=r"item 2 failed: ZeroDivisionError"):
         ray_executor.map(partial(operator.truediv, 1.0), [1, 2, 0, 4])
+
+
+def test_a_checkpoint_stores_each_best_genome_once_and_reads_the_first_version(tmp_path):
+    """Version 2 keeps the best genome per generation as its distinct rows and an index (a long run's checkpoint
+    does not grow by a genome a generation); a version-1 checkpoint still resumes."""
+    import json
+
+    import shintai.evolve.ga as G
+
+    config = GAConfig(population=8, generations=12)
+    path = tmp_path / "ck.npz"
+    full = GeneticAlgorithm(sphere, LO, HI, config, seed=3, checkpoint=path).run()
+    state = load_checkpoint(path)
+    assert np.array_equal(state.history.best_genome, full.history.best_genome)
+    with np.load(path) as data:
+        assert len(data["history_best_genome_rows"]) == len(np.unique(full.history.best_genome, axis=0)) < 12
+    short = dataclasses.replace(config, generations=6)
+    GeneticAlgorithm(sphere, LO, HI, short, seed=3, checkpoint=path).run()  # the state after 6 generations
+    with np.load(path) as data:
+        arrays = {k: data[k] for k in data.files}
+    meta = json.loads(str(arrays.pop("meta")))
+    arrays["history_best_genome"] = arrays.pop("history_best_genome_rows")[arrays.pop("history_best_genome_index")]
+    np.savez(path, meta=np.array(json.dumps({**meta, "version": 1})), **arrays)  # as version 1 wrote it
+    resumed = GeneticAlgorithm(sphere, LO, HI, config, seed=3, checkpoint=path).run(resume=True)
+    assert np.array_equal(resumed.history.best, full.history.best) and G.CHECKPOINT_VERSION == 2
+    assert np.array_equal(resumed.best_genome, full.best_genome)

@@ -119,3 +119,21 @@ def test_path_inputs_are_the_inputs_along_straight_lines_to_the_destinations():
     start = E.action_inputs(R.CrawlState.initial(2), np.full(2, C.ZR_NOMINAL), envs)
     assert np.allclose(x[:2], start)  # t = 0: the start of each environment
     assert np.allclose(x[4:, 21:23], 0.0)  # t = 1: at the destination
+
+
+def test_the_network_on_the_active_rows_gives_the_dense_pass_bit_for_bit():
+    """episode.GenomePolicy evaluates the network only on the walks still active (issue 27's speed-up); the
+    benchmark's dense form evaluates every row: the episodes and eq. 9 must not change by one bit."""
+    from shintai.quadruped import benchmarks as B
+
+    population = B.late_population(size=6, seed=3)
+    envs = F.training_batch().take([0, 17, 50, 95])
+    fast = rollout(envs.tile(6), GenomePolicy(F.ACTION_NET, population, 4))
+    dense = rollout(envs.tile(6), B.DenseGenomePolicy(F.ACTION_NET, population, 4))
+    assert len(set(fast.cycles.tolist())) > 1  # walks stop at different cycles, so rows go inactive
+    assert np.array_equal(fast.commands, dense.commands, equal_nan=True)
+    assert np.array_equal(F.episode_costs(fast), F.episode_costs(dense))
+    policy = GenomePolicy(F.ACTION_NET, population, 4)
+    x = np.random.default_rng(0).normal(size=(5, 24))
+    rows = np.array([22, 3, 9, 4, 21])  # any order, genomes 5, 0, 2, 1, 5
+    assert np.array_equal(policy(x, rows), B.DenseGenomePolicy(F.ACTION_NET, population, 4)(x, rows))

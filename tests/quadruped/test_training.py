@@ -131,12 +131,17 @@ def test_shipped_networks_load_and_walk_scenario_4_2_1_to_the_goal():
     assert T.order_accuracy(order) >= 0.9
 
 
-def test_shipped_set_records_the_default_settings():
+def test_shipped_set_records_its_settings():
+    """The shipped set is the 400/100/300-generation budget run made before the stopping rule (issue 27): the
+    defaults but for the generation counts and the rule, and its fixed-order curve does not meet the rule."""
+    budget = dataclasses.asdict(dataclasses.replace(T.TrainSettings(), generations=400, free_generations=300))
+    budget.pop("converge")
     for stage in T.STAGES:
         best, mean, settings = T.load_curve(None, stage)
-        assert settings == T.TrainSettings().__dict__
-        assert len(best) == T.TrainSettings().generations_of(stage) and np.all(np.diff(best) <= 0)
+        assert settings == budget
+        assert len(best) == {"action": 400, "order": 100, "free": 300}[stage] and np.all(np.diff(best) <= 0)
         assert np.all(mean >= best)
+    assert not T.converged(T.load_curve(None, "action")[0])
 
 
 def test_the_first_population_has_its_centres_on_data_and_depends_on_the_seed_only():
@@ -156,3 +161,36 @@ def test_the_default_training_starts_where_the_shipped_networks_started():
     first = T.run_stage("action", dataclasses.replace(T.TrainSettings(), generations=1), SerialExecutor(), None,
                         resume=False)
     assert first.best[0] == best[0]
+
+
+def test_the_stopping_rule_is_less_than_one_percent_over_two_hundred_generations():
+    """constants CONVERGENCE_*: a stage stops once its best eq. 9 fitness improved by < 1 % over 200 generations."""
+    assert (C.CONVERGENCE_WINDOW, C.CONVERGENCE_TOLERANCE) == (200, 0.01)
+    flat = np.full(201, 0.5)
+    assert T.converged(flat) and not T.converged(flat[:200])  # needs a whole window
+    falling = np.linspace(1.0, 0.5, 301)  # 0.5 against 0.8325 two hundred generations before
+    assert not T.converged(falling)
+    step = np.concatenate([np.full(101, 0.40), np.full(200, 0.397)])  # 0.75 % below the value 200 before
+    assert T.converged(step) and not T.converged(np.concatenate([np.full(101, 0.40), np.full(200, 0.39)]))
+    shipped = T.load_curve(None, "action")[0][:400]  # the 400 generations that issue 27 found still falling
+    assert not T.converged(shipped) and not any(T.converged(shipped[:g]) for g in range(201, 401))
+
+
+def test_a_ga_stage_stops_at_the_rule_and_resumes_past_it(tmp_path):
+    """The GA stops after the generation at which ``stop`` first holds; a run with the rule off goes on to the cap."""
+    calls = []
+
+    def stop(history):
+        calls.append(len(history))
+        return len(history) >= 3
+
+    from shintai.evolve import GAConfig, GeneticAlgorithm
+    ga = GeneticAlgorithm(lambda g: float(np.sum(g**2)), [-1, -1], [1, 1], GAConfig(population=6, generations=10),
+                          seed=1, checkpoint=tmp_path / "ga.npz")
+    result = ga.run(stop=stop)
+    assert result.generations_run == 3 and calls == [1, 2, 3]
+    again = GeneticAlgorithm(lambda g: float(np.sum(g**2)), [-1, -1], [1, 1], GAConfig(population=6, generations=10),
+                             seed=1, checkpoint=tmp_path / "ga.npz").run(resume=True)
+    full = GeneticAlgorithm(lambda g: float(np.sum(g**2)), [-1, -1], [1, 1], GAConfig(population=6, generations=10),
+                            seed=1).run()
+    assert again.generations_run == 10 and np.array_equal(again.history.best, full.history.best)

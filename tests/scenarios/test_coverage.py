@@ -109,3 +109,27 @@ def test_every_scenario_classes_its_checks_and_covers_known_rows():
         for c in sc.checks:
             assert c.kind in ("reproduction", "consistency"), f"{sid}: check {c.name or c.metric} has no kind"
             assert c.row is None or c.row in sc.covers, f"{sid}: check {c.name or c.metric} names a row it does not cover"
+
+
+def test_a_not_comparable_row_names_the_missing_data_and_no_reproduction_check_is_about_it():
+    """A row whose thesis result rests on data the thesis does not print is 'not comparable' and names that
+    data; its scenarios declare no reproduction check about it; every other row stays decided by its checks."""
+    from shintai.scenarios.coverage import NOT_COMPARABLE, all_rows
+    from shintai.scenarios.registry import SCENARIOS, load_all
+
+    covers = {"s": ("000:fig9.9",)}
+    unprinted = Row(**{**ROW.__dict__, "not_comparable": "the learning curve"})
+    ran = status_of(unprinted, {"s": result(check("b", True, "consistency"))}, covers)
+    assert ran.status == NOT_COMPARABLE and "does not print the learning curve" in ran.reason
+    assert status_of(unprinted, {"s": result(check("a", True))}, covers).status == NOT_REPRODUCED  # contradiction
+    assert status_of(unprinted, {"s": result(error="boom")}, covers).status == NOT_REPRODUCED
+    assert status_of(ROW, {"s": result(check("b", True, "consistency"))}, covers).status != NOT_COMPARABLE
+    load_all()
+    marked = [row for row in all_rows().values() if row.not_comparable]
+    assert any(row.key == "004:training" for row in marked)
+    for row in marked:
+        assert len(row.not_comparable.split()) >= 3, (row.key, row.not_comparable)  # names the data, not "n/a"
+        for sc in SCENARIOS.values():
+            about = [c.name or c.metric for c in sc.checks if c.kind == "reproduction"
+                     and (c.row == row.key or (c.row is None and row.key in sc.covers))]
+            assert not about, (row.key, sc.id, about)

@@ -41,7 +41,7 @@ from shintai.evolve.executors import Executor, SerialExecutor
 BLEND_ALPHA = 0.5  # BLX-α: a blended gene is drawn from the parents' interval widened by α each side
 SELECTIONS = ("tournament", "truncation")
 CROSSOVERS = ("uniform", "one_point", "blend")
-CHECKPOINT_VERSION = 1
+CHECKPOINT_VERSION = 2  # 2: the best genome per generation stored once per change (1 is still read)
 
 Progress = Callable[[int, int, float], None] | None
 
@@ -204,10 +204,16 @@ def save_checkpoint(path: str | os.PathLike, ck: Checkpoint) -> None:
     path = Path(path)
     meta = {"version": CHECKPOINT_VERSION, "generation": ck.generation, "rng_state": ck.rng_state,
             "config": dataclasses.asdict(ck.config), "seed": ck.seed}
+    arrays = {f"history_{k}": v for k, v in ck.history.arrays().items() if k != "best_genome"}
+    # the best genome so far changes in few generations: its distinct rows and, per generation, which one
+    genomes = ck.history.best_genome
+    changed = np.ones(len(genomes), dtype=bool)
+    changed[1:] = np.any(genomes[1:] != genomes[:-1], axis=1)
     tmp = path.with_name(path.name + ".tmp")
     with open(tmp, "wb") as f:
         np.savez(f, meta=np.array(json.dumps(meta)), population=ck.population, fitness=ck.fitness,
-                 lo=ck.lo, hi=ck.hi, **{f"history_{k}": v for k, v in ck.history.arrays().items()})
+                 lo=ck.lo, hi=ck.hi, history_best_genome_rows=genomes[changed],
+                 history_best_genome_index=np.cumsum(changed) - 1, **arrays)
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, path)
@@ -217,9 +223,12 @@ def load_checkpoint(path: str | os.PathLike) -> Checkpoint:
     """Read a checkpoint written by :func:`save_checkpoint`."""
     with np.load(path, allow_pickle=False) as data:
         meta = json.loads(str(data["meta"]))
-        if meta.get("version") != CHECKPOINT_VERSION:
+        if meta.get("version") not in (1, CHECKPOINT_VERSION):
             raise ValueError(f"checkpoint {path}: unsupported version {meta.get('version')!r}")
-        history = History(**{f.name: data[f"history_{f.name}"] for f in dataclasses.fields(History)})
+        columns = {f.name: data[f"history_{f.name}"] for f in dataclasses.fields(History) if f.name != "best_genome"}
+        columns["best_genome"] = (data["history_best_genome"] if meta["version"] == 1
+                                  else data["history_best_genome_rows"][data["history_best_genome_index"]])
+        history = History(**columns)
         return Checkpoint(meta["generation"], data["population"], data["fitness"], meta["rng_state"], history,
                           GAConfig(**meta["config"]), data["lo"], data["hi"], meta["seed"])
 
@@ -258,8 +267,10 @@ class GeneticAlgorithm:
     def n_genes(self) -> int:
         return self.lo.size
 
-    def run(self, progress: Progress = None, resume: bool = False) -> GAResult:
-        """Evolve for ``config.generations`` generations; ``progress(done, generations, best)``.
+    def run(self, progress: Progress = None, resume: bool = False,
+            stop: Callable[[History], bool] | None = None) -> GAResult:
+        """Evolve for ``config.generations`` generations, or until ``stop(history)`` holds after a
+        generation (a stopping rule, e.g. convergence); ``progress(done, generations, best)``.
 
         ``done`` counts the generations evaluated so far, the initial population being the first.
         With ``resume=True`` and an existing checkpoint the run continues from it (its config may
@@ -271,7 +282,7 @@ class GeneticAlgorithm:
         else:
             state = self._first_generation()
             self._report(state, progress)
-        while state.generation + 1 < self.config.generations:
+        while state.generation + 1 < self.config.generations and not (stop is not None and stop(state.history)):
             state = self._next_generation(state)
             self._report(state, progress)
         best = state.history.best_genome[-1]

@@ -32,8 +32,9 @@ ROWS = (
         result="§4.2: 'GAの最適化により得られたNNを用いて, 障害物回避のシミュレーションを行った' — no learning curve, "
                "generation count, mutation rate or success rate is printed; the trained networks are shown only by "
                "the walks of §4.2, §5.2 and §6.2",
-        why_not="nothing to compare: the thesis reports no training result (the walks' rows judge the networks); "
-                "mutation, generations, input scaling and the displacement range are ours (constants)",
+        not_comparable="its training's learning curve, generation count, mutation rate or success rate (§4.1.2 "
+                       "prints the population, selection and crossover only); the walks' rows judge the networks, "
+                       "and mutation, generations, input scaling and the displacement range are ours (constants)",
     ),
     Row(
         key="004:fig18",
@@ -65,8 +66,13 @@ ROWS = (
         result="§4.3: 9 cycles (the first a straight step to recognise the obstacles), '右方へ移動し、最終的には目的地"
                "である円内にロボットの重心が達している', legs 2 and 4 on the obstacle, final (x_de, y_de) = "
                "(0.137, 0.075) m",
-        not_built="a real-robot experiment whose obstacle coordinates are not printed (Fig. 22 only); "
-                  "quadruped.sensing-ablation runs simulated sensors in the §4.2 environments instead",
+        difference="a stand-in, never the experiment: the real robot's obstacle coordinates are not printed (Fig. 22 "
+                   "is a photograph), so quadruped.real-robot-standin walks §5.2's left-wall layout of ours with the "
+                   "destination (0, 1.9) m, simulated ultrasonic sensors (no downward sensor, no force sensing) and a "
+                   "first straight 150 mm cycle to sense",
+        why_not="in the stand-in our network moves right and reaches the goal without collision (final (−0.043, "
+                "0.090) m against the thesis's (0.137, 0.075) m) but in 11 cycles, not 9, with only leg 2 on the "
+                "obstacle (thesis 2 and 4)",
     ),
     Row(
         key="004:s5.1",
@@ -76,7 +82,12 @@ ROWS = (
         result="§5.1: '胴体の移動量が最小となる遊脚の順番は19通りあった' … 'GAを用いて最適化を行った組み合わせは総計380通り'",
         why_not="only 8 orders are ever optimal in our executor (160 patterns): with the shortest body shift the "
                 "orders often tie exactly (48 % of uniform draws) and a tie rule folds them; Br is not defined in "
-                "the thesis (notes/swing-order.md)",
+                "the thesis (notes/swing-order.md). No body-shift rule tried gives the printed Br of Tables 3–5 (15 "
+                "distinct action/order rows; br_rules.py, RMS error with the best constant factor): shortest shift "
+                "with 10 mm margin (ours) 46 mm, 30/50/80 mm margins 67/112/147 mm, centroids 76 mm, incentres "
+                "79 mm, net displacement 49 mm, the feet's travel 48 mm; a linear fit in (ΔXr, ΔYr, Δθr) on the "
+                "10 rows of 4→2→3→1 leaves 10 mm (22 mm left out one at a time) — so §5.1's optimal orders were "
+                "not recounted",
     ),
     Row(
         key="004:table3",
@@ -86,11 +97,12 @@ ROWS = (
         result="Table 3: 10 cycles, ΣBr 4579.794 mm; end of §6.2.2: the fixed-order walk without re-training took "
                "'10回' with final (x_de, y_de) = (0.068, −0.027) m (|e| 0.073 m) — said to be §4.2.2's, but §6.2.2's "
                "environment is §5.2's and 10 cycles are Table 3's rows",
-        why_not="the printed actions dead-reckoned end at (0.067, +0.036) m, 6.3 cm from the thesis's (0.068, −0.027) "
-                "m (our 1 cm vector tolerance; |e| 0.0757 against 0.073 m agrees, y does not, and no frame or sign "
-                "convention explains it); they do enter the goal circle at cycle 10 and our executor walks them "
-                "without failure, legs 2 and 4 on the 0.12 m obstacle; Br ≈ 0.56 of the thesis's (2575 mm; Br is "
-                "not defined in the thesis)",
+        why_not="our fixed-order network's walk in §5.2's environment (quadruped.avoid-s52) moves right, reaches the "
+                "goal without collision and ends 0.058 m from it (thesis 0.073 m), but takes 13 cycles (thesis 10) "
+                "and climbs with legs 2 and 3 (the thesis's walk in this environment: 2 and 4). The printed vector "
+                "(0.068, −0.027) m does not follow from the printed actions (dead-reckoned (0.067, +0.036) m; no "
+                "one of 64 frame/sign conventions fits Tables 3, 6 and 7: a consistency check, not this row's); Br "
+                "≈ 0.56 of the thesis's (2575 mm; Br is not defined in the thesis)",
     ),
     Row(
         key="004:table4",
@@ -135,17 +147,19 @@ ROWS = (
                "(−0.018, −0.014) m (|e| 0.023 m) against the fixed-order walk's 10 cycles and 0.073 m; Table 7: "
                "4→2→3→1, 2→4→3→1, 2→4→1→3; §6.2.2, §7: 'ゴール時の目的地までの距離誤差は小さくなったが、歩行周期回数は"
                "多くなる結果'",
-        why_not="the printed actions dead-reckon to (−0.025, +0.006) m at cycle 11 (as the thesis's 11), 2.1 cm from "
-                "the thesis's (−0.018, −0.014) m (our 1 cm vector tolerance; |e| 0.0255 against 0.023 m); our free "
-                "gait lowers the error 0.058 → 0.037 m in 12 cycles (baseline 13: fewer, not more); only leg 2 "
-                "lands on the obstacle; orders 4→2→3→1, 3→1→4→2, 2→4→3→1",
+        difference="our free gait lowers the final error (0.058 → 0.037 m) but in fewer cycles than the fixed order "
+                   "(12 against 13; thesis: more, 11 against 10), with only leg 2 on the obstacle (thesis 2 and 4), "
+                   "orders 4→2→3→1, 3→1→4→2, 2→4→3→1; the printed vector (−0.018, −0.014) m does not follow from the "
+                   "printed actions (dead-reckoned (−0.025, +0.006) m, a consistency check)",
     ),
     Row(
         key="004:generalisation",
         where="seed 004 §7 (§4.2.2's example)",
         what="the action RBFNN in environments it was not trained on",
         result="§7: '未学習環境においても目的地への経路の獲得ができ' — one example (§4.2.2), no rate",
-        why_not="83.5 % of 200 generated unseen environments reached (8 % collisions, 8.5 % joint limits), below "
-                "the 0.9 we hold the training set to (100 %); the thesis's claim rests on one walk",
+        difference="the thesis's evidence, §4.2.2's walk off the training grid, is reached without collision; the "
+                   "rate over 200 generated unseen environments is ours (83.5 % reached, 8 % collisions, 8.5 % joint "
+                   "limits; below the 0.9 we hold the training set to, a consistency check)",
+        why_not="our network does not reach §4.2.2's unseen environment without collision",
     ),
 )

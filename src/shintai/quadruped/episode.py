@@ -100,18 +100,23 @@ def path_inputs(envs: W.EnvBatch, offsets=C.INIT_PATH_OFFSETS, steps: int = C.IN
 @dataclass(frozen=True)
 class GenomePolicy:
     """Action networks of ``k`` genomes driving ``k x E`` episodes (row ``i * E + e`` is genome i in
-    environment e); the forward pass is one batched call per cycle."""
+    environment e); the forward pass is one batched call per cycle over the active rows only: the
+    genomes that still walk, each with its active rows packed and padded to the largest count (late
+    in a generation a few long walks remain, and the full ``k x E`` pass cost more than the crawl)."""
 
     net: ActionNetwork
     genomes: np.ndarray
     n_envs: int
 
     def __call__(self, x: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        k = len(self.genomes)
-        dense = np.zeros((k * self.n_envs, x.shape[1]))
-        dense[rows] = x
-        out = self.net.forward(self.genomes, dense.reshape(k, self.n_envs, -1))
-        return out.reshape(k * self.n_envs, -1)[rows]
+        genome = np.asarray(rows) // self.n_envs
+        present, slot, counts = np.unique(genome, return_inverse=True, return_counts=True)
+        rank = np.empty(len(genome), dtype=int)  # each row's place among its genome's rows
+        by_genome = np.argsort(slot, kind="stable")
+        rank[by_genome] = np.arange(len(genome)) - np.repeat(np.cumsum(counts) - counts, counts)
+        dense = np.zeros((len(present), counts.max(initial=0), x.shape[1]))
+        dense[slot, rank] = x
+        return self.net.forward(self.genomes[present], dense)[slot, rank]
 
 
 @dataclass

@@ -63,6 +63,45 @@ def dead_reckon(name: str) -> DeadReckoning:
     return _summary(errors)
 
 
+CONVENTIONS = tuple(dict(dx_sign=a, dtheta_sign=b, turn_first=c, body_frame=d, x_sign=e, y_sign=f)
+                    for a in (1, -1) for b in (1, -1) for c in (False, True) for d in (False, True)
+                    for e in (1, -1) for f in (1, -1))  # 64 readings of §5.7 and of (x_de, y_de)
+
+
+def convention_error(name: str, dx_sign: int = 1, dtheta_sign: int = 1, turn_first: bool = False,
+                     body_frame: bool = False, x_sign: int = 1, y_sign: int = 1) -> np.ndarray:
+    """A table's final (x_de, y_de) [m] under one of :data:`CONVENTIONS`: ΔXr and Δθr each with either
+    sign, the cycle's translation in the frame before or after its turn (``turn_first``), the error
+    in the world or the final body frame, and x_de, y_de each with either sign. Ours
+    (:func:`dead_reckon`) is the first, all defaults."""
+    actions, _, env = _table(name)
+    _, command = S.actions_to_si(actions[:, 3], actions[:, 0], actions[:, 1], actions[:, 2])
+    command = command * np.array([dx_sign, 1.0, dtheta_sign])
+    pose = np.zeros(3)
+    for c in command:
+        heading = pose[2] + c[2] if turn_first else pose[2]
+        pose = np.r_[pose[:2] + R.rotate(np.array([heading]), c[None, :2])[0], pose[2] + c[2]]
+    error = np.asarray(env().destination) - pose[:2]
+    if body_frame:
+        error = R.rotate(np.array([-pose[2]]), error[None])[0]
+    return error * np.array([x_sign, y_sign])
+
+
+def convention_search(name: str) -> np.ndarray:
+    """Distance [m] of each of the 64 :data:`CONVENTIONS`' final (x_de, y_de) from the thesis's printed vector."""
+    paper = np.asarray(C.PAPER_FINAL_ERROR[name])
+    return np.array([np.hypot(*(convention_error(name, **c) - paper)) for c in CONVENTIONS])
+
+
+def convention_name(i: int) -> str:
+    """A short name of :data:`CONVENTIONS` ``[i]`` (what differs from ours)."""
+    c = CONVENTIONS[i]
+    parts = [label for key, label in (("dx_sign", "ΔXr negated"), ("dtheta_sign", "Δθr negated"),
+                                      ("x_sign", "x_de negated"), ("y_sign", "y_de negated")) if c[key] == -1]
+    parts += ["translation after the turn"] * c["turn_first"] + ["final body frame"] * c["body_frame"]
+    return ", ".join(parts) or "ours"
+
+
 def _summary(errors: np.ndarray) -> DeadReckoning:
     distances = W.length(errors)
     inside = np.flatnonzero(distances[1:] <= C.GOAL_RADIUS)

@@ -25,9 +25,15 @@ MARGIN_BASIS = ("consistency: the executor shifts the body so that the CoG stays
                 "(thesis §2.2, §4.1.1) and stops a walk that cannot; a reached walk holds it by construction")
 
 
-def avoid_checks(section: str, climbers: str, grounded: str) -> tuple[Check, ...]:
+def avoid_checks(section: str, climbers: str, grounded: str, cycles: int = 9,
+                 legs_basis: str = "", cycles_quote: str = "") -> tuple[Check, ...]:
     """The checks of a §4.2 walk: ``climbers`` are the legs the thesis puts on the surmountable obstacle
-    (e.g. "1 and 3"), ``grounded`` the legs it keeps on the ground, both quoted from ``section``."""
+    (e.g. "1 and 3"), ``grounded`` the legs it keeps on the ground, both quoted from ``section`` (or, where
+    the thesis names no legs for the walk, ``legs_basis`` says where they come from); ``cycles`` the walking
+    cycles it reports (``cycles_quote``: the seed's sentence, when it is not §4.2's)."""
+    cycles_quote = cycles_quote or f"ゴールまでに要した歩行周期回数は{cycles}回"
+    legs = legs_basis or f"thesis {section}: legs {climbers} climb the surmountable obstacle ('乗り越え動作により障害物を回避')"
+    ground = legs_basis or f"thesis {section}: legs {grounded} stay on the ground ('脚を地面に接地している')"
     return (
         Check("reached", "==", 1, f"thesis {section}: the robot's CoG reaches the 0.2 m goal circle "
               "('ロボットが目的地まで移動していることが確認できる')", kind="reproduction"),
@@ -37,12 +43,10 @@ def avoid_checks(section: str, climbers: str, grounded: str) -> tuple[Check, ...
         Check("min_stability_margin_m", ">", 0.0, MARGIN_BASIS, kind="consistency"),
         Check("final_error_m", "<", 0.2, "consistency: the goal is the 0.2 m circle (thesis §4.1.1), so a reached "
               "walk ends inside it; the thesis's own error is a thesis value, not this bound", kind="consistency"),
-        Check("cycles", "<=", 9, f"thesis {section}: 'ゴールまでに要した歩行周期回数は9回' (9 walking cycles)",
-              kind="reproduction"),
-        Check("climbed_thesis_legs", "==", 2, f"thesis {section}: legs {climbers} climb the surmountable obstacle "
-              "('乗り越え動作により障害物を回避')", kind="reproduction"),
-        Check("climbed_other_legs", "==", 0, f"thesis {section}: legs {grounded} stay on the ground "
-              "('脚を地面に接地している')", kind="reproduction"),
+        Check("cycles", "<=", cycles, f"thesis {section}: '{cycles_quote}' ({cycles} "
+              "walking cycles)", kind="reproduction"),
+        Check("climbed_thesis_legs", "==", 2, legs, kind="reproduction"),
+        Check("climbed_other_legs", "==", 0, ground, kind="reproduction"),
     )
 
 

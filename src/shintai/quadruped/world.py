@@ -252,6 +252,12 @@ def scenario_52() -> Environment:
     return _environment("s5.2", C.SCENARIO_52)
 
 
+def scenario_43() -> Environment:
+    """A stand-in for seed §4.3's real-robot experiment (coordinates not printed): §5.2's layout (left wall),
+    destination (0.0, 1.9) (constants ``SCENARIO_43``)."""
+    return _environment("s4.3 stand-in", C.SCENARIO_43)
+
+
 def scenario_621() -> Environment:
     """Seed §6.2.1: the environment of §4.2.1."""
     return _environment("s6.2.1", C.SCENARIO_421)

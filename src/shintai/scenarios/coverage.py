@@ -9,7 +9,10 @@ scenario fills its row. A row's status comes from the results of the scenarios t
   compares with its result at all (only consistency checks: nothing was compared with the thesis);
 * **reproduced with a stated difference** — every reproduction check about it holds and the row states a
   difference (``difference``: what we did or got that the thesis did not);
-* **reproduced** — every reproduction check about it holds.
+* **reproduced** — every reproduction check about it holds;
+* **not comparable** — the thesis's result rests on data the thesis does not print (``not_comparable`` names
+  it: a curve, a count, a rate, coordinates), so no reproduction check can be about the row; it is covered
+  and its scenarios ran, but nothing of ours can be held against the thesis.
 
 A reproduction check is about a row when it names the row (``Check(..., row=key)``) or, if it names none,
 when its scenario covers that row. Only reproduction checks decide (DESIGN.md, ``metrics.json``).
@@ -30,8 +33,9 @@ SEEDS = {"000": "Kimura 2018 — humanoid drives and rides vehicles", "001": "Na
 REPRODUCED = "reproduced"
 DIFFERENCE = "reproduced with a stated difference"
 NOT_REPRODUCED = "not reproduced"
+NOT_COMPARABLE = "not comparable"
 NOT_BUILT = "not yet built"
-STATUSES = (REPRODUCED, DIFFERENCE, NOT_REPRODUCED, NOT_BUILT)
+STATUSES = (REPRODUCED, DIFFERENCE, NOT_REPRODUCED, NOT_COMPARABLE, NOT_BUILT)
 
 
 @dataclass(frozen=True)
@@ -42,7 +46,8 @@ class Row:
     ``what``: what the thesis did; ``result``: what it reports, quoted from the seed with its numbers;
     ``difference``: a stated difference of ours (reproduced with a difference); ``why_not``: one line on why
     it does not reproduce (shown when it does not); ``not_built``: for rows without a scenario, why or what
-    is missing.
+    is missing; ``not_comparable``: the data the thesis's result rests on and does not print (status not
+    comparable; the row then has no reproduction check).
     """
 
     key: str
@@ -52,6 +57,7 @@ class Row:
     difference: str = ""
     why_not: str = ""
     not_built: str = ""
+    not_comparable: str = ""
 
     @property
     def seed(self) -> str:
@@ -103,6 +109,11 @@ def status_of(row: Row, results: Mapping[str, Mapping[str, Any]], covering: Mapp
     checks = [c for sid in ids for c in row_checks(row, results[sid], covering[sid])]
     if errors:
         return RowStatus(row, NOT_REPRODUCED, "run failed — " + "; ".join(errors), ids, checks)
+    if row.not_comparable:
+        if checks:  # a contradiction the registry test forbids: reported, not hidden
+            return RowStatus(row, NOT_REPRODUCED, f"marked not comparable ({row.not_comparable}) but reproduction "
+                             f"checks are about it: {', '.join(c['name'] for c in checks)}", ids, checks)
+        return RowStatus(row, NOT_COMPARABLE, f"the thesis does not print {row.not_comparable}", ids, checks)
     if not checks:
         return RowStatus(row, NOT_REPRODUCED, row.why_not or "no check compares our result with the thesis's", ids,
                          checks)

@@ -235,7 +235,7 @@ table{border-collapse:collapse;margin-bottom:1.5em;width:100%;table-layout:fixed
 td,th{border:1px solid #ccc;padding:5px;vertical-align:top;font-size:12.5px;overflow-wrap:anywhere;text-align:left}
 table#summary{width:auto;table-layout:auto}
 tr.pass td.st{color:#080}tr.fail td.st,tr.error td.st{color:#b00;font-weight:bold}
-tr.reproduced .status{color:#080}tr.not-reproduced .status{color:#b00}tr.not-yet-built .status{color:#888}
+tr.reproduced .status{color:#080}tr.not-reproduced .status{color:#b00}tr.not-yet-built .status{color:#888}tr.not-comparable .status{color:#a60}
 td img{max-width:100%;height:auto;margin:2px 0;border:1px solid #ddd}td video{max-width:100%}
 details summary{cursor:pointer;color:#245}.notes{max-width:60em;font-size:13px}
 .notes table.md{width:auto;table-layout:auto}pre{white-space:pre-wrap;font-size:12px}"""

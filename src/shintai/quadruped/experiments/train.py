@@ -33,7 +33,8 @@ def _shipped_match(settings: T.TrainSettings, results: dict) -> int | None:
         shipped = {s: T.load_curve(None, s)[2] for s in results}
     except FileNotFoundError:
         return None
-    if any(v != dataclasses.asdict(settings) for v in shipped.values()):
+    # a set made before the stopping rule records no "converge": it ran its budget
+    if any({"converge": False, **v} != dataclasses.asdict(settings) for v in shipped.values()):
         return None
     same = [np.array_equal(np.load(T.TRAINED_DIR / T.FILES[s])["genome"], r.genome) for s, r in results.items()]
     return int(all(same))
@@ -44,6 +45,7 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
     action = results["action"]
     ep = T.evaluate(action.genome, envs)
     metrics = {"best_fitness": action.best_fitness, "generations": action.generations,
+               "converged": int(T.converged(action.best)),
                **{f"train_{k}": v for k, v in outcome_rates(ep).items()}, "action_wall_s": action.wall_s}
     if "order" in results:
         policy = T.order_policy(results["order"].genome)
@@ -53,6 +55,7 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         free = results["free"]
         free_ep = T.evaluate(free.genome, envs, policy)
         metrics.update(free_best_fitness=free.best_fitness, free_generations=free.generations, free_wall_s=free.wall_s,
+                       free_converged=int(T.converged(free.best)),
                        **{f"free_{k}": v for k, v in outcome_rates(free_ep).items()})
     metrics["reproduces_shipped"] = _shipped_match(settings, results)
     return metrics
@@ -83,6 +86,8 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         Param("executor", "process", "where fitness runs", choices=("serial", "process", "ray")),
         Param("workers", 0, "processes or Ray CPUs (0: all local cores)", lo=0, hi=4096),
         Param("address", "", "Ray cluster address (executor=ray; empty: RAY_ADDRESS or a local Ray)"),
+        Param("converge", True, "stop the action and free stages when the best eq. 9 fitness improved by less "
+              "than 1 % over 200 generations (constants CONVERGENCE_*); the generation counts are then caps"),
         Param("resume", True, "continue from the GA checkpoints in the output folder"),
     ],
     checks=(
@@ -92,6 +97,9 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
         Check("order_accuracy", ">=", 0.9, "consistency: accuracy on our own teacher patterns (spec §6.5 check 7: "
               "target assumed; the paper gives none)", kind="consistency"),
         Check("free_success_rate", ">=", 0.9, "consistency: as train_success_rate, for the re-trained network",
+              kind="consistency"),
+        Check("converged", "==", 1, "consistency: the fixed-order stage stopped at its declared rule (best eq. 9 "
+              "improved by < 1 % over 200 generations, constants CONVERGENCE_*), not at the generation cap",
               kind="consistency"),
     ),
     covers=("004:training",),
@@ -103,7 +111,7 @@ def train_networks(ctx) -> dict:
     p = ctx.params
     settings = T.TrainSettings(p["generations"], p["order_generations"], p["free_generations"], p["mutation_rate"],
                                p["mutation_sigma"], p["population"], p["environments"], ctx.seed, p["init"],
-                               p["order_hidden"])
+                               p["order_hidden"], p["converge"])
     stages = T.STAGES if p["stages"] == "all" else ("action",)
     with make_executor(p["executor"], p["workers"] or None, p["address"] or None) as executor, T.single_threaded_blas():
         results = T.train(ctx.out, settings, executor, p["resume"], stages, _progress(ctx, settings, stages))
