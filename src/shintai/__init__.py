@@ -2,6 +2,19 @@
 
 See ../shared/DESIGN.md for the architecture: a Body, Modules that add contributions to the command,
 a Loop that runs them in parallel and a Switcher that runs exactly one of a set.
+
+Modules:
+
+cli — The ``shintai`` command (contract in DESIGN.md): list, run, reproduce, bench, and demo; __main__ runs it
+core/ — Shared runtime pieces: Body/Module/Loop/Switcher, the recorder, the online search index, interpolation
+gym/ — Gymnasium environments over shintai's bodies and modules (``pip install shintai[gym]``)
+humanoid/ — Seed 000 (Kimura 2018): a humanoid drives a tricycle and rides a two-wheeled scooter and a unicycle
+nervous/ — nervous — the middle layer between programs and robot bodies (seed 003 ch. 6, App. C)
+quadruped/ — Seed 004: the TITAN-VIII quadruped that learns obstacle avoidance and its swing order with Gaussian …
+scenarios/ — Scenario registry, runner, reports
+sim/ — shintai.sim: the MuJoCo body every MuJoCo-based robot in shintai runs on, and its rendering
+snake/ — Wheeled snake robot of seed 001 (Nakajima 2020): constraint switching, two-point control, two planes
+spine/ — Variable-flexibility spines of seed 003 (Mizuuchi 2001), ch. 3–5: the shared layers, flat, and one …
 """
 
 import os

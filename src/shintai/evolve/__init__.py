@@ -1,4 +1,10 @@
-"""Evolution: a genetic algorithm (seed 003 §5.5–5.7, seed 004 §4.1.2) and the executors it runs on."""
+"""Evolution: a genetic algorithm (seed 003 §5.5–5.7, seed 004 §4.1.2) and the executors it runs on.
+
+Modules:
+
+benchmarks — Fitness test functions and the executor benchmark of one GA generation
+ga — A real-valued genetic algorithm with pluggable fitness executors, checkpoints and resume
+"""
 
 from shintai.evolve.executors import (Executor, ItemError, ProcessExecutor, RayExecutor, SerialExecutor,
                                       make_executor)

@@ -20,6 +20,11 @@
 
 Every environment renders ``rgb_array`` frames, resets from a seed, and states its spaces with units in its
 module's docstring. Each wraps the same bodies and control modules the scenarios run.
+
+Modules:
+
+loop_env — A Gymnasium environment over a shintai Body and its modules, run by the shared Loop
+riding — The common part of the humanoid's vehicle environments (seed 000 ch. 6–7): the agent takes the speed …
 """
 
 from __future__ import annotations

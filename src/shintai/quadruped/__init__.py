@@ -19,4 +19,11 @@ RBF networks trained by a genetic algorithm (Yamaguchi), as a kinematic, quasi-s
   ``.avoid-unseen``, ``.swing-order``, ``.free-gait``, ``.generalization``, ``.sensing-ablation``),
   their accounts in ``notes/``;
 * ``benchmarks``  one GA generation: naive serial vs vectorised vs process pool.
+
+Modules:
+
+br_rules — Candidate rules for the body movement Br of seed 004 Tables 3-5 (§5.1-5.2; Br is not defined there)
+coverage — The experiments of seed 004 (Yamaguchi, TITAN-VIII learning obstacle avoidance and its swing order …
+models — The quadruped's MuJoCo models for export (``shintai model``, :mod:`shintai.sim.export`): the …
+sensing — The ultrasonic sensing of the real TITAN-VIII (§1.4; seed §3.1-3.3, eqs. 3-6, Figs. 6-9), for a …
 """

@@ -5,6 +5,19 @@ environment variable. shintai renders headless on CPU machines (no display, no G
 EGL through Mesa works, so this package sets ``MUJOCO_GL=egl`` (unless the user chose otherwise)
 *before* anything in it imports ``mujoco``. If ``mujoco`` was imported earlier by other code, that
 choice was already made; :mod:`shintai.sim.render` then reports a failing context as one line.
+
+Modules:
+
+benchmarks — Benchmarks of the MuJoCo body: what MujocoBody and the Loop add on top of bare ``mj_step``; films …
+corner — A hand on three position-servoed slide axes in a wall corner: the smallest physical rig of the online …
+experiments/ — one declared scenario per file (accounts in notes/)
+export — Every body's MuJoCo model, exported as MJCF that opens in MuJoCo's own ``simulate`` viewer and any …
+film — Films of a run rendered after it: record the trajectory while the body steps, render it in processes
+ik — Inverse kinematics: damped least squares on MuJoCo site Jacobians (``mj_jacSite``), for any MuJoCo body
+models — The MuJoCo models of ``shintai.sim`` for export (:mod:`shintai.sim.export`)
+plots — The figures of the sim experiments (``sim.wall-force``), drawn with ``ctx.figure``
+spec — MjSpec building blocks shared by the bodies: the scene (floor, light, integrator), a limited hinge, a …
+viewer — A live view of a running MujocoBody in MuJoCo's own viewer (``shintai run ID --view``)
 """
 
 import os

@@ -8,4 +8,8 @@ Laws: two_point (ch. 3's controller); spatial (the two-point law on the 3D model
 piecewise-linear targets (3.21)–(3.23), (3.26)); door_operator, two_plane_phases (guarded phases as Switchers).
 Experiments' library: tracking, caging, handcart, door, two_plane_runs, probe; plots, plots_two_plane.
 Scenarios: one declaration per file in experiments/, each with its account in notes/; benchmarks.
+
+Modules:
+
+coverage — The experiments of seed 001 (Nakajima 2020, wheeled snake with constraint switching): one row per …
 """
