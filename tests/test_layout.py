@@ -114,10 +114,6 @@ FOLDERS_NOT_YET_SPLIT = {"snake"}
 FLAT_BY_DESIGN = ("experiments",)  # one scenario per file, flat under the body (DESIGN.md)
 PRIVATE_IMPORTS_NOT_YET_GONE: set[tuple[str, str]] = set()
 PARAMS_READERS_NOT_YET_GONE: set[str] = set()
-EXPERIMENTS_STILL_DRAWING = {
-    "shintai.quadruped.experiments.generalization", "shintai.quadruped.experiments.replay",
-    "shintai.quadruped.experiments.sensing_ablation", "shintai.quadruped.experiments.swing_order",
-    "shintai.quadruped.experiments.train"}
 TESTS_NOT_YET_MIRRORED = {"nervous/test_diagnosis.py", "nervous/test_sequence.py"}  # of nervous/plugins/
 PACKAGE_MAPS_NOT_YET_WRITTEN: set[str] = set()
 # the calls that draw (matplotlib's Axes and Figure, and the scenario context's ``ctx.figure``)
@@ -221,7 +217,7 @@ def test_experiments_draw_nothing():
                     isinstance(n, (ast.Import, ast.ImportFrom))
                     and any("matplotlib" in (a.name + (getattr(n, "module", "") or "")) for a in n.names)):
                 drawing.add(module_name(p))
-    assert not drawing - EXPERIMENTS_STILL_DRAWING, sorted(drawing - EXPERIMENTS_STILL_DRAWING)
+    assert not drawing, sorted(drawing)
 
 
 def test_tests_mirror_src():

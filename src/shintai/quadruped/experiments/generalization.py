@@ -6,47 +6,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.quadruped import constants as C
 from shintai.quadruped import fitness as F
 from shintai.quadruped import plots as PL
 from shintai.quadruped import training as T
 from shintai.quadruped import world as W
-from shintai.quadruped.episode import Episodes
 from shintai.quadruped.walks import WEIGHTS, outcome_rates, weights_path
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-
-
-def plot_generalisation(ctx, envs: list[W.Environment], train: Episodes, unseen: Episodes) -> None:
-    ok = T.success(unseen)
-    with ctx.figure("generalization", nrows=1, ncols=3, figsize=(14, 4.4)) as (fig, (ax0, ax1, ax2)):
-        dest = np.array([e.destination for e in envs])
-        wall_left = np.array([not e.left.surmountable for e in envs])
-        limit = (unseen.limit | unseen.unstable) & ~unseen.collided
-        for mask, label, marker in ((ok, "reached", "o"), (unseen.collided, "collision", "x"),
-                                    (limit, "joint limit / stability", "s"),
-                                    (~ok & ~unseen.collided & ~limit, "50 cycles", "d")):
-            for side, colour in ((wall_left, "tab:blue"), (~wall_left, "tab:red")):
-                sel = mask & side
-                if not sel.any():
-                    continue
-                ax0.scatter(dest[sel, 0], dest[sel, 1], marker=marker, s=16, color=colour, alpha=0.7,
-                            label=f"{label}, wall {'left' if colour == 'tab:blue' else 'right'}")
-        ax0.set_xlabel("destination x [m]")
-        ax0.set_ylabel("destination y [m]")
-        ax0.legend(fontsize=6)
-        ax0.set_title(f"unseen environments: {ok.mean():.0%} reached", fontsize=9)
-        bins = np.arange(0.5, C.MAX_CYCLES + 1.5)
-        for ep, label in ((train, "training 96"), (unseen, f"unseen {len(envs)}")):
-            good = T.success(ep)
-            if not good.any():
-                continue
-            ax1.hist(ep.cycles[good], bins=bins, alpha=0.6, density=True, label=label)
-            ax2.hist(np.hypot(*ep.final_error[good].T), bins=np.linspace(0, C.GOAL_RADIUS, 21), alpha=0.6,
-                     density=True, label=label)
-        ax1.set_xlabel("walking cycles to the goal")
-        ax2.set_xlabel("final distance error [m]")
-        for ax in (ax1, ax2):
-            ax.legend(fontsize=7)
 
 
 @scenario(
@@ -105,10 +70,7 @@ def generalization(ctx) -> dict:
     ctx.extra["unseen"] = [{"name": e.name, "destination": e.destination, "wall": "left" if not e.left.surmountable
                             else "right", "reached": bool(s), "cycles": int(c)}
                            for e, s, c in zip(envs, T.success(unseen), unseen.cycles)]
-    plot_generalisation(ctx, envs, train, unseen)
+    PL.plot_generalisation(ctx, envs, train, unseen)
     if not p["weights"]:
-        with ctx.figure("shipped_learning_curves", nrows=1, ncols=len(T.STAGES), figsize=(15, 4)) as (fig, axes):
-            for ax, s in zip(axes, T.STAGES):
-                best, mean, _ = T.load_curve(None, s)
-                PL.draw_curve(ax, best, mean, PL.CURVE_TITLES[s])
+        PL.plot_shipped_curves(ctx)
     return metrics

@@ -7,60 +7,10 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.quadruped import constants as C
+from shintai.quadruped import plots as PL
 from shintai.quadruped import replay as P
 from shintai.quadruped import swing_order as S
-from shintai.quadruped import world as W
 from shintai.scenarios.registry import Check, ThesisValue, scenario
-
-CLIMBERS = {"table3": "legs 2 and 4", "table6": "leg 1 (leg 3 steps over)", "table7": "legs 2 and 4"}
-
-
-def _draw_obstacles(ax, env: W.Environment) -> None:
-    for o in env.obstacles:
-        poly = np.vstack([o.polygon, o.polygon[:1]])
-        ax.fill(poly[:, 0], poly[:, 1], color="0.3" if not o.surmountable else "tab:orange", alpha=0.5)
-        ax.annotate(f"{o.height:g} m", o.polygon.mean(0), fontsize=7, ha="center")
-
-
-def plot_paths(ctx, replays: dict) -> None:
-    from matplotlib.patches import Circle
-
-    with ctx.figure("paths", nrows=1, ncols=3, figsize=(11, 5.0)) as (fig, axes):
-        for ax, (name, rep) in zip(axes, replays.items()):
-            env = P.TABLES[name][2]()
-            _draw_obstacles(ax, env)
-            body = np.array([r.body_poses[-1, :2] for r in rep.records])
-            ax.plot(np.r_[0, body[:, 0]], np.r_[0, body[:, 1]], "k.-", lw=1, label="CoG after each cycle")
-            for leg, color in zip(range(4), ("tab:blue", "tab:red", "tab:cyan", "tab:pink")):
-                feet = np.array([r.footholds[leg] for r in rep.records])
-                on = feet[:, 2] > 0
-                ax.scatter(feet[~on, 0], feet[~on, 1], s=10, color=color, label=f"leg {leg + 1} ({C.LEG_NAMES[leg]})")
-                ax.scatter(feet[on, 0], feet[on, 1], s=30, marker="^", color=color, edgecolors="k")
-            ax.add_patch(Circle(env.destination, C.GOAL_RADIUS, fill=False, ls="--"))
-            ax.set_aspect("equal")
-            ax.set_title(f"{name}: climbs with {CLIMBERS[name]} (▲ = on top)", fontsize=8)
-            ax.set_xlabel("x [m]")
-        axes[0].set_ylabel("y [m]")
-        axes[0].legend(fontsize=6, loc="lower left")
-
-
-def plot_br(ctx, comparison: P.BodyMovementComparison) -> None:
-    k = np.arange(1, 11)
-    with ctx.figure("body_movement", nrows=1, ncols=2, figsize=(10, 4)) as (fig, (ax0, ax1)):
-        for values, label, style in ((C.TABLE3_BR, "Table 3 fixed", "o-"), (C.TABLE4_BR, "Table 4 all 24", "s-"),
-                                     (C.TABLE5_BR, "Table 5 RBFNN", "^-")):
-            ax0.plot(k, values, style, ms=4, lw=1, label=label)
-        for values, label, style in ((comparison.fixed, "fixed 4→2→3→1", "o-"),
-                                     (comparison.exhaustive, "exhaustive", "s-"),
-                                     (comparison.rbfnn, "paper's RBFNN orders", "^-")):
-            ax1.plot(k, values, style, ms=4, lw=1, label=label)
-        ax0.set_title("paper: Br per cycle", fontsize=9)
-        ax1.set_title("this executor: Br of the same actions", fontsize=9)
-        for ax in (ax0, ax1):
-            ax.set_xlabel("walking cycle k")
-            ax.set_ylabel("Br [mm]")
-            ax.legend(fontsize=7)
-
 
 TABLE_ROWS = {"table3": "004:table3", "table6": "004:table6", "table7": "004:table7"}
 WHERE = {"table3": "end of §6.2.2 (Table 3's walk)", "table6": "§6.2.1", "table7": "§6.2.2"}
@@ -187,7 +137,7 @@ def replay(ctx) -> dict:
     ctx.extra["br_per_cycle_mm"] = {"fixed": comparison.fixed, "exhaustive": comparison.exhaustive,
                                     "rbfnn_orders": comparison.rbfnn, "paper_fixed": C.TABLE3_BR,
                                     "paper_exhaustive": C.TABLE4_BR, "paper_rbfnn": C.TABLE5_BR}
-    plot_paths(ctx, replays)
-    plot_br(ctx, comparison)
+    PL.plot_paths(ctx, replays)
+    PL.plot_br(ctx, comparison)
     ctx.progress(1.0)
     return metrics

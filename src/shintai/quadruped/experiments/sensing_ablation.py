@@ -12,78 +12,8 @@ from shintai.quadruped import plots as PL
 from shintai.quadruped import sensing as U
 from shintai.quadruped import training as T
 from shintai.quadruped import world as W
-from shintai.quadruped.episode import SENTINELS
 from shintai.quadruped.walks import WEIGHTS, outcome_rates, record_walk, weights_path
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-
-POINT_STYLES = {(1, U.FORWARD): ("leg 1 forward", "tab:blue", "o"), (1, U.SIDE): ("leg 1 side", "tab:cyan", "s"),
-                (0, U.FORWARD): ("leg 2 forward", "tab:red", "o"), (0, U.SIDE): ("leg 2 side", "tab:orange", "s")}
-
-
-def plot_sensed_walks(ctx, walks: dict) -> None:
-    """Top views of sensed walks ``{title: (env, records, perception)}`` with every echo's point."""
-    with ctx.figure("sensed_walks", nrows=1, ncols=len(walks), figsize=(6.4 * len(walks), 6.4),
-                    squeeze=False) as (fig, axes):
-        for ax, (title, (env, records, p)) in zip(axes[0], walks.items()):
-            PL.draw_walk(ax, env, records, triangles=False)
-            points, beam = p.points[0], p.beam[0]
-            for (side, b), (label, colour, marker) in POINT_STYLES.items():
-                pts = points[side][beam[side] == b]
-                pts = pts[np.isfinite(pts[:, 0])]
-                ax.scatter(pts[:, 0], pts[:, 1], s=9, marker=marker, facecolors="none", edgecolors=colour, lw=0.6,
-                           label=f"echo: {label} ({len(pts)})")
-            ax.set_title(title, fontsize=8)
-            ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-
-
-def plot_features(ctx, env: W.Environment, p: U.SensedObstacles) -> None:
-    """Known and sensed features per cycle of one walk (sentinels shown as gaps)."""
-    known, sensed = p.known[0], p.sensed[0]
-    k = np.arange(1, len(known) + 1)
-    with ctx.figure("sensed_features", nrows=2, ncols=3, figsize=(13, 6.2)) as (fig, axes):
-        for row, (i, side) in zip(axes, enumerate(("right", "left"))):
-            for ax, (j, group) in zip(row, ((0, "x"), (2, "y"), (4, "z"))):
-                for col, (f, style) in enumerate(((known, "-"), (sensed, "--"))):
-                    gone = np.all(f[:, i] == SENTINELS[i], axis=-1)
-                    for dj, name in ((0, "max"), (1, "min")):
-                        if group == "z" and name == "min":
-                            continue
-                        y = np.where(gone, np.nan, f[:, i, j + dj])
-                        ax.plot(k, y, style, color=f"C{dj}", marker="o" if col else "", ms=3, lw=1,
-                                label=f"{'sensed' if col else 'known'} {group}_{name}")
-                ax.set_title(f"{env.name}: {side} obstacle, {group} (body frame)", fontsize=8)
-                ax.set_xlabel("walking cycle k")
-                ax.set_ylabel("[m]")
-                ax.legend(fontsize=6)
-
-
-def plot_success(ctx, rates: dict, noise_curve: list, incidence_curve: list, p: dict) -> None:
-    keys = ("success_rate", "collision_rate", "limit_rate", "timeout_rate")
-    with ctx.figure("success", nrows=1, ncols=3, figsize=(14, 4.2)) as (fig, (ax0, ax1, ax2)):
-        x = np.arange(len(keys))
-        for off, name in ((-0.2, "known"), (0.2, "sensed")):
-            values = [rates[name][key] for key in keys]
-            bars = ax0.bar(x + off, values, width=0.4, label=f"{name} features")
-            ax0.bar_label(bars, fmt="%.2f", fontsize=7)
-        ax0.set_xticks(x, ["reached", "collision", "joint limit /\nstability", "50 cycles"], fontsize=8)
-        ax0.set_ylim(0, 1.1)
-        ax0.set_title(f"training environments (noise {p['noise_std']:g} m, incidence ≤ {p['incidence_deg']:g}°)",
-                      fontsize=9)
-        ax0.legend(fontsize=7)
-        for ax, curve, xlabel in ((ax1, noise_curve, "range-noise std [m]"),
-                                  (ax2, incidence_curve, "incidence limit [deg]")):
-            xs = [c[0] for c in curve]
-            ax.plot(xs, [c[1] for c in curve], "o-", label="sensed features")
-            ax.axhline(rates["known"]["success_rate"], color="k", ls="--", lw=1, label="known features")
-            ax.axhline(rates["blind"]["success_rate"], color="tab:red", ls=":", lw=1,
-                       label="no echo at all (sentinels only)")
-            ax.set_xlabel(xlabel)
-            ax.set_ylabel("success rate")
-            ax.set_ylim(0, 1.05)
-            ax.legend(fontsize=7)
-        ax1.set_title(f"incidence ≤ {p['incidence_deg']:g}°, seed {ctx.seed}", fontsize=9)
-        ax2.set_title(f"noise {p['noise_std']:g} m", fontsize=9)
-
 
 @scenario(
     "quadruped.sensing-ablation",
@@ -162,7 +92,7 @@ def sensing_ablation(ctx) -> dict:
         outcome = "reached" if T.success(ep)[0] else "failed"
         walks[f"{env.name}, sensed features: {outcome} in {ep.cycles[0]} cycles"] = (env, ep.records[0], q)
         if key == "s421":
-            plot_features(ctx, env, q)
+            PL.plot_features(ctx, env, q)
     ctx.progress(0.4, "§4.2 walks")
     noise_curve = [(s, float(T.success(A.sensed_walks(genome, envs, perception(noise=s))).mean())) for s in C.NOISE_SWEEP]
     ctx.progress(0.7, "noise sweep")
@@ -173,6 +103,6 @@ def sensing_ablation(ctx) -> dict:
     rates["blind"] = blind
     ctx.extra["success_vs_noise"] = noise_curve
     ctx.extra["success_vs_incidence"] = incidence_curve
-    plot_sensed_walks(ctx, walks)
-    plot_success(ctx, rates, noise_curve, incidence_curve, p)
+    PL.plot_sensed_walks(ctx, walks)
+    PL.plot_success(ctx, rates, noise_curve, incidence_curve, p)
     return metrics

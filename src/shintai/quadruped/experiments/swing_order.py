@@ -16,19 +16,6 @@ from shintai.quadruped.walks import WEIGHTS, walk, weights_path, write_cycle_tab
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 
 
-def plot_strategies(ctx, ours: dict, table3: dict) -> None:
-    with ctx.figure("body_movement", nrows=1, ncols=2, figsize=(11, 4)) as (fig, axes):
-        for ax, data, title in ((axes[0], ours, "trained action network, §5.2 environment"),
-                                (axes[1], table3, "the paper's Table 3 actions (flat floor, from the stance)")):
-            k = np.arange(1, len(data["fixed"]) + 1)
-            for key, style in (("fixed", "o-"), ("exhaustive", "s-"), ("network", "^--")):
-                ax.plot(k, data[key], style, ms=4, lw=1, label=f"{key}: Σ {np.sum(data[key]):.1f} mm")
-            ax.set_xlabel("walking cycle k")
-            ax.set_ylabel("Br [mm]")
-            ax.set_title(title, fontsize=9)
-            ax.legend(fontsize=7)
-
-
 @scenario(
     "quadruped.swing-order",
     source="seed 004 §5.2 (Tables 3-5, Figs. 30-32)",
@@ -95,6 +82,6 @@ def swing_order(ctx) -> dict:
                                     "table3": {k: table3[k] for k in ("fixed", "exhaustive", "network")},
                                     "orders": ours["orders"], "table3_orders": table3["orders"]}
     write_cycle_table(ctx, "cycles", records, env)
-    plot_strategies(ctx, ours, table3)
+    PL.plot_strategies(ctx, ours, table3)
     PL.plot_walks(ctx, "walk", {f"{env.name}: fixed-order walk whose actions are compared": (env, records)})
     return metrics

@@ -119,8 +119,5 @@ def train_networks(ctx) -> dict:
         for g, (best, mean) in enumerate(zip(r.best, r.mean)):
             ctx.recorder.record(g, **{f"{stage}.best": best, f"{stage}.mean": mean})
     ctx.extra["learning_curves"] = {s: {"best": r.best, "mean": r.mean} for s, r in results.items()}
-    with ctx.figure("learning_curves", nrows=1, ncols=len(results), figsize=(5 * len(results), 4),
-                    squeeze=False) as (fig, axes):
-        for ax, (stage, r) in zip(axes[0], results.items()):
-            PL.draw_curve(ax, r.best, r.mean, PL.CURVE_TITLES[stage])
+    PL.plot_learning_curves(ctx, results)
     return _train_metrics(settings, results)
