@@ -16,3 +16,8 @@ def test_blocks():
         "<h3>Title</h3>", "<p>first line second line</p>", "<ul><li>one more</li><li>two</li></ul>",
         "<ol><li>a</li><li>b</li></ol>", "<pre><code>&lt;x&gt; *y*</code></pre>",
         '<table class="md"><tr><th>a</th><th>b</th></tr><tr><td>1</td><td>2</td></tr></table>']
+
+
+def test_a_line_that_starts_like_a_heading_is_text():
+    """'#11' opens a paragraph (the snake's notes cite spec checks so); it once looped forever."""
+    assert to_html("#11 of the spec\nholds.\n\nnext") == "<p>#11 of the spec holds.</p>\n<p>next</p>"

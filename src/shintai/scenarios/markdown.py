@@ -77,7 +77,7 @@ def to_html(text: str) -> str:
             tag = "ol" if ordered else "ul"
             out.append(f"<{tag}>" + "".join(f"<li>{inline(item)}</li>" for item in items) + f"</{tag}>")
             continue
-        j = i
+        j = i + 1  # a paragraph holds at least its first line (a "#3" that is no heading, say)
         while (j < len(lines) and lines[j].strip() and not _LIST.match(lines[j])
                and not lines[j].lstrip().startswith(("```", "|", "#"))):
             j += 1
