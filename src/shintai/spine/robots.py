@@ -15,7 +15,9 @@ otherwise (``_deg``, ``_kgf``, ``_mm``).
 * :data:`BEBE` — 24 vertebrae, 36 on/off McKibben muscles in 6 regions (§4.8.2).
 
 The chain robots (Cla, Rabbit, Kenta, BeBe) carry a :class:`~shintai.spine.geometry.SpineModel`
-(``robot.model``) for the geometric model of §4.4.
+(``robot.model``) for the geometric model of §4.4. The experiments' protocols and the shared layers' numbers
+(inverse model, posture-database session, tracking loops) close the file; each unit's own numbers are in its
+``constants`` module.
 """
 
 from __future__ import annotations
