@@ -312,9 +312,11 @@ def test_only_the_runner_and_named_owners_build_a_loop():
 
 
 # --- one place per constant (DESIGN.md): a body's numbers live in its constants file or its units' ---------------
-# Bodies brought to the rule, each with its constants files (relative to the body's folder). The spine
-# (``spine/robots.py``) still keeps 123 module-level numbers in its units' modules: add it when they have moved.
-CONSTANTS_FILES = {"humanoid": ("constants.py", "tricycle/constants.py", "unicycle/constants.py", "vboard/constants.py")}
+# Bodies brought to the rule, each with its constants files (relative to the body's folder). The spine's robots'
+# parameter sets are ``spine/robots.py``; its shared layers' protocol numbers ``spine/constants.py``.
+CONSTANTS_FILES = {"humanoid": ("constants.py", "tricycle/constants.py", "unicycle/constants.py", "vboard/constants.py"),
+                   "spine": ("robots.py", "constants.py", "bebe/constants.py", "cla/constants.py",
+                             "hanzous/constants.py", "kenta/constants.py", "mocap/constants.py", "sq43/constants.py")}
 # (module, name) that stay where they are, with the reason
 CONSTANTS_KEPT_IN_PLACE = {
     ("shintai.humanoid.learning.slc", "PITCH"): "an index into FootDamping's (roll, pitch), not a parameter",
@@ -324,6 +326,7 @@ CONSTANTS_KEPT_IN_PLACE = {
     ("shintai.humanoid.tricycle.hrp2_limbs", "_ORIGIN"): "the waist frame's own pose, private to the IK",
     ("shintai.humanoid.tricycle.hrp2_limbs", "_EYE"): "the waist frame's own pose, private to the IK",
     ("shintai.humanoid.tricycle.switching", "Y_AXIS"): "a frame's axis, not a parameter",
+    ("shintai.spine.mocap.retarget", "TO_ROBOT"): "the BVH-to-robot axis permutation (frames' axes), not a parameter",
 }
 LITERAL_CALLS = {"array", "diag", "radians", "deg2rad", "asarray"}  # np.array([...]) of numbers is a number too
 

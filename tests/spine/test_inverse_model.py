@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from shintai.spine import inverse_model as im
-from shintai.spine.robots import CLA
+from shintai.spine.robots import CLA, GRID_DEG, TEST_LIMIT_DEG
 
 MODEL = CLA.model
 
@@ -15,7 +15,7 @@ def test_training_grid_is_the_343_uniform_bends():
     assert theta.shape == (343, 15)
     per_joint = theta.reshape(343, 5, 3)
     assert np.allclose(per_joint, per_joint[:, :1, :])  # eq. 4.29: every joint bends alike
-    assert set(np.round(np.degrees(theta).ravel(), 9)) == set(im.GRID_DEG)
+    assert set(np.round(np.degrees(theta).ravel(), 9)) == set(GRID_DEG)
     assert len({tuple(row) for row in np.round(theta[:, :3], 12)}) == 343
 
 
@@ -23,7 +23,7 @@ def test_random_postures_are_uniform_bends_in_range():
     theta = im.random_postures(MODEL.n, 50, np.random.default_rng(0))
     assert theta.shape == (50, 15)
     assert np.allclose(theta.reshape(50, 5, 3), theta[:, None, :3])
-    assert np.abs(np.degrees(theta)).max() <= im.TEST_LIMIT_DEG
+    assert np.abs(np.degrees(theta)).max() <= TEST_LIMIT_DEG
 
 
 def test_normaliser_round_trip_and_range():

@@ -46,12 +46,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from shintai.spine.geometry import SpineModel
-
-GRID_DEG = (-15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0)  # §4.4.3 teacher grid per joint and axis
-TEST_LIMIT_DEG = 15.0  # chosen: random test postures inside the teacher range ("between" its points)
-TARGET_RANGE = (0.1, 0.9)  # chosen: sigmoid targets kept off the flat ends 0 and 1
-INPUT_RANGE = (-1.0, 1.0)  # chosen: lengths mapped to ±1 for the sigmoid's linear region
-PINV_RCOND = 1e-6  # chosen: rank threshold of J_m⁺ relative to σ_max (module doc)
+from shintai.spine.robots import GRID_DEG, INPUT_RANGE, PINV_RCOND, TARGET_RANGE, TEST_LIMIT_DEG
 
 
 # ------------------------------------------------------------------------------------ postures

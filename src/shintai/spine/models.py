@@ -6,7 +6,8 @@ from shintai.spine.bodies_mujoco import build_spec
 from shintai.spine.cla.body import build_spec as build_cla_body
 from shintai.spine.cla.crawl import kneeling_spec
 from shintai.spine.hanzous.body import build_spec as build_hanzous
-from shintai.spine.kenta.body import SPINE_ARMATURE_KGM2, kenta_spec
+from shintai.spine.kenta.body import kenta_spec
+from shintai.spine.kenta.constants import SPINE_ARMATURE_KGM2
 from shintai.spine.robots import CLA, KENTA
 from shintai.spine.sq43.body import build_spec as build_sq43
 

@@ -17,14 +17,16 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture
 from shintai.spine.posture_session import LIMP, Supervisor
-
-# -- chosen constants (the thesis gives none of these for §5.9)
-REPLAY_SPEED_MM_S = 8.0  # constant replay speed in length space (§5.9.2 "一定の速さ"; value chosen)
-REPLAY_MIN_SEGMENT_S = 0.1  # shortest replay segment (chosen)
-EXEC_MOVE_S, EXEC_DWELL_S = 1.0, 0.8  # nearest-node execution: a move per node and a dwell to measure (chosen)
-PUSH_RAMP_S = 0.08  # a push rises and falls over this (chosen)
-GUIDE_S, GUIDE_HOLD_S = 2.0, 1.2  # the hand moves the limp spine to the taught posture, then holds it (chosen)
-PAUSE_S = 0.3  # the person waits this long after the robot is still before the next action (chosen)
+from shintai.spine.robots import (
+    EXEC_DWELL_S,
+    EXEC_MOVE_S,
+    GUIDE_HOLD_S,
+    GUIDE_S,
+    PAUSE_S,
+    PUSH_RAMP_S,
+    REPLAY_MIN_SEGMENT_S,
+    REPLAY_SPEED_MM_S,
+)
 
 
 @dataclass(frozen=True)

@@ -28,22 +28,18 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.spine.control import Mode, encoder_targets, interference_modes
 from shintai.spine.geometry import SpineModel, whole_spine
 from shintai.spine.posture_database import PostureDatabase
-from shintai.spine.robots import SAMPLE_PERIOD_S
+from shintai.spine.robots import (
+    ARM_STILL_NM,
+    BASELINE_S,
+    LIMP_SETTLE_S,
+    MOVE_S,
+    SAMPLE_PERIOD_S,
+    SETTLE_S,
+    STILL_MM,
+    STILL_S,
+)
 from shintai.spine.tactile import STRONG, Fired, PushTrigger, TriggerLevels, moment_arms, nudge_target, push_moment
 
-# -- chosen constants (the thesis gives none of these for §5.9)
-D_LEN_MM = 3.0  # node threshold in length space: chosen ≈ Cla's 5° whole-spine pitch (3.2 mm; roll 5.9, yaw 2.4)
-D_SENSOR_DEG = 5.0  # posture-sensor threshold (§5.9.1 uses one, value not given): chosen 5°
-MOVE_S = 1.0  # a nudge's minimum-jerk move (chosen)
-SETTLE_S = 1.0  # after a move, before the trigger re-arms and takes its tension baseline (chosen: at 0.6 s a
-# short run's |τ̂| still rose to 0.16 N m, past the weak level, within 0.3 s of re-arming — tensions still settling)
-ARM_STILL_NM = 0.05  # the trigger arms only once the tensions have held still for STILL_S: no 20 ms sample of
-# the last STILL_S differs from the newest by this much as a moment (chosen: a third of the weak level; with a fixed
-# 1.5 s wait the first default run fired a weak trigger with no push, on tensions still settling after teaching)
-BASELINE_S = 2.0  # the tension baseline follows slow drift (first order, this time constant) between pushes:
-# tensions keep creeping for seconds after a move (the length integral, reel friction); a 0.4 s push passes (chosen)
-LIMP_SETTLE_S = 1.5  # after teaching, before re-arming: the hand lets go meanwhile (chosen)
-STILL_S, STILL_MM = 0.3, 0.15  # teaching ends when no encoder moved more than this over this long (chosen)
 
 HOLD, MOVE, LIMP, PLAY = "hold", "move", "limp", "play"
 

@@ -15,7 +15,9 @@ otherwise (``_deg``, ``_kgf``, ``_mm``).
 * :data:`BEBE` — 24 vertebrae, 36 on/off McKibben muscles in 6 regions (§4.8.2).
 
 The chain robots (Cla, Rabbit, Kenta, BeBe) carry a :class:`~shintai.spine.geometry.SpineModel`
-(``robot.model``) for the geometric model of §4.4.
+(``robot.model``) for the geometric model of §4.4. The experiments' protocols and the shared layers' numbers
+(inverse model, posture-database session, tracking loops) close the file; each unit's own numbers are in its
+``constants`` module.
 """
 
 from __future__ import annotations
@@ -877,3 +879,41 @@ TABLE_4_2_DEG = (1.0, 5.0, 10.0)  # Table 4.2: the true per-joint angles, one ax
 BEBE_PUSH_PERIOD_S = 3.0  # chosen: push right 3 s, release 3 s, push left 3 s, release 3 s, … (Fig. 4.55)
 BEBE_FORCE_AT_S = 1.0  # chosen: forced-on muscles switched on 1 s into a forced-on run (Fig. 4.56)
 SQ43_GRID_CHECK_DEG = 5.0  # chosen: coarse exhaustive grid that shows where the compass searches stopped
+
+# The shared layers' protocols (§4.4.3, §5.2.10–5.2.12, §5.9), grouped by the module that uses them
+# --- inverse_model ---
+GRID_DEG = (-15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0)  # §4.4.3 teacher grid per joint and axis
+TEST_LIMIT_DEG = 15.0  # chosen: random test postures inside the teacher range ("between" its points)
+TARGET_RANGE = (0.1, 0.9)  # chosen: sigmoid targets kept off the flat ends 0 and 1
+INPUT_RANGE = (-1.0, 1.0)  # chosen: lengths mapped to ±1 for the sigmoid's linear region
+PINV_RCOND = 1e-6  # chosen: rank threshold of J_m⁺ relative to σ_max (module doc)
+
+# --- posture_person ---
+# -- chosen constants (the thesis gives none of these for §5.9)
+REPLAY_SPEED_MM_S = 8.0  # constant replay speed in length space (§5.9.2 "一定の速さ"; value chosen)
+REPLAY_MIN_SEGMENT_S = 0.1  # shortest replay segment (chosen)
+EXEC_MOVE_S, EXEC_DWELL_S = 1.0, 0.8  # nearest-node execution: a move per node and a dwell to measure (chosen)
+PUSH_RAMP_S = 0.08  # a push rises and falls over this (chosen)
+GUIDE_S, GUIDE_HOLD_S = 2.0, 1.2  # the hand moves the limp spine to the taught posture, then holds it (chosen)
+PAUSE_S = 0.3  # the person waits this long after the robot is still before the next action (chosen)
+
+# --- posture_session ---
+# -- chosen constants (the thesis gives none of these for §5.9)
+D_LEN_MM = 3.0  # node threshold in length space: chosen ≈ Cla's 5° whole-spine pitch (3.2 mm; roll 5.9, yaw 2.4)
+D_SENSOR_DEG = 5.0  # posture-sensor threshold (§5.9.1 uses one, value not given): chosen 5°
+MOVE_S = 1.0  # a nudge's minimum-jerk move (chosen)
+SETTLE_S = 1.0  # after a move, before the trigger re-arms and takes its tension baseline (chosen: at 0.6 s a
+# short run's |τ̂| still rose to 0.16 N m, past the weak level, within 0.3 s of re-arming — tensions still settling)
+ARM_STILL_NM = 0.05  # the trigger arms only once the tensions have held still for STILL_S: no 20 ms sample of
+# the last STILL_S differs from the newest by this much as a moment (chosen: a third of the weak level; with a fixed
+# 1.5 s wait the first default run fired a weak trigger with no push, on tensions still settling after teaching)
+BASELINE_S = 2.0  # the tension baseline follows slow drift (first order, this time constant) between pushes:
+# tensions keep creeping for seconds after a move (the length integral, reel friction); a 0.4 s push passes (chosen)
+LIMP_SETTLE_S = 1.5  # after teaching, before re-arming: the hand lets go meanwhile (chosen)
+STILL_S, STILL_MM = 0.3, 0.15  # teaching ends when no encoder moved more than this over this long (chosen)
+
+# --- tracking_loops ---
+TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
+# chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
+CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
+TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded

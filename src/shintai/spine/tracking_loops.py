@@ -33,18 +33,20 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
 from shintai.spine.inverse_model import jacobian_integration
-from shintai.spine.robots import KENTA_CAMERA_FOVY_DEG
+from shintai.spine.robots import (
+    CONCURRENT_THRESHOLD_DEG,
+    CONCURRENT_WINDOW_S,
+    KENTA_CAMERA_FOVY_DEG,
+    TARGET_DISTANCE_M,
+    TRACKING_SPINE_RANGE_RAD,
+)
 
 # Chosen, because §5.2.12 gives no period: the eyes at the video frame rate of the CCD cameras (NTSC, 30 Hz),
 # the neck at BeBe's image-feedback period (66 ms, §4.8.3), the spine slower again (its muscles move it at
 # tens of mm/s, Table 3.3), so the three periods differ as the thesis says.
 TRACKING_PERIODS_S = {"eyes": 0.033, "neck": 0.066, "spine": 0.198}
-TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
-# chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
-CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
 # Chosen: the fraction of the image offset each loop corrects per period (the thesis tuned its gains by hand)
 TRACKING_GAINS = {"eyes": 0.3, "neck": 0.12, "spine": 0.15}
-TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
 
 
 def image_offset(cam_pos, cam_mat, point, fovy_deg: float = KENTA_CAMERA_FOVY_DEG, aspect: float = 4 / 3):

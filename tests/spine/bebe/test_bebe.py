@@ -6,6 +6,7 @@ import pytest
 from shintai.core import Body, Loop, declare
 from shintai.core.runtime import ChannelError, FunctionModule
 from shintai.spine.bebe import body as bebe
+from shintai.spine.bebe.constants import SPANS
 
 # Four hand-made view shifts: right, up, left, and a 45° diagonal (right-up).
 SHIFTS = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [1.0, 1.0]])
@@ -133,7 +134,7 @@ def test_cooperating_muscles_on_one_span_do_not_superpose(plant_and_shifts):
     make, shifts = plant_and_shifts
     names = make().model.muscles.names
     same = (names.index("rectus-L/waist-abdomen 1"), names.index("ext-oblique-L/waist-abdomen 1"))
-    assert same in bebe.cooperating_pairs(shifts, len(bebe.SPANS))
+    assert same in bebe.cooperating_pairs(shifts, len(SPANS))
     other = (names.index("rectus-L/waist-abdomen 1"), names.index("rectus-L/abdomen 1-shoulder"))
     e_same, e_other = bebe.superposition_error(make, shifts, [same, other], 0.5)
     assert e_same > 0.05 and e_same > 2 * e_other

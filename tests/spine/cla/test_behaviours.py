@@ -12,6 +12,7 @@ from shintai.spine.cla import cop as CB
 from shintai.spine.cla import pick_place as PP
 from shintai.spine.cla import roll_over as RO
 from shintai.spine.cla.body import LIMB_JOINTS, SPINE_JOINTS, ClaBody, start_targets
+from shintai.spine.cla.constants import COP_ARM_SPEED_RAD_S, COP_BAND_M, COP_FULL_M
 from shintai.spine.cla.keyframes import Key, KeyframePlayer, WholeBodyKeys, key_vectors
 from shintai.spine.cla.reach import ArmIK
 from shintai.spine.control import SETPOINTS
@@ -33,9 +34,9 @@ def test_keys_change_only_what_they_name_and_are_reached_on_time():
 
 
 def test_reflex_moves_the_arms_back_when_the_cop_is_ahead_and_rests_near_the_centre():
-    assert CB.reflex_rate(0.5 * CB.COP_BAND_M) == 0.0
-    assert CB.reflex_rate(CB.COP_FULL_M) == pytest.approx(-CB.COP_ARM_SPEED_RAD_S)  # ahead → arms back
-    assert CB.reflex_rate(-2 * CB.COP_FULL_M) == pytest.approx(CB.COP_ARM_SPEED_RAD_S)  # behind → forward, capped
+    assert CB.reflex_rate(0.5 * COP_BAND_M) == 0.0
+    assert CB.reflex_rate(COP_FULL_M) == pytest.approx(-COP_ARM_SPEED_RAD_S)  # ahead → arms back
+    assert CB.reflex_rate(-2 * COP_FULL_M) == pytest.approx(COP_ARM_SPEED_RAD_S)  # behind → forward, capped
     assert CB.reflex_rate(float("nan")) == 0.0  # no CoP (off the ground): no reflex
     for enabled in (True, False):
         reflex = CB.ArmSwingReflex(lambda snap: 0.02, enabled=enabled)
@@ -106,5 +107,5 @@ def test_cop_balance_reflex_answers_the_soles():
         error = snap["cop"][0] - centre
         if not swing:
             assert reflex.offset == 0.0
-        elif abs(error) > CB.COP_BAND_M:
+        elif abs(error) > COP_BAND_M:
             assert np.sign(reflex.offset) == -np.sign(error)

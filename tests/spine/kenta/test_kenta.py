@@ -13,8 +13,9 @@ from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 from shintai.spine.control import SETPOINTS
 from shintai.spine.geometry import uniform_posture
-from shintai.spine.inverse_model import PINV_RCOND, jacobian_integration
-from shintai.spine.kenta.body import TEACHER_GROUP, KentaBody
+from shintai.spine.inverse_model import jacobian_integration
+from shintai.spine.kenta.body import KentaBody
+from shintai.spine.kenta.constants import TEACHER_GROUP
 from shintai.spine.kenta.postures import locked_hold
 from shintai.spine.kenta.statics import (
     critical_disc_stiffness,
@@ -25,7 +26,7 @@ from shintai.spine.kenta.statics import (
     upright_stiffness,
 )
 from shintai.spine.kenta.tracking import SWUNG, kenta_tracking
-from shintai.spine.robots import KENTA, KENTA_DISC_NM_RAD, KENTA_NECK_JOINTS
+from shintai.spine.robots import KENTA, KENTA_DISC_NM_RAD, KENTA_NECK_JOINTS, PINV_RCOND
 from shintai.spine.tracking_loops import (
     TRACKING_PERIODS_S,
     ArmSwing,

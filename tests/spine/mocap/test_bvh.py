@@ -9,6 +9,7 @@ from shintai.scenarios.registry import ParameterError
 from shintai.scenarios.runner import run_scenario
 from shintai.spine.mocap import bvh as bvh
 from shintai.spine.mocap import retarget as mocap
+from shintai.spine.mocap.constants import TWIST_PEAK_DEG
 
 SMALL = """HIERARCHY
 ROOT Hips
@@ -40,7 +41,7 @@ def test_shipped_clip_frames_channels_and_a_known_angle():
     assert clip.joint("Hips").channels == ("Xposition", "Yposition", "Zposition", "Zrotation", "Xrotation", "Yrotation")
     assert clip.joint("Chest").channels == ("Zrotation", "Xrotation", "Yrotation")  # §5.8.2's example order
     # the wind-up peaks at frame 45 (t = 1.5 s): the chest's share 0.35 of the 55° twist, at rest at frame 0
-    assert clip.channel("Chest", "Yrotation")[45] == pytest.approx(0.35 * mocap.TWIST_PEAK_DEG, abs=1e-4)
+    assert clip.channel("Chest", "Yrotation")[45] == pytest.approx(0.35 * TWIST_PEAK_DEG, abs=1e-4)
     assert clip.channel("Chest", "Yrotation")[0] == 0.0
 
 

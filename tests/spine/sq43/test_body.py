@@ -11,9 +11,10 @@ from shintai.evolve import make_executor
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.runner import RunContext
 from shintai.spine import ga_run
-from shintai.spine.sq43 import design as sq43
 from shintai.spine.sq43 import body as B
+from shintai.spine.sq43 import design as sq43
 from shintai.spine.sq43 import gaits as G
+from shintai.spine.sq43.constants import DUTY, GENE_HI, GENE_LO
 
 
 def test_model_mass_and_dof():
@@ -59,7 +60,7 @@ def test_trot_foot_path_follows_the_genes():
         assert 1e3 * p[:, 2].min() == pytest.approx(-218.0)  # natural length
         assert 1e3 * (p[:, 2].max() - p[:, 2].min()) == pytest.approx(15.0)  # height
         lifted = p[:, 2] > p[:, 2].min() + 1e-9
-        assert lifted.mean() == pytest.approx(1 - G.DUTY, abs=0.01)  # duty 0.5
+        assert lifted.mean() == pytest.approx(1 - DUTY, abs=0.01)  # duty 0.5
         start = G.START_TIME_S[leg]
         first = t[np.argmax(lifted)]
         assert first == pytest.approx(start, abs=0.002)  # swing starts at the start time
@@ -87,27 +88,27 @@ FIT = G.TrotFitness(duration_s=1.0)
 
 @pytest.fixture(scope="module")
 def serial(tmp_path_factory):
-    return _evolve(_ctx(tmp_path_factory.mktemp("serial")), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    return _evolve(_ctx(tmp_path_factory.mktemp("serial")), "trot", FIT, GENE_LO, GENE_HI)
 
 
 @pytest.mark.parametrize("kind", ["process", "ray"])
 def test_executors_give_identical_generations(tmp_path, serial, kind):
-    result = _evolve(_ctx(tmp_path, executor=kind, workers=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    result = _evolve(_ctx(tmp_path, executor=kind, workers=2), "trot", FIT, GENE_LO, GENE_HI)
     np.testing.assert_array_equal(result.history.best, serial.history.best)
     np.testing.assert_array_equal(result.best_genome, serial.best_genome)
 
 
 def test_killed_run_resumes_to_the_same_result(tmp_path):
-    straight = _evolve(_ctx(tmp_path / "a", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
-    _evolve(_ctx(tmp_path / "b", generations=2), "trot", FIT, G.GENE_LO, G.GENE_HI)
-    resumed = _evolve(_ctx(tmp_path / "b", generations=3), "trot", FIT, G.GENE_LO, G.GENE_HI)
+    straight = _evolve(_ctx(tmp_path / "a", generations=3), "trot", FIT, GENE_LO, GENE_HI)
+    _evolve(_ctx(tmp_path / "b", generations=2), "trot", FIT, GENE_LO, GENE_HI)
+    resumed = _evolve(_ctx(tmp_path / "b", generations=3), "trot", FIT, GENE_LO, GENE_HI)
     np.testing.assert_array_equal(resumed.history.best, straight.history.best)
     np.testing.assert_array_equal(resumed.best_genome, straight.best_genome)
 
 
 def test_executor_names():
     with make_executor("serial") as ex:
-        assert ex.map(FIT, [G.GENE_LO]) == [FIT(G.GENE_LO)]
+        assert ex.map(FIT, [GENE_LO]) == [FIT(GENE_LO)]
 
 
 def _evolve(ctx, *args, **kw):

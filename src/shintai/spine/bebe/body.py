@@ -49,13 +49,13 @@ import numpy as np
 
 from shintai.core import Body, Loop, Module, Recorder, SimulationDiverged
 from shintai.core.runtime import SET, FunctionModule, declare
+from shintai.spine.bebe.constants import MIDDLE, SPANS
 from shintai.spine.geometry import Chain, MuscleSet, SpineModel
 from shintai.spine.robots import BEBE
 
 CYCLE_S = BEBE.image_period_s  # 66 ms image feedback, §4.8.4
 COS_THRESHOLD = BEBE.cos_threshold  # §4.8.3, "cos θ_i = 0.2", chosen empirically by the thesis
 REGIONS = ("waist", "abdomen 2", "abdomen 1", "chest", "shoulder", "head")  # Fig. 4.50, bottom to top
-MIDDLE = 2  # abdomen 1: where a human pushes "the middle of the spine" (Fig. 4.55)
 
 # (kind, angle at the lower ring, angle at the upper ring) [deg], from +x (front) towards +y (left).
 # Chosen, because Table 4.10 is not in the text: Fig. 4.49 copies the rectus abdominis (front,
@@ -69,9 +69,6 @@ MUSCLE_KINDS = (
     ("int-oblique-L", 110.0, 40.0), ("int-oblique-R", -110.0, -40.0),
     ("back-oblique-L", 140.0, 70.0), ("back-oblique-R", -140.0, -70.0),
 )
-# (lower region, upper region): 3 spans × 12 kinds = 36 muscles (thesis: 36). Chosen so that every
-# joint is crossed and the head is moved by a neck-like span.
-SPANS = ((0, 2), (2, 4), (3, 5))
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ import numpy as np
 from matplotlib.patches import Circle, Wedge
 
 from shintai.spine.bebe import body as bebe
+from shintai.spine.bebe.constants import SPANS
 from shintai.spine.bebe.runs import BeBeResults, push_profile
 from shintai.spine.robots import BEBE_FORCE_AT_S, BEBE_PUSH_PERIOD_S
 
@@ -14,8 +15,8 @@ from shintai.spine.robots import BEBE_FORCE_AT_S, BEBE_PUSH_PERIOD_S
 def plot_bebe_calibration(ctx, shifts: np.ndarray) -> None:
     """Fig. 4.53 analogue: the 36 view shifts v_i, coloured by span; the same-direction cone of one v."""
     with ctx.figure("bebe_calibration", figsize=(6.0, 5.6)) as (fig, ax):
-        for span, color in zip(range(len(bebe.SPANS)), ("tab:blue", "tab:orange", "tab:green")):
-            a, b = bebe.SPANS[span]
+        for span, color in zip(range(len(SPANS)), ("tab:blue", "tab:orange", "tab:green")):
+            a, b = SPANS[span]
             block = shifts[span * len(bebe.MUSCLE_KINDS):(span + 1) * len(bebe.MUSCLE_KINDS)]
             for v in block:
                 ax.annotate("", v, (0, 0), arrowprops={"arrowstyle": "->", "color": color, "lw": 1})

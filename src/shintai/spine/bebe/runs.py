@@ -10,6 +10,7 @@ import numpy as np
 
 from shintai.core.recorder import Recorder
 from shintai.spine.bebe import body as bebe
+from shintai.spine.bebe.constants import SPANS
 from shintai.spine.robots import BEBE_FORCE_AT_S, BEBE_PUSH_PERIOD_S
 
 FORCED_CASES = {  # Fig. 4.56: "muscles tilting the spine left", "muscles tilting it backwards"
@@ -65,7 +66,7 @@ def run_bebe(seed: int, recorder: Recorder, *, dead_zone_px: float, cos_threshol
     kw = {"dead_zone_px": dead_zone_px, "cos_threshold": cos_threshold, "recorder": recorder}
     shifts = bebe.calibrate(make)
     progress(0.1, "calibrated")
-    pairs = bebe.cooperating_pairs(shifts, len(bebe.SPANS), cos_threshold)
+    pairs = bebe.cooperating_pairs(shifts, len(SPANS), cos_threshold)
     superposition = bebe.superposition_error(make, shifts, pairs)
     kinds = len(bebe.MUSCLE_KINDS)  # for comparison: the same kind on the two lower spans (other joints)
     cross_span = bebe.superposition_error(make, shifts, [(k, k + kinds) for k in range(kinds)])

@@ -1,6 +1,7 @@
 """Cla (seed 003 §3.4, §4.2–4.7, §5.2, §5.9): the arms-only spine of E9–E11 and the whole-body Cla of chapter 5.
 
 body — the whole-body MuJoCo Cla: the muscle spine with arms, neck, head and legs, seated or standing (§5.2)
+constants — the Cla unit's numbers, per behaviour, each with its thesis section or why it was chosen
 control — commanding the whole body's spine: encoder zeroing, then L mode with posture targets (§4.6.4)
 cop — the arm-swing reflex keeping the centre of pressure centred while standing (§5.2.7)
 crawl — Cla on hands and knees, and the crawl whose spine roll a GA evolves (§5.2.9, Figs. 5.10–5.11)

@@ -46,6 +46,7 @@ from shintai.core.runtime import SET, declare
 from shintai.sim.spec import add_capsule, add_hinge, add_position_actuator
 from shintai.spine.bodies_mujoco import SpineBody
 from shintai.spine.bodies_mujoco import build_spec as build_spine
+from shintai.spine.cla.constants import CORNER_RADIUS_M, FSR_CORNERS, ROBOT, SEAT_KP, SEAT_KV, SEAT_TORQUE_NM, WORLD
 from shintai.spine.robots import (
     CLA,
     CLA_ARM_KG,
@@ -91,14 +92,10 @@ LEG_JOINTS = ("hip", "knee", "ankle_pitch", "ankle_roll")
 NECK_JOINTS = ("neck_yaw", "neck_pitch")
 LIMB_JOINTS = tuple(f"{j}_{s}" for s in SIDES for j in ARM_JOINTS + LEG_JOINTS) + NECK_JOINTS
 OBJECTS = ("desk_object", "floor_object")  # free objects of the seated scene
-FSR_CORNERS = ((1, 1), (1, -1), (-1, -1), (-1, 1))  # sole corners (x, y signs): toe-left, toe-right, heel-r, heel-l
-CORNER_RADIUS_M = 0.006  # the sole's contact spheres under the FSRs (chosen)
 # The seated start: thighs forward (hip 90°), shanks down, arms hanging a little forward (chosen)
 SEATED_POSE = {"hip": 1.5708, "knee": 1.5708, "shoulder_pitch": 0.0, "elbow": 0.3}
 STAND_HEIGHT_M = -CLA_HIP_M[2] + CLA_THIGH_M + CLA_SHANK_M + 2 * CLA_FOOT_HALF_M[2]  # pelvis origin above floor
-ROBOT, WORLD = 1, 1  # contact bits: robot contact geoms (hands, sole corners) touch world geoms and objects only
 LIMB_ROLL_AXIS = {"r": [-1.0, 0.0, 0.0], "l": [1.0, 0.0, 0.0]}  # + = outward for both sides
-SEAT_KP, SEAT_KV, SEAT_TORQUE_NM = 300.0, 10.0, 60.0  # the tilting seat's drive (chosen: stiff, a person's hands)
 
 
 def _sign(side: str) -> float:

@@ -17,16 +17,19 @@ import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.cla.body import LIMB_JOINTS, ClaBody, start_targets
+from shintai.spine.cla.constants import (
+    BEND_DEG,
+    COP_ARM_RANGE_RAD,
+    COP_ARM_SPEED_RAD_S,
+    COP_BAND_M,
+    COP_FULL_M,
+    HALF_PERIOD_S,
+    SETTLE_S,
+)
 from shintai.spine.cla.control import spine_control
 from shintai.spine.cla.keyframes import Key, WholeBodyKeys
 from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA
-
-# Chosen, because not in the text (§5.2.7 says only "中心付近", "少しずつ", "ゆっくりと"):
-COP_BAND_M = 0.003  # the reflex rests while the CoP is within ±3 mm of the sole's front–back centre
-COP_FULL_M = 0.015  # beyond ±15 mm of the centre the arms move at their full reflex speed
-COP_ARM_SPEED_RAD_S = math.radians(10.0)  # full reflex speed of the arms' pitch offset: 10°/s ("ゆっくり")
-COP_ARM_RANGE_RAD = math.radians(60.0)  # the offset is kept within ±60° of the arms' basic posture
 
 
 def reflex_rate(error_m: float) -> float:
@@ -66,10 +69,6 @@ class ArmSwingReflex(Module):
         return dict.fromkeys(self.channels, self.offset)
 
 
-# The side bends (chosen: §5.2.7 says "ゆっくりと左右の脊椎を屈曲する運動" only)
-BEND_DEG = 30.0  # whole-spine roll to each side (a third of the range, 5 × ±18°)
-HALF_PERIOD_S = 3.0  # one side to the other
-SETTLE_S = 1.0  # standing still before the bends start
 VARIANTS = ("swing", "no_swing")
 
 

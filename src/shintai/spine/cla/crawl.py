@@ -45,6 +45,7 @@ import numpy as np
 from mujoco import rollout
 
 from shintai.sim.spec import add_capsule, add_position_actuator
+from shintai.spine.cla.constants import FAILED_FITNESS, MAX_STEP_M, PHASES, SPINE_KV, W_PEAK_TORQUE, W_TORQUE_INTEGRAL
 from shintai.spine.robots import (
     CLA,
     CLA_ARMS_DOWN,
@@ -84,21 +85,12 @@ from shintai.spine.robots import (
     CRAWL_UPPER_ARM_M,
 )
 
-PHASES = 4
 LIMBS = ("arm_r", "leg_l", "arm_l", "leg_r")  # the limb swinging in phase k (the infants' lateral sequence)
 N_GENES = 2 * PHASES  # roll amounts, then durations
 AXES = ("yaw", "pitch", "roll")
 SPINE_JOINTS = tuple(f"j{i + 1}_{a}" for i in range(CLA_JOINTS) for a in AXES)
 LIMB_JOINTS = ("shoulder_r", "elbow_r", "shoulder_l", "elbow_l", "hip_r", "knee_r", "hip_l", "knee_l")
 ACTUATED = LIMB_JOINTS + SPINE_JOINTS
-# Fitness weights (ours, §5.2.9 gives none): a 1 N m s torque integral costs as much as 1 mm of progress and
-# a 1 N m peak as 1 cm, so the distance leads (chosen before the GA runs, from the hand-made crawl's scale:
-# 0.43 m, ≈ 64 N m s and ≈ 1.3 N m in 8 s, so its torque terms cost ≈ 15 % and 3 % of its distance)
-W_TORQUE_INTEGRAL = 1e-3  # m per N m s
-W_PEAK_TORQUE = 1e-2  # m per N m
-FAILED_FITNESS = -1.0  # a rollout that diverged (non-finite, or reset by MuJoCo: a jump of MAX_STEP_M in a step)
-MAX_STEP_M = 0.05
-SPINE_KV = 0.3  # N m s/rad: the spine servos' damping (chosen), besides the disc's own
 
 # Where the limbs attach (trunk frame: x toward the head, y left, z toward the back)
 PELVIS_TO_BALL1 = CRAWL_PELVIS_HALF_M[0] + CLA_FIRST_BALL_M

@@ -26,13 +26,10 @@ from shintai.core.runtime import Module, Snapshot
 from shintai.scenarios.experiment import Rig
 from shintai.spine.actuators import tilt
 from shintai.spine.cla.body import ClaBody
+from shintai.spine.cla.constants import SEAT_MOVE_S, TILT1_S
 from shintai.spine.cla.control import CHANNELS, spine_control, spine_stages
 from shintai.spine.geometry import whole_spine
 from shintai.spine.inverse_model import NeuralInverse
-
-# The disturbance's timing (chosen): the seat tilts at 0.5 s (and again at the scenario's tilt2_s), each move
-# taking 1 s; the shoulders' settled tilt is averaged over the last second before the next move and before the end
-TILT1_S, SEAT_MOVE_S = 0.5, 1.0
 
 
 class SeatTilt(Module):

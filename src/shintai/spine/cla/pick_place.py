@@ -29,6 +29,14 @@ import numpy as np
 
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.cla.body import LIMB_JOINTS, SPINE_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla.constants import (
+    FLOOR_CLEARANCE_M,
+    GRIP_TOLERANCE_M,
+    HOVER_M,
+    OBJECT_XY_M,
+    PICK_PLACE_YAW_DEG,
+    ROLL_DEG,
+)
 from shintai.spine.cla.control import spine_control
 from shintai.spine.cla.keyframes import Key, WholeBodyKeys
 from shintai.spine.cla.reach import ArmIK
@@ -42,15 +50,7 @@ from shintai.spine.robots import (
     CLA_OBJECT_HALF_M,
 )
 
-# Chosen, because not in the text:
-FLOOR_CLEARANCE_M = 0.01  # the soles 1 cm above the floor ("足が地面に着かない程度の高さの椅子", §5.2.1)
-OBJECT_XY_M = (0.02, -0.13)  # the object beside the right foot, under the right shoulder bent sideways
 SPOT_XY_M = (CLA_DESK_NEAR_M + 0.15, 0.0)  # the place spot: the desk's middle, 15 cm beyond its near edge
-ROLL_DEG = 72.0  # the sideways bend: 80 % of the spine's range (5 × ±18°, §3.6.1)
-YAW_DEG = 60.0  # the twist toward the desk: two thirds of the range
-GRIP_TOLERANCE_M = 0.01  # the hand closes on the object if its surface is within 1 cm of the object's top
-HOVER_M = 0.04  # the hand's approach height above where it grips or releases
-PLACED_TOLERANCE_M = 0.005  # resting on the desk: the object's bottom within 5 mm of the desk top
 
 
 def over_desk(hand) -> bool:
@@ -93,7 +93,7 @@ def set_scene(body: ClaBody) -> dict[str, np.ndarray]:
             "spot": np.array([*SPOT_XY_M, CLA_DESK_HEIGHT_M + 2 * CLA_OBJECT_HALF_M + CLA_HAND_RADIUS_M + 0.003])}
 
 
-def keys(ik: ArmIK, scene: dict, spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG
+def keys(ik: ArmIK, scene: dict, spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = PICK_PLACE_YAW_DEG
          ) -> tuple[list[Key], dict[str, float]]:
     """The behaviour's keys (module docstring) and the distance the solver leaves at each hand target [m]. The
     spine's keys are the same in both variants (locked, the spine does not follow them); the arm's are solved
@@ -156,7 +156,7 @@ def com_margin(body: ClaBody) -> float:
     return float(m.geom_size[seat][1] - abs(com_y - d.geom_xpos[seat][1]))
 
 
-def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = YAW_DEG, calibration_s: float = 1.0):
+def build(spine: bool, roll_deg: float = ROLL_DEG, yaw_deg: float = PICK_PLACE_YAW_DEG, calibration_s: float = 1.0):
     """A seated Cla in the scene, calibrated (§4.6.4, ``calibration_s``), its spine locked unless ``spine``; the
     keys' player (first stage), the hand, the muscle controller (second stage), the scene and the solver's gaps."""
     body = ClaBody("seated", spec=seated_spec())

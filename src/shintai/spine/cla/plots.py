@@ -10,9 +10,8 @@ import numpy as np
 from matplotlib.patches import Rectangle
 
 from shintai.core.constants import KGF_N
-from shintai.spine.cla import cop
 from shintai.spine.cla import crawl as CC
-from shintai.spine.cla import roll_over as roll_over_
+from shintai.spine.cla.constants import COP_BAND_M, ROLLED_DEG
 from shintai.spine.robots import CLA_DESK_HALF_M, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_OBJECT_HALF_M
 
 TAG_COLOUR = {"hold": "tab:gray", "move": "tab:blue", "limp": "tab:red", "play": "tab:green"}
@@ -205,7 +204,7 @@ def cop_balance(ctx, runs, params):
             ax_x.plot(t, err, color=colours[v], label=v.replace("_", " "))
             ax_arm.plot(t, run.log.values("arm_offset_deg"), color=colours[v])
             ax_roll.plot(t, run.log.values("roll_deg"), color=colours[v])
-        for b in (cop.COP_BAND_M, -cop.COP_BAND_M):
+        for b in (COP_BAND_M, -COP_BAND_M):
             ax_x.axhline(1e3 * b, color="tab:green", lw=0.6, ls="--")
         ax_x.set_ylabel("CoP − sole centre,\nfront–back [mm]")
         ax_x.set_title("centre of pressure (eq. 3.5, 8 FSRs); dashed: the reflex's rest band", fontsize=9)
@@ -258,7 +257,7 @@ def roll_over(ctx, runs, params):
             ax_turn.plot(t, run.log.values("pelvis_turn_deg"), "--", color=colours[v], label=f"pelvis, {v}")
             ax_yaw.plot(t, run.log.values("whole_deg")[:, 2], color=colours[v], label=v)
         ax_turn.axhline(90, color="k", lw=0.6, ls=":")
-        ax_turn.axhline(roll_over_.ROLLED_DEG, color="tab:green", lw=0.6, ls="--")
+        ax_turn.axhline(ROLLED_DEG, color="tab:green", lw=0.6, ls="--")
         ax_turn.set_ylabel("turn from lying on the back [deg]\n(90 = on a side, 180 = on the front)")
         ax_turn.set_title("how far each half of Cla turned over; dashed green: 'rolled over'", fontsize=9)
         ax_turn.legend(fontsize=7)

@@ -13,20 +13,15 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.scenarios.experiment import Rig
+from shintai.spine.cla.constants import MOTION_A_DEG, MOTION_B_DEG, MOTION_STEPS, TEACH_FORWARD_DEG, TEACH_SIDE_DEG
 from shintai.spine.cla.teach_runs import teaching_body
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.posture_database import PostureDatabase
-from shintai.spine.posture_person import EXEC_DWELL_S, Action, Experimenter
-from shintai.spine.posture_session import LIMP, MOVE, PLAY, SETTLE_S, Supervisor
-from shintai.spine.robots import CLA, SAMPLE_PERIOD_S
+from shintai.spine.posture_person import Action, Experimenter
+from shintai.spine.posture_session import LIMP, MOVE, PLAY, Supervisor
+from shintai.spine.robots import CLA, EXEC_DWELL_S, SAMPLE_PERIOD_S, SETTLE_S
 from shintai.spine.tactile import STRONG, WEAK, TriggerLevels
-
-# The postures the hand teaches (whole-spine roll, pitch, yaw [deg]) and Fig. 5.29's model motion A → B (chosen)
-TEACH_FORWARD_DEG = (0.0, 20.0, 0.0)
-TEACH_SIDE_DEG = (-15.0, 5.0, 10.0)
-MOTION_A_DEG, MOTION_B_DEG = (0.0, 18.0, 0.0), (-12.0, 5.0, 8.0)
-MOTION_STEPS = 5
 
 
 def session_actions(weak_n: float, strong_n: float, execute: bool = True, size: str = "full") -> list[Action]:

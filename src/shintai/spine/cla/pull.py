@@ -27,25 +27,19 @@ import numpy as np
 from shintai.core.runtime import Module, Snapshot
 from shintai.scenarios.experiment import Rig
 from shintai.spine.cla.body import ClaBody
+from shintai.spine.cla.constants import CLEARANCE_M, END_S, FOLD, LIFT_XZ_M, PRESS_M, PULL_TO_X_M, SUCCESS_M
 from shintai.spine.cla.control import CHANNELS, spine_control, spine_stages
 from shintai.spine.cla.keyframes import Key, KeyframePlayer
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA, CLA_DESK_HEIGHT_M, CLA_HAND_RADIUS_M, CLA_OBJECT_HALF_M, CLA_SHOULDER_M
 
 ARM = ("shoulder_pitch_r", "elbow_r", "wrist_r")
-PULL_TO_X_M = 0.17  # where the hand draws back to (chosen: 5 cm inside the desk's near edge)
-CLEARANCE_M = 0.003  # the hand's gap behind the object / above the desk at the keyframes (chosen)
-PRESS_M = 0.004  # the pulling hand's target this far below the desk contact, so it stays down (chosen)
-SUCCESS_M = 0.05  # the object counts as pulled when it came this far toward Cla (chosen before any run: 5 cm)
 # The timeline [s from the loop's start]: (time the arm arrives, keyframe name, spine lean fraction at it)
 # "lift" first raises the hand above the desk close to the chest (the seated arm hangs under the desk's edge)
 # ("fold": the elbow bent first, so that the hand rises close to the body)
 TIMELINE = ((0.6, "fold", 0.0), (1.2, "lift", 0.0), (2.7, "over", 1.0), (3.9, "down", 1.0), (5.2, "half", 0.5),
             (6.2, "pulled", 0.0))
 STARTS = {"fold": 0.0, "lift": 0.6, "over": 1.2, "down": 3.2, "half": 4.2, "pulled": 5.2}  # each move's start
-FOLD = (-0.6, 2.4, 0.0)  # the folded arm (shoulder pitch back, elbow bent, wrist) [rad]: the hand stays off the desk
-LIFT_XZ_M = (0.10, 0.06)  # the lifted hand: x, and height above the desk's contact height (chosen)
-END_S = 7.0
 
 
 def _set(m, d, lean: float, arm) -> None:

@@ -27,16 +27,12 @@ import mujoco
 import numpy as np
 
 from shintai.spine.cla.body import LIMB_JOINTS, ClaBody, build_spec, start_targets
+from shintai.spine.cla.constants import CONTACT_MIN_SIZE_M, LIE_HEIGHT_M, REST_S, ROLL_OVER_YAW_DEG
 from shintai.spine.cla.control import spine_control
 from shintai.spine.cla.keyframes import Key, WholeBodyKeys
 from shintai.spine.geometry import whole_spine
 from shintai.spine.robots import CLA
 
-CONTACT_MIN_SIZE_M = 0.009  # robot geoms at least this large touch the floor (not the reels, sites' helpers)
-LIE_HEIGHT_M = 0.06  # the pelvis origin above the floor when laid down (it then settles)
-REST_S = 1.0  # lying still before the keys start
-ROLLED_DEG = 135.0  # rolled over: both the pelvis and the shoulders turned beyond 135° (chosen: past the side)
-YAW_DEG = 60.0  # the twist (two thirds of the range, 5 × ±18°)
 VARIANTS = ("spine", "locked")
 
 
@@ -61,7 +57,7 @@ def lay(body: ClaBody) -> None:
     mujoco.mj_forward(m, d)
 
 
-def keys(yaw_deg: float = YAW_DEG) -> list[Key]:
+def keys(yaw_deg: float = ROLL_OVER_YAW_DEG) -> list[Key]:
     """Supine → prone toward the right (module docstring); yaw + twists the shoulders to the left."""
     yaw = math.radians(yaw_deg)
     return [Key(REST_S, {}, "rest"),
@@ -79,7 +75,7 @@ def turn_deg(body: ClaBody, part: str) -> float:
     return math.degrees(math.acos(float(np.clip(R[2, 0], -1.0, 1.0))))
 
 
-def build(spine: bool, yaw_deg: float = YAW_DEG, calibration_s: float = 1.0):
+def build(spine: bool, yaw_deg: float = ROLL_OVER_YAW_DEG, calibration_s: float = 1.0):
     """A lying Cla, calibrated upright then laid down, its spine locked unless ``spine``; the keys' player and
     the muscle controller."""
     body = ClaBody("standing", spec=lying_spec())

@@ -16,18 +16,23 @@ import numpy as np
 from shintai.core.constants import KGF_N
 from shintai.core.runtime import Loop
 from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.cla.constants import KEY_POSTURES_DEG
 from shintai.spine.cla.setup import calibrated
 from shintai.spine.control import SETPOINTS, Gains, Mode, MuscleControl
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
 from shintai.spine.robots import (
-    CLA, CLA_ARMS_DOWN, CLA_TRUNK_LOADS, E9_EXTRA_TICKS, E9_KEY_MOVE_S, E9_KEY_PERIOD_S, E9_RETURN_S,
-    E9_TAUGHT_S, SAMPLE_PERIOD_S,
+    CLA,
+    CLA_ARMS_DOWN,
+    CLA_TRUNK_LOADS,
+    E9_EXTRA_TICKS,
+    E9_KEY_MOVE_S,
+    E9_KEY_PERIOD_S,
+    E9_RETURN_S,
+    E9_TAUGHT_S,
+    SAMPLE_PERIOD_S,
 )
 from shintai.spine.scripted import Hand, Schedule
 from shintai.spine.teaching import L_GOAL, Playback, Recorder, Recording
-
-# §4.2.2 (a): three key postures taught by hand (whole-spine roll, pitch, yaw) — chosen
-KEY_POSTURES_DEG = ((0.0, 15.0, 0.0), (15.0, 0.0, 10.0), (-10.0, -10.0, 0.0))
 
 
 def demonstration(duration_s: float) -> np.ndarray:

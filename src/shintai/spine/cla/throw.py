@@ -29,17 +29,13 @@ import numpy as np
 from shintai.core.runtime import Module, Snapshot
 from shintai.scenarios.experiment import Rig
 from shintai.spine.cla.body import ClaBody
+from shintai.spine.cla.constants import FOLLOW_S, HOLD_S, SPINE_RELEASE_DEG, SPINE_WINDUP_DEG
 from shintai.spine.cla.control import spine_control
 from shintai.spine.cla.keyframes import SPINE_AXES, Key, KeyframePlayer
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.robots import CLA
 
-HOLD_S, FOLLOW_S = 0.5, 1.0  # the hold after the wind-up, the run after the throw starts [s] (chosen)
-# Postures (chosen: the thesis shows photographs only). Spine whole (roll, pitch, yaw) [deg]: wind-up leaning
-# back 10° and twisted right 30° (the right shoulder back), release leaning forward 15° and twisted left 30°.
-SPINE_WINDUP_DEG = (0.0, -10.0, -30.0)
-SPINE_RELEASE_DEG = (0.0, 15.0, 30.0)
 # Right arm servo targets [rad] (cla_body's signs): cocked with the hand behind the head, released forward-down
 ARM_WINDUP = {"shoulder_roll_r": 0.3, "shoulder_pitch_r": 2.9, "elbow_r": 2.0, "wrist_r": -0.3}
 ARM_RELEASE = {"shoulder_roll_r": 0.3, "shoulder_pitch_r": 1.2, "elbow_r": 0.2, "wrist_r": 0.5}

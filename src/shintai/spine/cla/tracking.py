@@ -11,6 +11,7 @@ import numpy as np
 
 from shintai.core.runtime import SET, declare
 from shintai.spine.cla.body import ClaBody
+from shintai.spine.cla.constants import CLA_NECK_LIMIT_RAD
 from shintai.spine.cla.control import spine_control
 from shintai.spine.robots import CLA, CLA_FOV_DEG
 from shintai.spine.tracking_loops import (
@@ -22,8 +23,6 @@ from shintai.spine.tracking_loops import (
     image_offset,
     tracking_stages,
 )
-
-CLA_NECK_LIMIT_RAD = np.radians(60.0)  # chosen: within the neck servos' range
 
 
 class TrackedCla(ClaBody):

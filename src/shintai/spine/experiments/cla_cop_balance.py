@@ -9,13 +9,13 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine.cla import plots as P
 from shintai.spine.cla import cop as CB
+from shintai.spine.cla import plots as P
+from shintai.spine.cla.constants import BEND_DEG, FALLEN_FORCE, HALF_PERIOD_S, SETTLE_S
 from shintai.spine.control import SETPOINTS
 
 Q_REFLEX = ("§5.2.7 '常に足裏の前後方向の中心付近に重心の投影点が来るように, 両腕を前後にゆっくりと動かしながらバランス"
             "をとる … こうした反射を, 左右の側屈の動作と並列に行うことで, 立った状態での運動ができるようになった'")
-FALLEN_FORCE = 0.5  # fallen: the soles carry less than half the weight (chosen)
 
 
 def rig(params, variant, seed):
@@ -31,7 +31,7 @@ def rig(params, variant, seed):
 def _one(run) -> dict:
     log = run.log
     t = log.times("cop")
-    bending = t >= run.state["t0"] + CB.SETTLE_S  # from the first bend on
+    bending = t >= run.state["t0"] + SETTLE_S  # from the first bend on
     cop, centre = log.values("cop")[bending], log.values("sole_centre_x")[bending]
     err = cop[:, 0] - centre
     weight = run.body.model.body_subtreemass[run.body.id("body", "link0")] * GRAVITY
@@ -55,8 +55,8 @@ experiment(
     summary="Cla standing bends its spine from side to side while both arms swing forward/back to keep the sole "
             "centre of pressure at the feet's front–back centre; the same bends without the arm swing",
     params=[Param("cycles", 2, "side-bend cycles (right, left)", lo=1, hi=20),
-            Param("bend_deg", CB.BEND_DEG, "whole-spine roll to each side [deg]", lo=0.0, hi=90.0),
-            Param("half_period_s", CB.HALF_PERIOD_S, "time from one side to the other [s]", lo=0.5, hi=30.0),
+            Param("bend_deg", BEND_DEG, "whole-spine roll to each side [deg]", lo=0.0, hi=90.0),
+            Param("half_period_s", HALF_PERIOD_S, "time from one side to the other [s]", lo=0.5, hi=30.0),
             Param("fraction", 1.0, "run this fraction of the sequence (tests)", lo=0.05, hi=1.0)],
     checks=(
         Check("cop_excursion_swing_m", "<", "cop_excursion_no_swing_m", Q_REFLEX + ": with the arm swing the CoP "

@@ -9,7 +9,8 @@ import numpy as np
 from shintai.scenarios.experiment import run_variants
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.cla import plots as P
-from shintai.spine.cla.levelling import TILT1_S, levelling_rig, levelling_series, settled
+from shintai.spine.cla.constants import TILT1_S
+from shintai.spine.cla.levelling import levelling_rig, levelling_series, settled
 from shintai.spine.inverse_model import NeuralInverse
 from shintai.spine.robots import CLA
 

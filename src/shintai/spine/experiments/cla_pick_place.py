@@ -8,8 +8,9 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
-from shintai.spine.cla import plots as P
 from shintai.spine.cla import pick_place as PP
+from shintai.spine.cla import plots as P
+from shintai.spine.cla.constants import GRIP_TOLERANCE_M, PICK_PLACE_YAW_DEG, PLACED_TOLERANCE_M, ROLL_DEG
 from shintai.spine.control import SETPOINTS
 from shintai.spine.robots import CLA_DESK_HALF_M, CLA_DESK_HEIGHT_M, CLA_DESK_NEAR_M, CLA_OBJECT_HALF_M
 
@@ -34,10 +35,10 @@ def _one(run) -> dict:
     scene, grip = st["scene"], st["grip"]
     obj, whole = log.values("object"), log.values("whole_deg")
     final = obj[-1]
-    on_desk = (abs(final[2] - CLA_OBJECT_HALF_M - CLA_DESK_HEIGHT_M) < PP.PLACED_TOLERANCE_M
+    on_desk = (abs(final[2] - CLA_OBJECT_HALF_M - CLA_DESK_HEIGHT_M) < PLACED_TOLERANCE_M
                and CLA_DESK_NEAR_M < final[0] < CLA_DESK_NEAR_M + 2 * CLA_DESK_HALF_M[0]
                and abs(final[1]) < CLA_DESK_HALF_M[1])
-    return {"picked": int(grip.closed_at is not None and grip.gap_at_grip <= PP.GRIP_TOLERANCE_M),
+    return {"picked": int(grip.closed_at is not None and grip.gap_at_grip <= GRIP_TOLERANCE_M),
             "grip_gap_m": grip.gap_at_grip,
             "lowest_hand_above_floor_m": float(log.values("hand")[:, 2].min() - PP.CLA_HAND_RADIUS_M
                                                - scene["floor_z"]),
@@ -60,8 +61,8 @@ experiment(
     source="seed 003 §5.2.5–5.2.6, Fig. 5.7 (Figs. 2.1–2.2)",
     summary="Cla, seated with its feet off the floor, picks an object from the floor by bending its spine sideways "
             "and puts it on the desk by twisting; the same hand targets with the spine locked",
-    params=[Param("roll_deg", PP.ROLL_DEG, "whole-spine sideways bend for the pick [deg]", lo=0.0, hi=90.0),
-            Param("yaw_deg", PP.YAW_DEG, "whole-spine twist for the place [deg]", lo=0.0, hi=90.0),
+    params=[Param("roll_deg", ROLL_DEG, "whole-spine sideways bend for the pick [deg]", lo=0.0, hi=90.0),
+            Param("yaw_deg", PICK_PLACE_YAW_DEG, "whole-spine twist for the place [deg]", lo=0.0, hi=90.0),
             Param("fraction", 1.0, "run this fraction of the sequence (tests)", lo=0.05, hi=1.0)],
     checks=(
         Check("picked_spine", "==", 1, Q_PICK + ": with the spine the hand reaches the object and lifts it",

@@ -7,7 +7,8 @@ from __future__ import annotations
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.cla import plots as P
-from shintai.spine.cla.pull import SUCCESS_M, pull_rig, pull_series, pull_summary
+from shintai.spine.cla.constants import SUCCESS_M
+from shintai.spine.cla.pull import pull_rig, pull_series, pull_summary
 
 VARIANTS = ("with_spine", "without_spine")
 LABELS = {"with_spine": "with the spine (Fig. 5.5)", "without_spine": "spine locked (Fig. 5.6)"}

@@ -10,6 +10,7 @@ from shintai.scenarios.experiment import Rig, per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.cla import plots as P
 from shintai.spine.cla import roll_over as RO
+from shintai.spine.cla.constants import ROLLED_DEG, ROLL_OVER_YAW_DEG
 from shintai.spine.control import SETPOINTS
 
 Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身を起こすことができない。脊椎を yaw 軸回りに回転させる動きと"
@@ -31,7 +32,7 @@ def _one(run) -> dict:
     whole = log.values("whole_deg")
     return {"max_shoulder_turn_deg": float(shoulders.max()), "max_pelvis_turn_deg": float(pelvis.max()),
             "final_shoulder_turn_deg": float(shoulders[-1]), "final_pelvis_turn_deg": float(pelvis[-1]),
-            "rolled": int(min(pelvis[-1], shoulders[-1]) > RO.ROLLED_DEG),
+            "rolled": int(min(pelvis[-1], shoulders[-1]) > ROLLED_DEG),
             "max_yaw_deg": float(np.abs(whole[:, 2]).max()),
             "max_spine_change_deg": float(np.abs(whole - whole[0]).max())}
 
@@ -45,7 +46,7 @@ experiment(
     source="seed 003 §5.2.8, Fig. 5.9",
     summary="Cla on its back yaws its spine with the shoulder and hip to raise half its body and roll onto its "
             "front; the same keys with the spine locked",
-    params=[Param("yaw_deg", RO.YAW_DEG, "whole-spine twist of the keys [deg]", lo=0.0, hi=90.0),
+    params=[Param("yaw_deg", ROLL_OVER_YAW_DEG, "whole-spine twist of the keys [deg]", lo=0.0, hi=90.0),
             Param("fraction", 1.0, "run this fraction of the sequence (tests)", lo=0.05, hi=1.0)],
     checks=(
         Check("max_shoulder_turn_spine_deg", ">", "max_shoulder_turn_locked_deg", Q_HALF + ": the upper half turns "

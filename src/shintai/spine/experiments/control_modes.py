@@ -7,11 +7,22 @@ from __future__ import annotations
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine import plots as shared
 from shintai.spine.cla import plots as pictures
-from shintai.spine.cla.setup import SPRING_LAWS
+from shintai.spine.cla.constants import TABLE_4_7_TOLERANCE_DEG
 from shintai.spine.cla.modes import (
-    ABLATION, AXES, MODE_CONFIGS, TABLE_4_7, TABLE_4_7_COLUMNS, TABLE_4_7_TOLERANCE_DEG, TABLE_4_8, TABLE_COLUMNS,
-    THESIS_ROW, mode_metrics, mode_rig, rows_until_lost, table_4_7_held,
+    ABLATION,
+    AXES,
+    MODE_CONFIGS,
+    TABLE_4_7,
+    TABLE_4_7_COLUMNS,
+    TABLE_4_8,
+    TABLE_COLUMNS,
+    THESIS_ROW,
+    mode_metrics,
+    mode_rig,
+    rows_until_lost,
+    table_4_7_held,
 )
+from shintai.spine.cla.setup import SPRING_LAWS
 from shintai.spine.robots import K_S_UNIT_N_M
 
 

@@ -14,16 +14,9 @@ from shintai.scenarios.registry import Check, ThesisValue, experiment
 from shintai.sim.body import MujocoBody
 from shintai.spine import ga_run
 from shintai.spine.hanzous import plots as pictures
-from shintai.spine.hanzous.brachiation import (
-    N_GENES,
-    POLICIES,
-    BrachiationFitness,
-    Brachiator,
-    gene_bounds,
-)
 from shintai.spine.hanzous.body import VIDEO_VIEW, build_spec
-
-GENERATIONS = 3  # short default; the thesis prints no generation count (§5.7.3): --set generations=N
+from shintai.spine.hanzous.brachiation import N_GENES, POLICIES, BrachiationFitness, Brachiator, gene_bounds
+from shintai.spine.hanzous.constants import GENERATIONS
 
 
 def compute(ctx):

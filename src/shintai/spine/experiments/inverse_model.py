@@ -11,7 +11,7 @@ import numpy as np
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import inverse_model
 from shintai.spine.plots import plot_inverse_errors, plot_learning_curves
-from shintai.spine.robots import CLA, TABLE_4_2_DEG
+from shintai.spine.robots import CLA, PINV_RCOND, TABLE_4_2_DEG
 
 TABLE_4_2_AXES = ("φ", "θ", "ψ")
 
@@ -107,7 +107,7 @@ def inverse_model_scenario(ctx) -> dict:
         nets[inv.net.name] = inv
         ctx.progress(0.3 * (k + 1), f"trained {inv.net.name}")
     nn, nn4 = nets.values()
-    jac = jacobian_runs(model, test, inverse_model.PINV_RCOND, lambda f: ctx.progress(0.6 + 0.15 * f, "Jacobian"))
+    jac = jacobian_runs(model, test, PINV_RCOND, lambda f: ctx.progress(0.6 + 0.15 * f, "Jacobian"))
     raw = jacobian_runs(model, test, None, lambda f: ctx.progress(0.75 + 0.15 * f, "Jacobian, raw pinv"))
     table = table_4_2(model)
     ctx.progress(1.0, "Table 4.2")

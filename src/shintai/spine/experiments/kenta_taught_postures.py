@@ -7,15 +7,9 @@ from __future__ import annotations
 import math
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.spine.kenta.constants import KENTA_KEY_POSTURES_DEG, KENTA_TAUGHT_S
 from shintai.spine.kenta.plots import taught_postures
-from shintai.spine.kenta.postures import (
-    KENTA_KEY_POSTURES_DEG,
-    KENTA_TAUGHT_S,
-    lock_result,
-    lock_rig,
-    replay_result,
-    replay_rig,
-)
+from shintai.spine.kenta.postures import lock_result, lock_rig, replay_result, replay_rig
 
 VIEW = {"fps": 15, "width": 480, "height": 360, "track": "link0", "distance": 1.8, "azimuth": 150.0, "elevation": -10}
 

@@ -13,8 +13,7 @@ from shintai.spine import inverse_model
 from shintai.spine.cla import plots as P
 from shintai.spine.cla.posture_runs import session_actions, session_metrics, session_result, session_rig
 from shintai.spine.cla.setup import CLA_VIEW
-from shintai.spine.posture_session import D_LEN_MM
-from shintai.spine.robots import CLA
+from shintai.spine.robots import CLA, D_LEN_MM
 from shintai.spine.tactile import TriggerLevels
 
 Q_DEF = ("seed 003 §5.9.1 'データベースのいずれの要素からも一定距離以上離れたデータは、"

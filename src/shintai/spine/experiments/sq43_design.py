@@ -9,13 +9,10 @@ from dataclasses import replace
 import numpy as np
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
-from shintai.spine.sq43 import design as sq43
-from shintai.spine.sq43.plots import plot_sq43, plot_sq43_shapes
 from shintai.spine.robots import SQ43_GRID_CHECK_DEG
-
-# "開始後すぐに極小値に陥っている" (§3.2.3) has no number and Fig. 3.4 is not in the text: "right after starting" is
-# taken as within 10 of the thesis's 0.5° steps, 5° of travel (declared before comparing; not fitted to a result)
-STUCK_TRAVEL_DEG = 5.0
+from shintai.spine.sq43 import design as sq43
+from shintai.spine.sq43.constants import STUCK_TRAVEL_DEG
+from shintai.spine.sq43.plots import plot_sq43, plot_sq43_shapes
 
 
 def joined_path(path: sq43.SearchPath, earlier: list) -> int:

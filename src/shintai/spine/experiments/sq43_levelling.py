@@ -10,12 +10,12 @@ import numpy as np
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.sq43 import plots as P
+from shintai.spine.sq43.constants import DOWN, UP
 from shintai.spine.sq43.levelling import Levelling, levelling_rig
 
 VARIANTS = ("with", "without")
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.8, "azimuth": 180.0,
         "elevation": -15}
-UP, DOWN = (5.0, 6.0), (10.0, 11.0)  # the windows the settled roll is averaged over (board held up / down) [s]
 
 
 def rig(params, variant, seed):

@@ -14,9 +14,9 @@ from shintai.scenarios.experiment import film, run_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import ga_run
 from shintai.spine.sq43 import plots as P
-from shintai.spine.sq43.gaits import GENE_HI, GENE_LO, GENES, TROT_DURATION_S, TrotFitness, trot_result, trot_rig
+from shintai.spine.sq43.constants import GENE_HI, GENE_LO, THESIS_SECONDS_PER_INDIVIDUAL, TROT_DURATION_S
+from shintai.spine.sq43.gaits import GENES, TrotFitness, trot_result, trot_rig
 
-THESIS_SECONDS_PER_INDIVIDUAL = 30 * 60.0  # §5.6.2 '1 個体の数秒間の運動の解析に約 30 分程度'
 VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance": 0.9, "azimuth": 120.0,
         "elevation": -20}
 

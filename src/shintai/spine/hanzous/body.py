@@ -28,14 +28,12 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from shintai.spine.hanzous.constants import BAR_Z, GRIPPER_OPEN_RAD, N_BARS
 from shintai.spine.robots import HANZOUS, HanzouSSpec
 
-BAR_Z = 1.0  # m, chosen (only the relative heights matter)
-N_BARS = 3  # bar 0 (start), bar 1 (the next one), bar 2 (beyond, for the picture)
 ARM_JOINTS = ("shoulder_pitch", "shoulder_roll", "elbow", "gripper")
 LEG_JOINTS = ("hip_roll", "hip_pitch", "knee", "ankle_pitch", "ankle_roll")
 JOINTS = tuple(f"{j}_{s}" for s in "LR" for j in ARM_JOINTS) + tuple(f"{j}_{s}" for s in "LR" for j in LEG_JOINTS)
-GRIPPER_OPEN_RAD = 1.0  # the gripper joint's open end; 0 is closed (chosen)
 VIDEO_VIEW = {"distance": 1.3, "azimuth": 90.0, "elevation": -3.0, "track": "chest"}  # side view
 GRASPS = tuple(f"grasp_{side}_bar{b}" for side in "LR" for b in range(N_BARS))
 

@@ -32,11 +32,15 @@ import mujoco
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from shintai.spine.hanzous.body import (
+from shintai.spine.hanzous.body import Grasps, Trunk, build_spec
+from shintai.spine.hanzous.constants import (
+    CONTROL_S,
+    DURATIONS_S,
     GRIPPER_OPEN_RAD,
-    Grasps,
-    Trunk,
-    build_spec,
+    HOLD_S,
+    IMPACT_S,
+    JOINT_GENE_RAD,
+    TIME_GENE,
 )
 from shintai.spine.robots import HANZOUS
 
@@ -56,12 +60,6 @@ POSTURES = np.array([
     [-0.30, 1.00, 0.30, 0.00, 0.0, -0.20, -0.20, 0.20, 0.20],  # 7 the right gripper closes on bar 1
     [-0.60, 0.60, 0.00, 0.00, 0.0, 0.00, 0.00, 0.00, 0.00],  # 8 hang from both bars
 ])
-DURATIONS_S = np.array([0.6, 0.45, 0.3, 0.25, 0.2, 0.2, 0.5])  # transitions 1→2 … 7→8, designed
-IMPACT_S = 0.3  # the window after the grasp whose peak trunk-root force is the grasp's impact (ours)
-HOLD_S = 0.6  # after posture 8: the window in which the grasp must hold (ours)
-CONTROL_S = 0.005  # servo and grasp update period (ours; an RC servo's PWM frame is 20 ms)
-JOINT_GENE_RAD = 0.4  # ± adjustment of each posture joint (ours)
-TIME_GENE = 0.5  # ± fraction of each transition's time step (ours)
 N_GENES = (len(GA_JOINTS) + 1) * (len(POSTURES) - 1)  # 70 (§5.7.3)
 POLICIES = ("stiff", "soft", "real")
 CAM_STIFF_DEG, CAM_SOFT_DEG = 0.0, HANZOUS.cam_range_deg

@@ -1,6 +1,7 @@
 """Kenta (seed 003 §3.7, §4.2, §5.2.11–5.2.12): the 40-muscle, 10-joint spine with arms, neck and eyes.
 
 body — Kenta's whole body in MuJoCo, and its §4.6.4 encoder zeroing (§3.7, Figs. 3.39–3.52)
+constants — Kenta's numbers: the teacher's hands, the stops, the taught postures (§3.7, §4.2)
 plots — Kenta's pictures: the taught postures replayed (Fig. 4.1)
 postures — three taught postures replayed in turn (§4.2.1–4.2.2, Fig. 4.1)
 statics — why the spine does not hold a posture with its muscle lengths fixed (§3.7.2, §3.6.1)

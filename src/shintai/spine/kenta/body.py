@@ -33,6 +33,14 @@ from shintai.core.runtime import SET, Loop, declare
 from shintai.sim.spec import add_capsule
 from shintai.spine.bodies_mujoco import SpineBody, build_spec
 from shintai.spine.control import Gains, Mode, MuscleControl
+from shintai.spine.kenta.constants import (
+    SPINE_ARMATURE_KGM2,
+    SPINE_STOP_SOLREF_S,
+    TARGET_RADIUS_M,
+    TEACHER_D_NMS_RAD,
+    TEACHER_GROUP,
+    TEACHER_K_NM_RAD,
+)
 from shintai.spine.robots import (
     CALIBRATION_KGF,
     KENTA,
@@ -51,8 +59,8 @@ from shintai.spine.robots import (
     KENTA_HEAD_KG,
     KENTA_LIGAMENTS,
     KENTA_NECK_JOINTS,
-    KENTA_NECK_K_NM_RAD,
     KENTA_NECK_KP,
+    KENTA_NECK_K_NM_RAD,
     KENTA_NECK_LIMIT_RAD,
     KENTA_NECK_SEGMENT_M,
     KENTA_NECK_TORQUE_NM,
@@ -69,17 +77,6 @@ ARM_JOINTS = (("chest", "yaw", 30), ("chest", "pitch", 30), ("chest", "roll", 30
               ("elbow", "pitch", 140), ("wrist", "yaw", 60), ("wrist", "pitch", 60), ("wrist", "roll", 60))
 ARM_NAMES = tuple(f"{part}_{axis}_{side}" for side in "LR" for part, axis, _ in ARM_JOINTS)
 NECK_AXES = ("pan", "tilt", "roll")
-# chosen: firm human hands per spine joint axis (against 1 kgf muscles and ≈ 5 kg above the spine)
-TEACHER_K_NM_RAD, TEACHER_D_NMS_RAD = 300.0, 3.0
-# §3.7.1: "各節には過変形防止のハードウェア的なロック機構を設けた" — the spine's joint limits are hard stops; chosen:
-# a stop time constant of 4 physics steps (MuJoCo's default 20 ms lets 1 kgf muscles bend joints far past ±10°)
-SPINE_STOP_SOLREF_S = 0.002
-# chosen: a vertebra's own inertia (≈ 5e-6 kg m²) against its 50 kN/m wires makes a ~3000 rad/s mode that the
-# 0.5 ms explicit tendon springs cannot resolve (the internal vertebrae flail past their stops); this armature
-# slows it to ≈ 500 rad/s and is < 1 % of the upper body's inertia about any spine joint
-SPINE_ARMATURE_KGM2 = 2e-4
-TEACHER_GROUP = 5  # actuator group of the teacher's hands, disabled (MjOption.disableactuator) when they let go
-TARGET_RADIUS_M = 0.03  # chosen: a coloured ball
 
 
 def _servo(spec, name: str, joint: str, kp: float, torque: float, lim: float, tendon: bool = False) -> None:

@@ -21,17 +21,11 @@ from shintai.scenarios.experiment import Rig, run_rig
 from shintai.spine.control import SETPOINTS, Mode
 from shintai.spine.geometry import uniform_posture, whole_spine
 from shintai.spine.kenta.body import calibrated_kenta
+from shintai.spine.kenta.constants import KENTA_KEY_POSTURES_DEG, KENTA_LOCK_PROBE_DEG, KENTA_TAUGHT_S
 from shintai.spine.kenta.statics import lock_reels, muscle_span, unstretched_bend
 from shintai.spine.robots import KENTA
 from shintai.spine.scripted import Schedule
 from shintai.spine.teaching import L_GOAL, Playback
-
-# chosen (Fig. 4.1's photographs are not in the text): three whole-spine (roll, pitch, yaw) postures [deg], a
-# bend forward with a twist, a side bend, a bend back with the other twist — within a third of §3.7.1's ±90°
-KENTA_KEY_POSTURES_DEG = ((0.0, 15.0, 15.0), (15.0, 0.0, 0.0), (0.0, -10.0, -15.0))
-KENTA_TAUGHT_S = 1.5  # chosen: each posture is held by the teacher this long before its lengths are read
-# chosen: the probe of :func:`locked_hold`, posture 1's forward bend without its twist (whole-spine r, p, y [deg])
-KENTA_LOCK_PROBE_DEG = (0.0, 15.0, 0.0)
 
 
 def teach(teach_kgf: float, postures_deg=KENTA_KEY_POSTURES_DEG, hold_s: float = KENTA_TAUGHT_S,

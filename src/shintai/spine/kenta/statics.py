@@ -23,10 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.optimize import linprog
-
-LOCK_TOLERANCE_M = 1e-6  # the locked reel's play [m] (chosen: an encoder pulse is ≈ 17 µm)
-# chosen: the stops' time constant, 2 physics steps (MuJoCo's default 20 ms lets a 100 N wire slip 1.6 mm)
-LOCK_SOLREF_S = 1e-3
+from shintai.spine.kenta.constants import LOCK_SOLREF_S, LOCK_TOLERANCE_M
 
 
 def muscle_span(model, theta, tol: float = 1e-6) -> dict:

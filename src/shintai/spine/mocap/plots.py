@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from shintai.spine.mocap import retarget as mocap
+from shintai.spine.mocap.constants import TILE
 
 COLOURS = {"human": "k", "cla": "tab:blue", "kenta": "tab:green", "hrp2": "tab:orange", "hrp_rigid": "tab:red"}
 
@@ -83,7 +84,6 @@ def figures(ctx, runs) -> None:
 # the front-left like the human above; both humanoids with the HRP2 arm targets (mocap.hrp2_arms).
 # (robot, body to look at, camera distance [m])
 FILMED = (("cla", "link3", 0.55), ("kenta", "link5", 0.75), ("hrp2", "chest", 2.4), ("hrp_rigid", "chest", 2.4))
-TILE = (300, 380)  # width, height of each robot's picture
 
 
 def _bodies():

@@ -43,18 +43,20 @@ import numpy as np
 
 from shintai.core.geometry import rot_y, rot_z
 from shintai.humanoid.constants import WAIST_JOINTS, joint_range
-from shintai.spine.mocap.bvh import Bvh, Joint, dumps, read
 from shintai.spine.geometry import matrix_rpy
+from shintai.spine.mocap.bvh import Bvh, Joint, dumps, read
+from shintai.spine.mocap.constants import (
+    DURATION_S,
+    FLEXION_DEG,
+    FPS,
+    PELVIS_COUNTER_DEG,
+    SIDE_BEND_DEG,
+    TWIST_PEAK_DEG,
+)
 from shintai.spine.robots import CLA, KENTA
 
 SHIPPED_CLIP = Path(__file__).parent / "twist_clip.bvh"
-FPS = 30  # chosen: a common capture rate
-DURATION_S = 3.0
-TWIST_PEAK_DEG = 55.0  # chosen: a strong human wind-up (shoulders against pelvis); above HRP2's 45° waist yaw
-PELVIS_COUNTER_DEG = 10.0  # the pelvis turns the other way in the world (the twist is measured against it)
 SPINE_SHARE = {"Spine": 0.30, "Spine1": 0.35, "Chest": 0.35}  # how the human's three spine joints share it
-FLEXION_DEG = 20.0  # forward bend of the spine in the crouch
-SIDE_BEND_DEG = 6.0
 ROT = ("Zrotation", "Xrotation", "Yrotation")  # §5.8.2's example channel order
 # BVH (X left, Y up, Z forward) → robot (x forward, y left, z up)
 TO_ROBOT = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])

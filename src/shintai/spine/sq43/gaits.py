@@ -34,21 +34,23 @@ from mujoco import rollout
 from shintai.core.runtime import Module, Snapshot
 from shintai.scenarios.experiment import Rig
 from shintai.spine.sq43.body import (
-    BODY, LEGS, SQ43Body, SQ43BodySpec, build_spec, leg_ik, leg_root, relative_twist,
-    servo_ctrl, standing_angles,
+    BODY,
+    LEGS,
+    SQ43Body,
+    SQ43BodySpec,
+    build_spec,
+    leg_ik,
+    leg_root,
+    relative_twist,
+    servo_ctrl,
+    standing_angles,
 )
+from shintai.spine.sq43.constants import DUTY, RAMP_S, TROT_DURATION_S, W_SWING, W_TWIST_MM_PER_DEG
 
 # ------------------------------------------------------------------------------------------------ trot
 
 GENES = ("cycle_s", "fore_mm", "natural_length_mm", "height_mm", "centre_front_mm", "centre_rear_mm")
-GENE_LO = np.array([2.0, 40.0, 208.0, 5.0, -30.0, -30.0])  # §5.6.2
-GENE_HI = np.array([4.0, 80.0, 228.0, 25.0, 30.0, 30.0])  # §5.6.2
-DUTY = 0.5  # §5.6.2
 START_TIME_S = {"LF": 0.0, "RH": 0.0, "RF": 1.5, "LH": 1.5}  # §5.6.2: 0.0 and 1.5 s, diagonal pairs
-W_TWIST_MM_PER_DEG = 2.0  # ours (module docstring)
-W_SWING = 0.5  # ours, mm of fitness per mm of swing height
-RAMP_S = 0.5  # from standing into the gait's first pose (ours)
-TROT_DURATION_S = 6.0  # "1 個体の数秒間の運動" (§5.6.2): several seconds; ours 6 s (2 cycles at 3 s)
 
 
 def swing_phase(t, cycle: float, start: float, duty: float = DUTY) -> np.ndarray:

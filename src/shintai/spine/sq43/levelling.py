@@ -26,8 +26,7 @@ from shintai.spine.sq43.body import (
     servo_ctrl,
     standing_angles,
 )
-
-LF_LENGTH_RANGE_M = (0.15, 0.245)  # chosen: the left front leg's commanded length stays within its reach
+from shintai.spine.sq43.constants import LF_LENGTH_RANGE_M
 
 
 @dataclass(frozen=True)

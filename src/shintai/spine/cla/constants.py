@@ -1,0 +1,98 @@
+"""The numbers of the Cla unit's modules — one place per constant (DESIGN.md), each with its
+thesis section or the reason it was chosen; grouped by the module that uses them."""
+
+from __future__ import annotations
+
+import math
+import numpy as np
+
+
+# --- cla.body ---
+FSR_CORNERS = ((1, 1), (1, -1), (-1, -1), (-1, 1))  # sole corners (x, y signs): toe-left, toe-right, heel-r, heel-l
+CORNER_RADIUS_M = 0.006  # the sole's contact spheres under the FSRs (chosen)
+ROBOT, WORLD = 1, 1  # contact bits: robot contact geoms (hands, sole corners) touch world geoms and objects only
+SEAT_KP, SEAT_KV, SEAT_TORQUE_NM = 300.0, 10.0, 60.0  # the tilting seat's drive (chosen: stiff, a person's hands)
+
+# --- cla.cop ---
+# Chosen, because not in the text (§5.2.7 says only "中心付近", "少しずつ", "ゆっくりと"):
+COP_BAND_M = 0.003  # the reflex rests while the CoP is within ±3 mm of the sole's front–back centre
+COP_FULL_M = 0.015  # beyond ±15 mm of the centre the arms move at their full reflex speed
+COP_ARM_SPEED_RAD_S = math.radians(10.0)  # full reflex speed of the arms' pitch offset: 10°/s ("ゆっくり")
+COP_ARM_RANGE_RAD = math.radians(60.0)  # the offset is kept within ±60° of the arms' basic posture
+# The side bends (chosen: §5.2.7 says "ゆっくりと左右の脊椎を屈曲する運動" only)
+BEND_DEG = 30.0  # whole-spine roll to each side (a third of the range, 5 × ±18°)
+HALF_PERIOD_S = 3.0  # one side to the other
+SETTLE_S = 1.0  # standing still before the bends start
+
+# --- cla.crawl ---
+PHASES = 4
+# Fitness weights (ours, §5.2.9 gives none): a 1 N m s torque integral costs as much as 1 mm of progress and
+# a 1 N m peak as 1 cm, so the distance leads (chosen before the GA runs, from the hand-made crawl's scale:
+# 0.43 m, ≈ 64 N m s and ≈ 1.3 N m in 8 s, so its torque terms cost ≈ 15 % and 3 % of its distance)
+W_TORQUE_INTEGRAL = 1e-3  # m per N m s
+W_PEAK_TORQUE = 1e-2  # m per N m
+FAILED_FITNESS = -1.0  # a rollout that diverged (non-finite, or reset by MuJoCo: a jump of MAX_STEP_M in a step)
+MAX_STEP_M = 0.05
+SPINE_KV = 0.3  # N m s/rad: the spine servos' damping (chosen), besides the disc's own
+
+# --- cla.levelling ---
+# The disturbance's timing (chosen): the seat tilts at 0.5 s (and again at the scenario's tilt2_s), each move
+# taking 1 s; the shoulders' settled tilt is averaged over the last second before the next move and before the end
+TILT1_S, SEAT_MOVE_S = 0.5, 1.0
+
+# --- cla.modes ---
+# Table 4.7 against ours (t47_error_gap_*): the thesis's two reports of the same mean error — Table 4.8's
+# "モデルとの誤差の平均", "Table 4.7 から誤差の平均を求めた" (§4.7.3), and Table 4.7's own column means —
+# differ by up to 1.95° (L + S-high pitch: 6.87 against 4.92), so a mean error within 2° of Table 4.7's is
+# as close as the thesis states its own figure
+TABLE_4_7_TOLERANCE_DEG = 2.0
+
+# --- cla.pick_place ---
+# Chosen, because not in the text:
+FLOOR_CLEARANCE_M = 0.01  # the soles 1 cm above the floor ("足が地面に着かない程度の高さの椅子", §5.2.1)
+OBJECT_XY_M = (0.02, -0.13)  # the object beside the right foot, under the right shoulder bent sideways
+ROLL_DEG = 72.0  # the sideways bend: 80 % of the spine's range (5 × ±18°, §3.6.1)
+PICK_PLACE_YAW_DEG = 60.0  # the twist toward the desk: two thirds of the range
+GRIP_TOLERANCE_M = 0.01  # the hand closes on the object if its surface is within 1 cm of the object's top
+HOVER_M = 0.04  # the hand's approach height above where it grips or releases
+PLACED_TOLERANCE_M = 0.005  # resting on the desk: the object's bottom within 5 mm of the desk top
+
+# --- cla.posture_runs ---
+# The postures the hand teaches (whole-spine roll, pitch, yaw [deg]) and Fig. 5.29's model motion A → B (chosen)
+TEACH_FORWARD_DEG = (0.0, 20.0, 0.0)
+TEACH_SIDE_DEG = (-15.0, 5.0, 10.0)
+MOTION_A_DEG, MOTION_B_DEG = (0.0, 18.0, 0.0), (-12.0, 5.0, 8.0)
+MOTION_STEPS = 5
+
+# --- cla.pull ---
+PULL_TO_X_M = 0.17  # where the hand draws back to (chosen: 5 cm inside the desk's near edge)
+CLEARANCE_M = 0.003  # the hand's gap behind the object / above the desk at the keyframes (chosen)
+PRESS_M = 0.004  # the pulling hand's target this far below the desk contact, so it stays down (chosen)
+SUCCESS_M = 0.05  # the object counts as pulled when it came this far toward Cla (chosen before any run: 5 cm)
+FOLD = (-0.6, 2.4, 0.0)  # the folded arm (shoulder pitch back, elbow bent, wrist) [rad]: the hand stays off the desk
+LIFT_XZ_M = (0.10, 0.06)  # the lifted hand: x, and height above the desk's contact height (chosen)
+END_S = 7.0
+
+# --- cla.roll_over ---
+CONTACT_MIN_SIZE_M = 0.009  # robot geoms at least this large touch the floor (not the reels, sites' helpers)
+LIE_HEIGHT_M = 0.06  # the pelvis origin above the floor when laid down (it then settles)
+REST_S = 1.0  # lying still before the keys start
+ROLLED_DEG = 135.0  # rolled over: both the pelvis and the shoulders turned beyond 135° (chosen: past the side)
+ROLL_OVER_YAW_DEG = 60.0  # the twist (two thirds of the range, 5 × ±18°)
+
+# --- cla.teach_runs ---
+# §4.2.2 (a): three key postures taught by hand (whole-spine roll, pitch, yaw) — chosen
+KEY_POSTURES_DEG = ((0.0, 15.0, 0.0), (15.0, 0.0, 10.0), (-10.0, -10.0, 0.0))
+
+# --- cla.throw ---
+HOLD_S, FOLLOW_S = 0.5, 1.0  # the hold after the wind-up, the run after the throw starts [s] (chosen)
+# Postures (chosen: the thesis shows photographs only). Spine whole (roll, pitch, yaw) [deg]: wind-up leaning
+# back 10° and twisted right 30° (the right shoulder back), release leaning forward 15° and twisted left 30°.
+SPINE_WINDUP_DEG = (0.0, -10.0, -30.0)
+SPINE_RELEASE_DEG = (0.0, 15.0, 30.0)
+
+# --- cla.tracking ---
+CLA_NECK_LIMIT_RAD = np.radians(60.0)  # chosen: within the neck servos' range
+
+# --- experiments.cla_cop_balance ---
+FALLEN_FORCE = 0.5  # fallen: the soles carry less than half the weight (chosen)
