@@ -69,6 +69,15 @@ def test_a_short_film_has_its_frames_in_order(tmp_path, workers):
                     "height": 96}
 
 
+def test_workers_join_their_parts_below_a_relative_path(tmp_path, monkeypatch):
+    """`make demo` writes to the relative out/demo: the parts' listing must name files ffmpeg can find."""
+    monkeypatch.chdir(tmp_path)
+    body = MujocoBody(SLIDER, substeps=2, keyframe="moving")
+    with FilmRecorder(body, "out/demo/film.mp4", fps=10, width=64, height=48, camera="front", workers=2) as film:
+        run(body, 1.0)
+    assert film.frames == len(frames_of(tmp_path / "out/demo/film.mp4")) == 11
+
+
 def test_speed_is_a_time_lapse(tmp_path):
     body = MujocoBody(SLIDER, substeps=2, keyframe="moving")
     with FilmRecorder(body, tmp_path / "fast.mp4", fps=10, speed=4, width=64, height=48, camera="front") as film:

@@ -241,7 +241,7 @@ def render_frames(model: mujoco.MjModel, frames: list, path: Path, fps: float, w
     with tempfile.TemporaryDirectory(prefix=".film-", dir=path.parent) as tmp:
         jobs, procs = [], []
         for w in range(workers):
-            job = Path(tmp) / f"part{w}"
+            job = Path(tmp).resolve() / f"part{w}"  # absolute: ffmpeg reads the listing's names from its folder
             job.with_suffix(".job").write_bytes(pickle.dumps(
                 (blob, frames[bounds[w]:bounds[w + 1]], str(job.with_suffix(".mp4")), fps, width, height, camera)))
             jobs.append(job)
