@@ -383,3 +383,27 @@ def test_the_constants_rule_sees_numbers():
     found = numeric_constants(ast.parse("A = 1.0\nB, C = 2, -3e-4\nD = (1, 2.5)\nE = np.array([[1.0, 0.0]])\n"
                                         "F = 10 * math.pi / 180\nG = A * 2\nH = 'x'\nJ = True\nk = 1\n"))
     assert found == ["A", "B", "C", "D", "E", "F"], found
+
+
+BODIES = ("humanoid", "snake", "spine", "nervous", "quadruped")
+# a body that imports another, with the reason (issue 25: "no body imports another body; name any exception")
+BODY_IMPORTS = {
+    ("nervous", "spine"): "nervous serves the spine robots (seed 003 ch. 6): it runs their models, laws and teaching",
+    ("nervous", "snake"): "nervous's robot table also offers the snake's MuJoCo model",
+    ("nervous", "humanoid"): "nervous's robot table also offers HRP2's model",
+    ("spine", "humanoid"): "§5.8.2's motion capture compares the spined robots with the rigid-trunk HRP2",
+}
+
+
+def test_no_body_imports_another_body():
+    found = set()
+    for name, path in MODULES.items():
+        own = name.split(".")[1] if name.count(".") else ""
+        if own not in BODIES:
+            continue
+        for m, _ in imports(path):
+            other = m.split(".")[1] if m.startswith("shintai.") else ""
+            if other in BODIES and other != own and m in MODULES:
+                found.add((own, other))
+    assert found <= set(BODY_IMPORTS), f"bodies importing another body: {sorted(found - set(BODY_IMPORTS))}"
+    assert set(BODY_IMPORTS) <= found, f"named exceptions that no longer hold: {sorted(set(BODY_IMPORTS) - found)}"
