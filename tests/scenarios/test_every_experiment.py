@@ -1,48 +1,50 @@
 """One registry test: every experiment runs at the smoke sizes declared beside it (``smoke=`` in its file) and
-writes what the contract says (DESIGN.md, ``metrics.json``): its metrics, checks with basis and kind, its thesis
-values, the parameters it used. The checks' verdicts at smoke size are not asserted (a short run is not the
-experiment); that every check is evaluated on a metric the run produced is."""
+writes what the contract says (tests/smoke.py ``check_contract``). The runs are made by each body's
+``test_smoke_runs.py`` (its ``RUNS``), so that xdist spreads them over the workers; a body's tests that assert
+behaviour read the same run through the ``smoke`` fixture, so each experiment runs once. Here: that every
+registered experiment declares its smoke sizes, valid ones, and is run by exactly one body file."""
 
 from __future__ import annotations
 
-import json
-import math
-import re
+import importlib.util
+from pathlib import Path
 
 import pytest
 
 from shintai.scenarios import registry
-from shintai.scenarios.registry import CONSISTENCY, REPRODUCTION
-from shintai.scenarios.runner import run_scenario
 
 registry.load_all()
-SMOKED = sorted(sid for sid, sc in registry.SCENARIOS.items() if sc.smoke is not None)
+TESTS = Path(__file__).resolve().parents[1]
 
 
-@pytest.mark.parametrize("scenario_id", SMOKED)
-def test_every_experiment_runs_at_its_smoke_size(scenario_id, tmp_path):
-    sc = registry.get(scenario_id)
-    result = run_scenario(scenario_id, tmp_path, dict(sc.smoke), quiet=True)
-    assert "error" not in result, result.get("error")
-    written = json.loads((tmp_path / "metrics.json").read_text())
-    assert written["scenario"] == scenario_id and written["params"] == sc.resolve(sc.smoke)
-    assert written["metrics"], "no metrics"
-    for name, value in written["metrics"].items():
-        assert re.fullmatch(r"[A-Za-z0-9_.]+", name), f"metric {name!r} is not a snake_case name"
-        if isinstance(value, float):
-            assert not math.isinf(value), f"metric {name} is infinite"
-    for check in written["checks"]:
-        assert check["basis"] and check["kind"] in (REPRODUCTION, CONSISTENCY), check
-        assert check["metric"] in written["metrics"], f"check {check['name']}: metric {check['metric']} not produced"
-    for key, value in written["thesis"].items():
-        assert "§" in value["where"] or "seed" in value["where"], f"thesis value {key} does not say where"
+def _runs_by_file() -> dict[str, tuple[str, ...]]:
+    runs = {}
+    for path in sorted(TESTS.rglob("test_smoke_runs.py")):
+        spec = importlib.util.spec_from_file_location(f"_smoke_runs_{len(runs)}", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        runs[str(path.relative_to(TESTS))] = tuple(module.RUNS)
+    return runs
+
+
+def test_every_experiment_declares_smoke_sizes():
+    missing = sorted(sid for sid, sc in registry.SCENARIOS.items() if sc.smoke is None)
+    assert not missing, f"experiments without smoke= sizes: {missing}"
+
+
+def test_every_experiment_is_run_by_exactly_one_body_file():
+    named = [(sid, f) for f, ids in _runs_by_file().items() for sid in ids]
+    counts = {sid: [f for s, f in named if s == sid] for sid, _ in named}
+    assert not [sid for sid, files in counts.items() if len(files) > 1], {s: f for s, f in counts.items() if len(f) > 1}
+    assert not set(counts) - set(registry.SCENARIOS), f"unknown ids: {set(counts) - set(registry.SCENARIOS)}"
+    assert not set(registry.SCENARIOS) - set(counts), f"run by no test_smoke_runs.py: {sorted(set(registry.SCENARIOS) - set(counts))}"
 
 
 def test_smoke_sizes_are_valid_parameters():
     """A smoke override is a declared parameter within its range (resolve raises otherwise)."""
-    for sid in SMOKED:
-        sc = registry.SCENARIOS[sid]
-        sc.resolve(sc.smoke)
+    for sid, sc in registry.SCENARIOS.items():
+        if sc.smoke is not None:
+            sc.resolve(sc.smoke)
 
 
 def test_a_smoke_declaration_must_be_a_dict():
