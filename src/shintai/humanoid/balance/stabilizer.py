@@ -103,15 +103,26 @@ def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
     return c * x + s * y, -s * x + c * y
 
 
-def closed_loop_poles(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> np.ndarray:
-    """Poles of [55]'s error system under Eq. 26: e = (x − x_ref, ẋ − ẋ_ref, p − p_ref),
-    ė₁ = e₂, ė₂ = ω² (e₁ − e₃), ė₃ = (−k1 e₁ − k2 e₂ − (1 + k3) e₃) / T_p, ω² = g / z_c."""
+def error_system(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> tuple[np.ndarray, np.ndarray]:
+    """[55]'s error system under Eq. 26, ė = A e + b c: e = (x − x_ref, ẋ − ẋ_ref, p − p_ref),
+    ė₁ = e₂, ė₂ = ω² (e₁ − e₃), ė₃ = (−k1 e₁ − k2 e₂ − (1 + k3) e₃ + c) / T_p, ω² = g / z_c, where c is a
+    correction added to the LIP tracking's output p^{d*} (seed 000 Eq. 7.2's p^{d**} = p^{d*} + u_traj).
+
+    Its characteristic polynomial is s³ + (1 + k3)/T_p s² − ω² (1 + k2/T_p) s − ω² (1 + k1 + k3)/T_p, so by
+    Routh–Hurwitz every stabilising gain set has 1 + k1 + k3 < 0; the equilibrium under a constant c is
+    e₁ = e₃ = c/(1 + k1 + k3): a forward correction after the LIP tracking moves the mass centre back, for every
+    stabilising gain set, not only hrpsys's (tests/humanoid/balance/test_stabilizer.py)."""
     if not (zc > 0 and tp > 0 and g > 0):
-        raise ValueError(f"closed_loop_poles: zc, tp and g must be > 0, got {zc!r}, {tp!r}, {g!r}")
+        raise ValueError(f"error_system: zc, tp and g must be > 0, got {zc!r}, {tp!r}, {g!r}")
     k1, k2, k3 = k
     w2 = g / zc
     a = np.array([[0.0, 1.0, 0.0], [w2, 0.0, -w2], [-k1 / tp, -k2 / tp, -(1.0 + k3) / tp]])
-    return np.linalg.eigvals(a)
+    return a, np.array([0.0, 0.0, 1.0 / tp])
+
+
+def closed_loop_poles(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> np.ndarray:
+    """Poles of [55]'s error system under Eq. 26 (:func:`error_system`)."""
+    return np.linalg.eigvals(error_system(k, zc, tp, g)[0])
 
 
 class Distribution(NamedTuple):

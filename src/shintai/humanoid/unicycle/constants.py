@@ -31,6 +31,18 @@ LEARNED_V = (2.86e-7, 1.20e-6, 6.63e-8)
 TAP_N, TAP_AT_S = 10.0, 2.0  # N sideways on the chest for 0.1 s at this body time, ≈1 s after the lift lets go
 # (chosen: the world's asymmetry; a perfectly symmetric simulation balances a unicycle on its tyre's crown for ever)
 
+# --- the numbers of unicycle/hand.py (the human hand of Fig. 7.12 (a6); the thesis describes none: all chosen,
+# declared before any run with the hand, issue 26 item 6) -------------------------------------------------------------
+HAND_CATCH_DEG = 5.0  # the person takes hold once the unicycle's roll passes 5° (a lean plainly visible)
+HAND_RELEASE_DEG = 1.0  # and lets go when it is back within 1°
+# Gravity topples rider + Ninebot (67.5 kg, mass centre 0.83 m up) with ≈552 N·m/rad about the tyre's contact; a
+# push at the chest (1.27 m up) of K φ rights it for K > 435 N/rad. K = 1000 N/rad nets ≈718 N·m/rad; C = 300 N·s/rad
+# at the chest (≈380 N·m·s/rad about the contact) is about critical for the ≈47 kg·m² roll inertia (measured on
+# the model, build_ninebot_stand; tests/humanoid/unicycle/test_hand.py)
+HAND_K = 1000.0  # N/rad
+HAND_C = 300.0  # N·s/rad
+HAND_MAX_N = 150.0  # N, a person's one-handed push (chosen)
+
 # --- the numbers of unicycle/vehicle.py ---------------------------------------------------------------------------
 SHELL = [0.95, 0.95, 0.97, 1]
 RUBBER = [0.1, 0.1, 0.11, 1]

@@ -46,23 +46,30 @@ def draw_learning(ax, run, label: str) -> None:
 
 
 def free(ctx, runs, step_at: float, v_step: float):
-    run = runs["run"]
-    ride, log = run.state, run.log
-    t = log.times("true_v") - ride.t0
-    with ctx.figure("fig7_13", 3, 1, figsize=(9, 9), sharex=True) as (_fig, ax):
-        ax[0].plot(t, np.where(t >= step_at, v_step, 0.0), "r", label="ref v")
-        ax[0].plot(t, log.values("true_v"), "g--", label="act v (truth)")
-        ax[0].set_ylabel("v [m/s]")
-        ax[0].set_title("Fig. 7.13: no training wheels, learned gains; t = 0 at the release")
-        ax[1].plot(t, np.degrees(log.values("roll")), "k", label="unicycle roll")
-        if ride.roll is not None and "roll.target" in log.names():
-            ax[1].plot(log.times("roll.target") - ride.t0, np.degrees(log.values("roll.target")), "m",
-                       label="φ_C^d (Eq. 7.6)")
-        ax[1].set_ylabel("roll [deg]")
-        ax[2].plot(t, log.values("zmp_mod") * 1e3, "b", label="correction p^{d**} − p^{d*} [mm]")
-        ax[2].set_xlabel("t [s] from the release")
-        for a in ax:
-            a.legend(fontsize=7)
+    """Fig. 7.13 per variant (columns): v^d and v; the unicycle's roll, φ_C^d and the hand's force; the correction."""
+    with ctx.figure("fig7_13", 3, len(runs), figsize=(8 * len(runs), 9), sharex="col", squeeze=False) as (_fig, ax):
+        for j, (name, run) in enumerate(runs.items()):
+            ride, log = run.state, run.log
+            t = log.times("true_v") - ride.t0
+            col = ax[:, j]
+            col[0].plot(t, np.where(t >= step_at, v_step, 0.0), "r", label="ref v")
+            col[0].plot(t, log.values("true_v"), "g--", label="act v (truth)")
+            col[0].set_ylabel("v [m/s]")
+            col[0].set_title(f"Fig. 7.13, {name}: no training wheels, learned gains; t = 0 at the release")
+            col[1].plot(t, np.degrees(log.values("roll")), "k", label="unicycle roll")
+            if ride.roll is not None and "roll.target" in log.names():
+                col[1].plot(log.times("roll.target") - ride.t0, np.degrees(log.values("roll.target")), "m",
+                            label="φ_C^d (Eq. 7.6)")
+            col[1].set_ylabel("roll [deg]")
+            if ride.hand is not None:
+                hand = col[1].twinx()
+                hand.fill_between(t, log.values("hand_n"), color="orange", alpha=0.3, label="hand [N]")
+                hand.set_ylabel("hand force [N]")
+                hand.legend(fontsize=7, loc="lower right")
+            col[2].plot(t, log.values("zmp_mod") * 1e3, "b", label="correction p^{d**} − p^{d*} [mm]")
+            col[2].set_xlabel("t [s] from the release")
+            for a in col:
+                a.legend(fontsize=7)
 
 
 def learning(ctx, runs, params):

@@ -46,6 +46,7 @@ from shintai.humanoid.learning.prior_value_integrator import PID
 from shintai.humanoid.learning.speed_governing import foot_pitch_increments
 from shintai.humanoid.robots.hrp2 import add_hrp2
 from shintai.humanoid.unicycle.constants import ETA_TRAJ, JOY_FULL, PLACEMENTS, START_DELAY, T_TRAJ
+from shintai.humanoid.unicycle.hand import HumanHand
 from shintai.humanoid.unicycle.vehicle import NINEBOT, PAD, NinebotSpec, add_ninebot, install_firmware, ninebot_velocity
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import fill_keyframe, scene_spec
@@ -193,11 +194,13 @@ class NinebotRide:
     ``control``: "stabilizer" (Fig. 7.7: no C_traj, no C_v) or "parallel" (Fig. 7.8); ``learn``: MLC on;
     ``gains`` ((traj), (v)) initial gains; ``v_d(t)`` the target speed from the learning start;
     ``training_wheels``; ``roll_shaping`` Eq. 7.6 (for the run without training wheels); ``placement`` of the
-    correction (:class:`ModifiedStabilizer`); ``push`` (force (3,), t0, duration) on the chest."""
+    correction (:class:`ModifiedStabilizer`); ``push`` (force (3,), t0, duration) on the chest; ``hand``: the person
+    of Fig. 7.12 (a6) who catches the roll (:class:`~shintai.humanoid.unicycle.hand.HumanHand`)."""
 
     def __init__(self, control: str = "parallel", learn: bool = True, gains=((0.0,) * 3,) * 2, v_d=None,
                  training_wheels: bool = True, roll_shaping: bool = False, n: NinebotSpec = NINEBOT,
-                 start_delay: float = START_DELAY, seed: int = 0, placement: str = "after_lip", push=None):
+                 start_delay: float = START_DELAY, seed: int = 0, placement: str = "after_lip", push=None,
+                 hand: bool = False):
         if control not in ("stabilizer", "parallel"):
             raise ValueError(f"control must be 'stabilizer' or 'parallel', got {control!r}")
         body = build_ninebot_stand(n, training_wheels)
@@ -211,6 +214,9 @@ class NinebotRide:
                                  ik=ChestRollIK if roll_shaping else None)
         if push is not None:  # on the chest, before every physics step (the lift owns the waist's xfrc_applied)
             body.before_physics.append(Push(body, *push, link="chest"))
+        self.hand = HumanHand(body) if hand else None
+        if self.hand is not None:
+            body.before_physics.append(self.hand)
         self.body, self.n = body, n
         self.lift.lowering = True
         lift = self.lift
@@ -250,7 +256,8 @@ class NinebotRide:
         c = self.traj.c if self.traj is not None else 0.0
         return {"true_v": v, "true_omega": w, "x": float(self.body.site_pos("ninebot_centre")[0]),
                 "zmp_act_x": self.zmp_x(snapshot), "zmp_mod": c, "roll": float(snapshot["ninebot_roll"][0]),
-                "omega_ref": self.body.firmware.omega_ref}
+                "omega_ref": self.body.firmware.omega_ref,
+                "hand_n": float(np.linalg.norm(self.hand.force())) if self.hand is not None else 0.0}
 
 
 class _Target(Module):
