@@ -45,10 +45,11 @@ experiment(
         Check("traj_kp_dominant_as_written", "==", 1, "thesis §7.3.3: '軌道修正系のゲイン変化(図 7.9 -(b))は "
               "K_P^traj(n) を中心に大きな値を獲得'", kind="reproduction",
               row="000:fig7.9"),
-        Check("v_gain_ratio_to_vboard_as_written", "<", 0.1, "thesis §7.3.3: K_P^v, K_D^v on the Ninebot are "
-              "'平行二輪電動スクーターでの学習値の 10 分の 1 未満' (図 6.15 -(b1), 図 6.16 -(b1)): "
-              "ours against our speed-governing runs learn and boarding (unicycle.VBOARD_V_KP_KD), gain by gain",
-              kind="reproduction", row="000:fig7.9"),
+        Check("v_gain_ratio_to_vboard_as_written", "<", 0.1, "consistency until our V-BOARD gains converge (issue "
+              "26): the thesis's K_P^v, K_D^v on the Ninebot are '平行二輪電動スクーターでの学習値の 10 分の 1 未満' "
+              "(図 6.15 -(b1), 図 6.16 -(b1)); ours are compared with our speed-governing runs learn and boarding "
+              "(unicycle.VBOARD_V_KP_KD), gain by gain, which do not meet Eq. 6.32 on our rig",
+              kind="consistency", row="000:fig7.9"),
         Check("zmp_error_last_as_written_mm", "<", "zmp_error_first_as_written_mm", "thesis §7.3.3, Fig. 7.10: "
               "the error left by LIP tracking alone (0–2 s) '軌道修正の適用後(18[s]付近)にはエラーを小さく抑える'",
               kind="reproduction", row="000:fig7.10"),
