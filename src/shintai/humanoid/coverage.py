@@ -437,8 +437,12 @@ ROWS = (
                "での学習値の 10 分の 1 未満' while K_P^traj grows large — trajectory correction dominates",
         difference="humanoid.unicycle-learning: η for K^traj (2×10⁻⁵) and T_traj (0.05 s) chosen; variant "
                    "'reference' (ours) shifts the LIP tracking's references by the correction instead of p^{d*}",
-        why_not="as written (Eq. 7.2 after the LIP tracking) the correction runs away: hrpsys's LIP gains make its "
-                "static gain negative (x = c/(1 + k1 + k3) = −2.3 c), |v| > 0.3 m/s at 13.8 s, falls at 14.9 s; "
+        why_not="as written (Eq. 7.2 after the LIP tracking) the correction runs away: its static gain is x = c/(1 + "
+                "k1 + k3) (−2.3 c with hrpsys's gains), and Routh–Hurwitz on [55]'s error system (characteristic "
+                "polynomial's constant term −ω²(1 + k1 + k3)/T_p) makes 1 + k1 + k3 < 0 for EVERY stabilising gain "
+                "set, so a forward correction after the LIP tracking moves the rider back whatever the gains "
+                "(balance.stabilizer.error_system, tested over random stabilising gains); |v| > 0.3 m/s at 13.8 s, "
+                "falls at 14.9 s; "
                 "the 'reference' variant keeps |v| < 1 cm/s from 9.2 s (4 mm/s at 30 s) with K_I^traj, not K_P^traj, "
                 "dominant, K_P^v, K_D^v < 0.5 % of our V-BOARD's (speed-governing's learned gains)",
     ),
@@ -463,11 +467,16 @@ ROWS = (
                "割り込むことで走行行動を可能とした'; '目標を満たす速度制御を実現していることが確認できる' (Fig. 7.13)",
         difference="humanoid.unicycle-free: the learned gains are humanoid.unicycle-learning's 'reference' variant's "
                    "(its as-written run falls); the joystick is an operator model of ours (stick ∝ the unicycle's "
-                   "roll, full at 0.05 rad; α 0.5 rad/s at full stick); no hand assist; a 10 N, 0.1 s sideways tap "
+                   "roll, full at 0.05 rad; α 0.5 rad/s at full stick); the hand is ours too (unicycle/hand.py: a "
+                   "push at the chest toward upright once the roll passes 5°, ≤ 150 N, declared before the run; the "
+                   "thesis: '一時的に横から人間の手により転倒防止のための補助を与えている'); a 10 N, 0.1 s sideways tap "
                    "on the chest 1 s after the release breaks the simulation's symmetry",
-        why_not="the robot falls sideways 1.7 s after the tap (2.7 s after the release; roll 18.7° with the Eq. 7.6 "
-                "shaping, 39° without, same time) while v has reached 0.03 m/s of the 0.3 m/s step (rms error "
-                "0.30 m/s); the thesis also needed a human hand (Fig. 7.12 (a6))",
+        why_not="with the hand the robot still falls, 2.3 s after the step: the hand holds the unicycle's roll near "
+                "−9° at its 150 N, but the operator model keeps integrating φ_C^d (to −50°) while the roll stays past "
+                "the stick's full scale, and the leaning waist tips past 0.5 rad; without the Eq. 7.6 shaping the "
+                "hand keeps it up 9.6 s (5 catches, 4.6 s held) and then v overshoots to 0.49 m/s (rms error 0.18 "
+                "m/s): the slow, integral-dominated learned gains wind the correction up; without a hand it falls "
+                "1.7 s after the tap (consistency only: the thesis rode with a hand)",
     ),
     Row(
         key="000:fig7.14",
