@@ -93,7 +93,7 @@ def rig(params, variant, seed):
 
     return Rig(body, modules, channels=REF_CHANNELS, duration=params["max_s"], until=lambda s: overturned(body),
                record={5: signals}, view={**CH4_VIEW, "azimuth": 180.0, "elevation": -10.0, "distance": 2.8},
-               state=SimpleNamespace(body=body, rider=rider, recovery=recovery, start=start))
+               state=SimpleNamespace(body=body, rider=rider, recovery=recovery, start=start, monitor=monitor))
 
 
 def run_summary(run) -> dict:
@@ -135,7 +135,28 @@ def metrics(runs, params):
         moving = np.diff(travel, prepend=travel[0])
         m["drove_on_m"] = float(np.sum(moving[after & ~rec_flag & upright]))
     m.update(load_metrics(rec, rec_flag))
+    m.update(fig4_3_metrics(rec, rec_flag, runs["with"].state.monitor.joints))
     return m
+
+
+def fig4_3_metrics(rec, rec_flag, joints) -> dict:
+    """Fig. 4.3 (§4.3.1) in the window before the first recovery — Fig. 7.16-(I)'s left, which §7.4.1 says shows
+    Fig. 4.3's problems ('図4.3と同様に図7.16-(I)の左図からは(問題1),(問題2)が観察される'): the most loaded joint
+    (largest mean |τ| of a servo), whether it is a wrist roll joint, and the CoM's signed lateral offset."""
+    t = rec.times("load.joint_loads")
+    windows = recovery_windows(t, rec_flag)
+    if windows is None:
+        return {"most_loaded_joint_before": "", "most_loaded_is_wrist_roll_before": 0,
+                "com_y_before_m": float("nan")}
+    keep = (t >= windows[0][0]) & (t < windows[0][1])
+    loads = rec.values("load.joint_loads").reshape(len(t), -1)[keep].mean(axis=0)
+    ranked = np.argsort(loads)[::-1]
+    top = joints[ranked[0]]
+    return {"most_loaded_joint_before": top, "most_loaded_is_wrist_roll_before": int(top.endswith("wrist_roll")),
+            "most_loaded_joint_before_nm": float(loads[ranked[0]]),
+            "wrist_roll_load_before_nm": float(max(loads[joints.index(f"{s}_wrist_roll")] for s in ("l", "r"))),
+            "wrist_roll_rank_before": int(min(np.flatnonzero([joints[i].endswith("wrist_roll") for i in ranked])) + 1),
+            "com_y_before_m": float(np.mean(rec.values("load.com_y")[keep]))}
 
 
 def load_metrics(rec, rec_flag) -> dict:
@@ -165,7 +186,7 @@ def draw(ctx, runs, params):
 
 experiment(
     "humanoid.sitting-recovery",
-    covers=("000:fig7.14", "000:fig7.15", "000:fig7.16"),
+    covers=("000:fig4.3", "000:fig7.14", "000:fig7.15", "000:fig7.16"),
     source="seed 000 §4.3.2, §7.4.1, Eqs. 4.2–4.7, Table 7.6, Figs. 7.14–7.16",
     summary="A seat slip accumulating with driving: driving ⇄ interrupt-type sitting recovery (Switcher) vs driving alone",
     params=[
@@ -205,6 +226,14 @@ experiment(
         Check("com_offset_after_m", "<", "com_offset_before_m",
               "thesis §7.4.1 (Fig. 7.16-(I)): '重心位置が中央に寄り' (|CoM y − saddle| in the vehicle frame)",
               kind="reproduction", row="000:fig7.16"),
+        Check("most_loaded_is_wrist_roll_before", "==", 1,
+              "thesis §4.3.1, Fig. 4.3: '左手首関節の Roll 方向で特に負荷が大きくみられる' (declared before the first run: "
+              "a wrist roll servo has the largest mean |τ| before the first recovery, the window §7.4.1 says shows "
+              "Fig. 4.3's problems; either side, since our slip direction is ours)", kind="reproduction",
+              row="000:fig4.3"),
+        Check("com_y_before_m", ">", 0.0,
+              "follows from our input: SeatSlip pushes the hip to +y (left); the thesis's '左側に重心が移動しており' "
+              "(§4.3.1) comes from its robot's slip", kind="consistency", row="000:fig4.3"),
         Check("hand_ab_after_m", "<", "hand_ab_before_m",
               "thesis §7.4.1 (Fig. 7.16-(II)): '補正前 … モデルAの手先の把持箇所・腰部位置姿勢と,"
               "実環境ロボットモデルBの手先・腰部のズレが顕著' → '図 7.16 -(II) の右図のようにAとBが"
@@ -215,7 +244,9 @@ experiment(
               "搭乗位置・姿勢に関しても修正が可能となり' (waist position, feet midpoints aligned)",
               kind="reproduction", row="000:fig7.16"),
     ],
-    thesis={"overturned_without_recovery": ThesisValue(1, "seed 000 §7.4.1, Fig. 7.14 fail-4", "overturned_without_recovery"),
+    thesis={"most_loaded_joint": ThesisValue("l_wrist_roll", "seed 000 §4.3.1, Fig. 4.3: '左手首関節の Roll 方向で特に"
+                                             "負荷が大きくみられる'", "most_loaded_joint_before"),
+            "overturned_without_recovery": ThesisValue(1, "seed 000 §7.4.1, Fig. 7.14 fail-4", "overturned_without_recovery"),
             "overturned_with_recovery": ThesisValue(0, "seed 000 §7.4.1, Fig. 7.14 success", "overturned_with_recovery")},
     rig=rig, variants=("with", "without"), filmed=("with",), metrics=metrics,
     plots=draw,
