@@ -72,14 +72,27 @@ def test_ankle_rule_meets_3_21_wherever_the_leg_can():
 
 
 def test_passive_update_moves_the_foot_along_the_force_change():
-    """Eq. 3.24: q_{i+1} = q_i + K_n Δf_i, 2 mm per newton, away from the pedal when it pushes harder;
-    the updates sum to q_0 + K_n (f − f_0); a 0.25 N sensor step moves the foot 0.5 mm."""
-    law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True)
+    """Eq. 3.24 with Δf_i = f_i − f_{i−1} ("previous"): q_{i+1} = q_i + K_n Δf_i, 2 mm per newton, away from
+    the pedal when it pushes harder; the updates sum to q_0 + K_n (f − f_0); a 0.25 N sensor step moves the
+    foot 0.5 mm."""
+    law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True, delta_f="previous")
     assert law.step([0.0, 40.0]) == pytest.approx([0.05, -0.58])  # +10 N up → 20 mm up
     assert law.step([-5.0, 40.25]) == pytest.approx([0.04, -0.5795])
     for f in ([3.0, 12.0], [1.0, 55.0], [0.0, 30.0]):
         q = law.step(f)
     assert q == pytest.approx([0.05, -0.6])  # back to the starting force, back to q_0
+
+
+def test_passive_update_from_the_starting_force_integrates_the_built_up_force():
+    """Eq. 3.24 with Δf_i = f_i − f_0 ("start", the default): each period moves the foot K_n × the force built
+    since the passive phase began, so a held +10 N keeps it moving 20 mm a period; back at f_0 it stops."""
+    law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True)
+    assert law.delta_f == "start"
+    assert law.step([0.0, 40.0]) == pytest.approx([0.05, -0.58])
+    assert law.step([0.0, 40.0]) == pytest.approx([0.05, -0.56])
+    assert law.step([0.0, 30.0]) == pytest.approx([0.05, -0.56])
+    with pytest.raises(ValueError, match="delta_f"):
+        PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True, delta_f="last")
 
 
 def test_passive_update_holds_an_unreachable_target():
@@ -93,7 +106,7 @@ def test_passive_update_needs_a_compliant_leg(k_foot, converges):
     """[DERIVED] the reason for the relaxed passive tendons: against a foot stiffness k the summed
     update q = q_0 + K_n (f − f_0) reaches its fixed point only if K_n k < 1 (here 0.8 vs 1.2)."""
     pedal = -0.6
-    law = PassiveLegUpdate([0.0, pedal - 0.01], [0.0, 0.0], K.k_n, lambda q: True)
+    law = PassiveLegUpdate([0.0, pedal - 0.01], [0.0, 0.0], K.k_n, lambda q: True, delta_f="previous")
     forces = []
     for _ in range(60):
         f_z = k_foot * (pedal - law.q[1])  # the pedal pushes back on a foot commanded below it

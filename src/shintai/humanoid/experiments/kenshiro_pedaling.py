@@ -15,6 +15,8 @@ from shintai.humanoid.constants import (
     DEG,
     KENSHIRO,
     KENSHIRO_CONTACT_N,
+    KENSHIRO_DELTA_F,
+    KENSHIRO_DELTA_F_READINGS,
     KENSHIRO_RELAXED_TENDON,
     KENSHIRO_SAMPLE_PERIOD,
     KENSHIRO_SWITCH_LEAD,
@@ -46,7 +48,8 @@ def rig(params, variant, seed):
     """Settle, then pedal until the second role swap (or for ``max_s``), recording every tick."""
     k = spec(params)
     body = build_kenshiro(theta_c=THETA_C_INIT, k=k)
-    switcher, _ = pedalling_switcher(body, "right", k, params["sample_period_s"], params["relaxed_tendon"])
+    switcher, _ = pedalling_switcher(body, "right", k, params["sample_period_s"], params["relaxed_tendon"],
+                                     params["delta_f"])
     settle(body)
 
     def signals(snap):
@@ -113,6 +116,9 @@ experiment(
         Param("relaxed_tendon", KENSHIRO_RELAXED_TENDON, "passive leg's servo stiffness / active leg's", lo=1e-4,
               hi=1.0),
         Param("max_s", 40.0, "give up after this much pedalling [s]", lo=5.0, hi=120.0),
+        Param("delta_f", KENSHIRO_DELTA_F, "Eq. 3.24's Δf_i: the deviation from the passive phase's starting force "
+              "('start', declared before the run) or the change over one control period ('previous')",
+              choices=KENSHIRO_DELTA_F_READINGS),
     ],
     checks=[
         Check("d_th_m", ">=", 0.0150,

@@ -15,11 +15,11 @@ Kenshiro has no impedance control, so the two functions become:
 * **passive leg** — q_{i+1} = q_i + K_n Δf_i, K_n = 2 mm/N (Eqs. 3.24–3.26), which is
   ρ ← ρ − A sgn (x − x_d) with ρ = q, x = f_i, x_d = f_{i−1}, sgn = −E (Eq. 3.17) and
   A = K_n E (Table 3.5: A = K(Δf_i) = K_n ‖Δf_i‖ on the unit index Δf̂_i — the same product), run
-  through the core engine with the reachability hold of Eq. 3.14. Spec §6 item 11 leaves Δf_i's
-  reference open; ours: the change since the previous control period (16 ms), the period the
-  thesis updates K(Δf_i) at, read from the foot F/T sensor at its 0.25 N resolution. q_i is the
-  brain layer's planned position (App. A.2.2), so the updates sum to q = q_0 + K_n (f − f_0): a
-  500 N/m admittance that lets the rising pedal push the foot away.
+  through the core engine with the reachability hold of Eq. 3.14, every control period (16 ms), f read
+  from the foot F/T sensor at its 0.25 N resolution. Δf_i's reference is not stated
+  (``KENSHIRO_DELTA_F``): "start", the force at the passive phase's start (x_d = f_0 held), so the
+  foot moves at a rate ∝ the force built since; or "previous", the last period's force (x_d = f_{i−1}),
+  whose updates sum to q = q_0 + K_n (f − f_0), a 500 N/m admittance.
 
 The passive leg's tendons are relaxed (constants ``KENSHIRO_RELAXED_TENDON``): the update is
 stable only on a compliant leg. Roles swap by the switching diagnostic of Fig. 3.14 (crank angle
@@ -43,6 +43,8 @@ from shintai.humanoid.constants import (
     GRAVITY,
     KENSHIRO,
     KENSHIRO_CONTACT_N,
+    KENSHIRO_DELTA_F,
+    KENSHIRO_DELTA_F_READINGS,
     KENSHIRO_ON_PEDAL_M,
     KENSHIRO_RELAXED_TENDON,
     KENSHIRO_SAMPLE_PERIOD,
@@ -140,17 +142,21 @@ class PassiveLegUpdate:
     ``reachable(q)`` is the Eq. 3.14-style gate: an unreachable q_{i+1} keeps q_i.
     """
 
-    def __init__(self, q0, f0, k_n: float, reachable):
+    def __init__(self, q0, f0, k_n: float, reachable, delta_f: str = KENSHIRO_DELTA_F):
+        if delta_f not in KENSHIRO_DELTA_F_READINGS:
+            raise ValueError(f"passive leg: delta_f is one of {KENSHIRO_DELTA_F_READINGS}, got {delta_f!r}")
         self.index = SearchIndex(q0, k_n, sgn=PASSIVE_SGN[:2, :2], x_d=f0, hold=lambda q: not reachable(q))
+        self.delta_f = delta_f
 
     @property
     def q(self) -> np.ndarray:
         return self.index.rho.copy()
 
     def step(self, f) -> np.ndarray:
-        """One control period with the measured force f_i; Δf_i = f_i − f_{i−1}."""
+        """One control period with the measured force f_i; Δf_i = f_i − f_0 ("start") or f_i − f_{i−1}."""
         q = self.index.update(f)
-        self.index.x_d = np.array(f, dtype=float)
+        if self.delta_f == "previous":
+            self.index.x_d = np.array(f, dtype=float)
         return q.copy()
 
 
@@ -224,8 +230,10 @@ class KenshiroLegs(Module):
     control period with relaxed tendons (:func:`passive_posture`)."""
 
     def __init__(self, active: str, plan: list[PlanStep], tendons: Tendons, k: KenshiroSpec = KENSHIRO,
-                 sample_period: float = KENSHIRO_SAMPLE_PERIOD, relaxed: float = KENSHIRO_RELAXED_TENDON):
+                 sample_period: float = KENSHIRO_SAMPLE_PERIOD, relaxed: float = KENSHIRO_RELAXED_TENDON,
+                 delta_f: str = KENSHIRO_DELTA_F):
         super().__init__(f"{active}-active", k.control_period)
+        self.delta_f = delta_f
         self.active, self.passive = active, "left" if active == "right" else "right"
         self.plan, self.tendons, self.k = plan, tendons, k
         self.sample_period, self.relaxed = sample_period, relaxed
@@ -239,7 +247,7 @@ class KenshiroLegs(Module):
             self.player.push(step.q, self.sample_period)
         contact, _ = leg_fk(leg_joints(snapshot, self.passive), self.k)
         self.law = PassiveLegUpdate(contact, foot_force(snapshot, self.passive, self.k), self.k.k_n,
-                                    lambda q: passive_posture(q, self.k) is not None)
+                                    lambda q: passive_posture(q, self.k) is not None, self.delta_f)
 
     def update(self, snapshot):
         t = float(snapshot["t"])
@@ -254,14 +262,14 @@ class KenshiroLegs(Module):
 
 def pedalling_switcher(body, first_active: str = "right", k: KenshiroSpec = KENSHIRO,
                        sample_period: float = KENSHIRO_SAMPLE_PERIOD, relaxed: float = KENSHIRO_RELAXED_TENDON,
-                       ) -> tuple[Switcher, SwitchingDiagnostic]:
+                       delta_f: str = KENSHIRO_DELTA_F) -> tuple[Switcher, SwitchingDiagnostic]:
     """The two role configurations and the switching diagnostic of Fig. 3.14 as a Switcher on
     Kenshiro's rig ``body``; the roles follow the §3.5.2 leg table shifted by
     ``KENSHIRO_SWITCH_LEAD`` with a hysteresis of half of it (a stalled crank near the switching
 angle, or the change of the feet the estimate uses at a swap, moves the estimate by a degree or
 two). ``relaxed`` scales the passive leg's tendon stiffness."""
     tendons = Tendons(body)
-    children = [KenshiroLegs(leg, active_leg_plan(leg, k), tendons, k, sample_period, relaxed) for leg in SIDE]
+    children = [KenshiroLegs(leg, active_leg_plan(leg, k), tendons, k, sample_period, relaxed, delta_f) for leg in SIDE]
     diagnostic = SwitchingDiagnostic(lambda s: crank_angle_from_feet(s, k),
                                      lambda a: active_leg(a + KENSHIRO_SWITCH_LEAD, DELTA_C), KENSHIRO_SWITCH_LEAD / 2)
     transitions = [(f"{leg}-active", f"{other}-active", diagnostic.guard_to(other))
