@@ -344,8 +344,8 @@ ROWS = (
                    "humanoid.vboard-plant-id's fit to the boards' pitch (K_v 5.27×10³, K_ω 1.95×10⁴, T 0.05 s; its fit "
                    "from u has K_v < 0). u_I moves by exactly Eq. 6.38's step at each I-gain increase",
         why_not="the robot falls 45.4 s after the learning start (the governor-off baseline at 53.1 s) without meeting "
-                "Eq. 6.32: level 2 at D = 40 oscillates in yaw with a growing amplitude (±1 rad/s by 42 s: the "
-                "ω̇ → τ_L − τ_R → foot damping → Eq. A.1 loop, the notes), v drifts back and MLC's K_I^v integrates "
+                "Eq. 6.32: level 2 at D = 40 oscillates in yaw with a growing amplitude (±1 rad/s by 42 s; its origin is "
+                "not found — the notes' earlier ω̇ → τ_L − τ_R → damping story is withdrawn), v drifts back and MLC's K_I^v integrates "
                 "the foot pitch to 28° against the damping; gains O(10⁻⁴) (thesis O(10⁻³)), P^v below D^v. Before "
                 "the stabilizer read its torques in the feet's yawed frame both runs fell at ≈12 s",
     ),

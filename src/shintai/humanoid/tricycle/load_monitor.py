@@ -18,7 +18,7 @@ Ours (:class:`LoadMonitor`, every recorded sample):
 * joint torques: ‖τ‖ over the robot's 32 position servos (MuJoCo's actuator forces; the thesis estimated
   them from the joint tracking errors, §4.3.1), and each servo's |τ| (``joint_loads``, in the order of
   :attr:`LoadMonitor.joints`) for Fig. 4.3's "which joint is most loaded" — its circles' radii are "関節負荷の
-  絶対値";
+  絶対値" — and each servo's tracking error |q_ref − q| (``joint_errors``), what the thesis estimated the load from;
 * CoM: the robot's CoM in the vehicle frame, y relative to the saddle top (0 = centred on the saddle);
 * model A: the rider's reference model (:class:`~shintai.humanoid.tricycle.ch4_riding.Rider`: the waist at its
   commanded seat pose in the vehicle frame — Eq. 4.9's roll, the CoM shift, the hip lift — and every
@@ -101,7 +101,7 @@ class LoadMonitor:
                 "hand_force_norm": float(np.hypot(f["hand_l"], f["hand_r"])),
                 "foot_force_norm": float(np.hypot(f["foot_l"], f["foot_r"])),
                 "torque_norm": float(np.linalg.norm(d.actuator_force)), "com_y": float(com[1]),
-                "joint_loads": np.abs(d.actuator_force),
+                "joint_loads": np.abs(d.actuator_force), "joint_errors": np.abs(d.ctrl - d.qpos[self.servo_qadr]),
                 **self.models(snapshot)}
 
 
