@@ -31,3 +31,20 @@ def test_every_stabilising_gain_set_puts_a_correction_after_the_lip_tracking_bac
     # and gains with 1 + k1 + k3 > 0 are never stable
     assert not any(1 + k[0] + k[2] > 0 for k in stable)
     assert any(1 + k[0] + k[2] > 0 for k in gains)
+
+
+def test_the_support_polygon_and_the_zmp_truncation():
+    from shintai.humanoid.balance.stabilizer import support_polygon, truncate_zmp
+    from shintai.humanoid.constants import HRP2_LINKS as L
+
+    soles = [(0.0, 0.1, 0.0), (0.0, -0.1, 0.0)]
+    left = support_polygon(soles, "l")
+    assert len(left) == 4 and np.allclose(left.mean(axis=0), (L.foot_forward, 0.1 + L.foot_outward))
+    both = support_polygon(soles, "lr")
+    assert len(both) == 4  # the two rectangles side by side: one hull of 4 corners
+    inside = np.array([0.01, 0.0])
+    assert np.array_equal(truncate_zmp(inside, both), inside)
+    behind = truncate_zmp([-0.3, 0.1], left)  # 0.19 m behind the heel, as the boarding asked
+    assert behind == pytest.approx([L.foot_forward - L.foot_length / 2, 0.1])
+    corner = truncate_zmp([1.0, 1.0], left)
+    assert corner == pytest.approx([L.foot_forward + L.foot_length / 2, 0.1 + L.foot_outward + L.foot_width / 2])

@@ -69,7 +69,7 @@ from shintai.core.geometry import wrap_pi
 from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
 from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
-from shintai.humanoid.constants import COM_VEL_FILTER, CONTROL_PERIOD, LIP_K, ZMP_DELAY_T
+from shintai.humanoid.constants import COM_VEL_FILTER, CONTROL_PERIOD, HRP2_LINKS, LIP_K, ZMP_DELAY_T
 from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------
@@ -123,6 +123,47 @@ def error_system(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = 
 def closed_loop_poles(k=LIP_K, zc: float = 0.82, tp: float = ZMP_DELAY_T, g: float = GRAVITY) -> np.ndarray:
     """Poles of [55]'s error system under Eq. 26 (:func:`error_system`)."""
     return np.linalg.eigvals(error_system(k, zc, tp, g)[0])
+
+
+def support_polygon(soles, support: str, links=HRP2_LINKS) -> np.ndarray:
+    """The convex hull (counter-clockwise (x, y) vertices) of the stance soles' rectangles, each sole's centre
+    ``foot_forward`` ahead of and ``foot_outward`` outside its sole point; ``soles`` (left, right) sole points of
+    the reference (which have no yaw)."""
+    corners = []
+    for i, side in enumerate(SIDES):
+        if side in support:
+            cx = soles[i][0] + links.foot_forward
+            cy = soles[i][1] + (1.0 if side == "l" else -1.0) * links.foot_outward
+            hx, hy = links.foot_length / 2, links.foot_width / 2
+            corners += [(cx - hx, cy - hy), (cx + hx, cy - hy), (cx + hx, cy + hy), (cx - hx, cy + hy)]
+    pts = sorted(set(corners))
+    if len(pts) < 3:
+        return np.array(pts, dtype=float)
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []  # Andrew's monotone chain
+    for chain, seq in ((lower, pts), (upper, reversed(pts))):
+        for q in seq:
+            while len(chain) >= 2 and cross(chain[-2], chain[-1], q) <= 0:
+                chain.pop()
+            chain.append(q)
+    return np.array(lower[:-1] + upper[:-1], dtype=float)
+
+
+def truncate_zmp(p, polygon: np.ndarray) -> np.ndarray:
+    """``p`` if it lies in the convex ``polygon`` (counter-clockwise), else the polygon's nearest point to it: the
+    ZMP truncation of hrpsys's Stabilizer (``use_zmp_truncation``), which [55]'s distributor presupposes (its
+    centres of pressure are only reachable inside the soles)."""
+    p = np.asarray(p, dtype=float)
+    edges = np.roll(polygon, -1, axis=0) - polygon
+    rel = p - polygon
+    if np.all(edges[:, 0] * rel[:, 1] - edges[:, 1] * rel[:, 0] >= 0.0):
+        return p.copy()
+    t = np.clip(np.sum(rel * edges, axis=1) / np.sum(edges * edges, axis=1), 0.0, 1.0)
+    nearest = polygon + t[:, None] * edges
+    return nearest[np.argmin(np.sum((nearest - p) ** 2, axis=1))]
 
 
 class Distribution(NamedTuple):
@@ -232,11 +273,14 @@ class StabilizerModule(Module):
     ``f_Rz`` (the SLC's landing guards), ``zmp_d`` (p_d), ``zmp_act`` (measured ZMP, NaN in the air) and
     ``sole_dz`` (left, right height corrections of the force difference control).
 
-    ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights."""
+    ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights;
+    ``truncate=True`` bounds p_d to the stance soles before the distributor (:func:`truncate_zmp`; off by default,
+    as in hrpsys: the thesis is silent)."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
-                 name: str = "stabilizer", period: float = CONTROL_PERIOD):
+                 name: str = "stabilizer", period: float = CONTROL_PERIOD, truncate: bool = False):
         super().__init__(name, period)
+        self.truncate = bool(truncate)
         self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
         if len(self.k) != 3 or not all(math.isfinite(v) for v in self.k):
             raise ValueError(f"stabilizer: k is three finite gains (k1, k2, k3), got {k!r}")
@@ -301,6 +345,8 @@ class StabilizerModule(Module):
                               zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act[1])])
         else:
             zmp_d = np.array(zr[:2])
+        if self.truncate:
+            zmp_d = truncate_zmp(zmp_d, support_polygon(soles, support))
         dist = distribute(zmp_d, {"l": soles[0], "r": soles[1]}, support, self.weight)
         out = {"zmp_d": zmp_d, "zmp_act": act}
         for s in SIDES:

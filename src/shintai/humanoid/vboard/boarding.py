@@ -25,11 +25,13 @@ drive: the contact switches are off); the left board's drive switches on when th
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 from scipy.signal import find_peaks
 
+from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import SoleStep, Standing, platform_steps, settle_on_floor, stand_geometry
 from shintai.humanoid.constants import (
     BOARDING_CROUCH,
@@ -45,7 +47,7 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
 from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
-from shintai.humanoid.vboard.constants import PEAK_GAP_S, PEAK_SMOOTH_S
+from shintai.humanoid.vboard.constants import BOARDING_ZMP_TRUNCATION, PEAK_GAP_S, PEAK_SMOOTH_S
 from shintai.humanoid.vboard.vehicle import BOARD, SIDES, add_vboard, install_firmware
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
@@ -84,19 +86,22 @@ def boarding_steps(soles: dict, x: float = BOARD_X, v: VboardSpec = VBOARD) -> l
 
 
 def boarding_stack(p: SLCParams, T: float = DAMPING_T, learn: bool = True, v: VboardSpec = VBOARD,
-                   window: str | None = None) -> tuple[Standing, SLCSchedule]:
+                   window: str | None = None, zmp_truncation: bool = BOARDING_ZMP_TRUNCATION) -> tuple[Standing, SLCSchedule]:
     """The boarding of §5.4.1 ready to run: :func:`boarding_body` settled on the floor, the
     :class:`~shintai.humanoid.balance.standing.Standing` stack on :func:`boarding_steps` (crouched by
     :data:`~shintai.humanoid.constants.BOARDING_CROUCH`), D₀ = ``p.D0`` and T on every axis of both feet (Table
     5.2; §5.4.1: the roll stays at D₀), and SLC in its slot after the foot damping — learning (``learn``) or only
     marking the same window (D = D₀ throughout: Fig. 5.6's run). ``humanoid.vboard-boarding`` runs it, and
     ``humanoid.speed-governing`` rides on after it (Fig. 6.16). ``window``: the channel whose state opens and
-    closes SLC instead of its own landing guards (:mod:`~shintai.humanoid.vboard.solc` switches it, §7.4.2)."""
+    closes SLC instead of its own landing guards (:mod:`~shintai.humanoid.vboard.solc` switches it, §7.4.2);
+    ``zmp_truncation``: p_d bounded to the stance soles before the distributor (:data:`BOARDING_ZMP_TRUNCATION`)."""
     body = boarding_body(v=v)
     settle_on_floor(body)
     soles, _ = stand_geometry(body)
     sched = SLCSchedule(SLC(p), learn=learn, window=window)
-    st = Standing(steps=boarding_steps(soles, v=v), body=body, crouch=BOARDING_CROUCH, D=p.D0, T=T, learner=sched)
+    stabilizer = functools.partial(StabilizerModule, truncate=zmp_truncation)
+    st = Standing(steps=boarding_steps(soles, v=v), body=body, crouch=BOARDING_CROUCH, D=p.D0, T=T, learner=sched,
+                  stabilizer=stabilizer)
     return st, sched
 
 

@@ -16,6 +16,12 @@ THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression inter
 START_S = 2.0  # s, chosen: the excitation starts after the lift has let go (≈1.0 s) and the stack has settled
 PEAK_SMOOTH_S = 0.04  # s, chosen: J_τ smoothed over 10 ticks before its peaks are sought (it is a 4 ms signal)
 PEAK_GAP_S = 0.2  # s, chosen: two J_τ peaks are ≥ this apart (the thesis's are 0.4 s apart, §5.4.2)
+# The boarding bounds the LIP tracking's p_d to the stance soles before the ZMP distributor (hrpsys Stabilizer's ZMP
+# truncation; [55]'s distributor turns p_d − p_α into each foot's pressure centre, which only a point inside the
+# soles can be). The thesis is silent; declared before the run (issue 26 item 4): without it, at 0.6 s of the
+# single-support boarding τᵈ ≈ −110 N·m asked for a pressure centre ≈0.19 m behind the sole (measured), δ
+# integrated to its limit whatever D was, and SLC drove D to 83 (thesis 22 → ≈40).
+BOARDING_ZMP_TRUNCATION = True
 
 # --- the numbers of experiments/solc.py ---------------------------------------------------------------------------
 TAIL_S = 2.0  # s, chosen: "final" |v|, |ω| are means over the run's last 2 s (one mini-batch), as speed-governing
