@@ -15,7 +15,7 @@ from shintai.humanoid.constants import DAMPING_T, DELTA_LIMIT, SLC_D0, SLC_ETA, 
 from shintai.humanoid.learning.slc import SLCParams, slc_cost
 from shintai.humanoid.vboard import plots
 from shintai.humanoid.vboard.boarding import boarding_stack, run_summary
-from shintai.humanoid.vboard.constants import AFTER_S
+from shintai.humanoid.vboard.constants import AFTER_S, BOARDING_ZMP_TRUNCATION
 from shintai.humanoid.vboard.vehicle import board_pitch
 from shintai.scenarios.experiment import Rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
@@ -28,7 +28,7 @@ def rig(params, variant, seed):
     (:mod:`shintai.humanoid.vboard.boarding`); SLC runs after the foot damping, learning (``slc``) or only marking
     the same window (``fixed_d``: D = D₀ throughout)."""
     p = SLCParams(D0=params["D0"], Q=params["Q"], R=params["R"], eta=params["eta"])
-    st, sched = boarding_stack(p, params["T"], learn=variant == "slc")
+    st, sched = boarding_stack(p, params["T"], learn=variant == "slc", zmp_truncation=params["zmp_truncation"])
     body = st.body
     left: FootDamping = st.damping.feet["L"]
     qx = body.model.joint("vboard_x").qposadr[0]
@@ -106,6 +106,8 @@ experiment(
         Param("Q", SLC_Q, "weight of e_τ² (Table 5.2: 0.1)", lo=1e-6, hi=1e3),
         Param("R", SLC_R, "weight of δ² (Table 5.2: 1.0e5)", lo=1.0, hi=1e8),
         Param("eta", SLC_ETA, "learning rate η (Table 5.2: 0.01)", lo=1e-6, hi=1.0),
+        Param("zmp_truncation", BOARDING_ZMP_TRUNCATION, "bound p_d to the stance soles before the distributor "
+              "(hrpsys's ZMP truncation; thesis-silent, vboard.constants)"),
         Param("after_s", AFTER_S, "standing on the scooter after the plan's end [s]", lo=0.0, hi=20.0),
         Param("max_s", 30.0, "stop the run after this much sim time [s] (a truncated boarding; the plan is 4.2 s)",
               lo=0.5, hi=30.0),
