@@ -287,7 +287,11 @@ ROWS = (
                 "the left landing), as the thesis shows, but δ hits it with SLC too (0.60 s: D is 29.6 by then; it "
                 "leaves the limit at 2.94 s, before the right landing) and J_τ's second peak (0.64 s, 2066) is larger "
                 "than its first (0.43 s, 166): D moves only once δ is large (R′δ²/D), and the loaded left board "
-                "drives forward under the foot (θ_L > θ_LO) while the right foot is on the floor",
+                "drives forward under the foot (θ_L > θ_LO) while the right foot is on the floor. These are the "
+                "numbers without the ZMP truncation declared since (p_d bounded to the soles, hrpsys's, "
+                "thesis-silent): with it τᵈ at 0.6 s halves (−108 → −58 N·m) but the sole on its pivoting board "
+                "gives −13 N·m, δ still saturates (0.9 s), D ends at 86.2, J_τ's peaks 1633 (0.66 s) and 1750 "
+                "(0.86 s), and without SLC the robot no longer falls (Fig. 5.6's check fails)",
     ),
     # --- chapter 6: MLC, speed governing on the V-BOARD ------------------------------------------------------
     Row(
