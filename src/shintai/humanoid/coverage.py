@@ -256,11 +256,13 @@ ROWS = (
         result="§5.4.2: '平坦な床面で適応的にバランスを維持していたパラメータ D = 22.0 をそのまま用いて乗り込み動作を"
                "生成した場合,平行二輪電動スクーター上では適応的にバランスを安定化できずに図 5.6 -(7),(8) に示すように"
                "転倒した.'",
-        difference="humanoid.vboard-boarding (fixed_d): our HRP2 falls too, 4.44 s into the run (2.47 s after the left "
-                   "landing, 1.32 s after the right one), δ at its 10° limit from 0.58 s after the left landing, the "
-                   "left board tipped to −29°; the loaded left board drives forward while the right foot is still on "
-                   "the floor (θ_L ≈ −1.6° > θ_LO = −1.9972°, Eq. A.1) — with SLC the same happens but D grows and "
-                   "the robot boards (000:fig5.7)",
+        difference="humanoid.vboard-boarding (fixed_d), with the ZMP truncation (p_d bounded to the soles, hrpsys's; "
+                   "thesis-silent, declared before the run): δ at its 10° limit, the left board down to −18°, the "
+                   "scooter 0.51 m forward",
+        why_not="with the truncation our HRP2 does not fall at D = 22 (it rides the 10.6 s with δ at its limit); "
+                "without it (--set zmp_truncation=false) it falls as the thesis's did, 4.44 s into the run (2.47 s "
+                "after the left landing), the left board tipped to −29°: the loaded left board drives forward while "
+                "the right foot is still on the floor (θ_L ≈ −1.6° > θ_LO = −1.9972°, Eq. A.1)",
     ),
     Row(
         key="000:fig5.7",
@@ -270,9 +272,10 @@ ROWS = (
         result="§5.4.2: 'SLC を用いてオンラインでダンピングゲインの学習を行うことで,適応的に平行二輪電動スクーター上"
                "への搭乗行動が実現された'; 'SLC の実行の総時間は約 1.2[s] の結果となった'; 'ダンピングゲイン D は初期値 "
                "D = 22.0 より学習を開始して,増加しながら SLC の終了時点では約 D = 40.0 の値を獲得した'",
-        difference="humanoid.vboard-boarding (slc): the robot boards and stands to the run's end (6.2 s); SLC runs "
-                   "1.24 s (left landing 1.976 s → right landing 3.220 s, the f_Rz > 25 N guard; thesis ≈1.2 s) and D "
-                   "rises 22.0 → 83.4 (thesis ≈40: D keeps growing while δ sits at its limit, 000:fig5.8), the right "
+        difference="humanoid.vboard-boarding (slc, with the ZMP truncation): the robot boards and stands to the run's "
+                   "end; SLC runs 1.23 s (left landing 1.976 s → right landing 3.208 s, the f_Rz > 25 N guard; thesis "
+                   "≈1.2 s) and D rises 22.0 → 86.2 (83.4 without the truncation; thesis ≈40: D keeps growing while δ "
+                   "sits at its limit, 000:fig5.8), the right "
                    "pitch takes it. The stance torques are read in the feet's yawed frame (§5.2.2); with world axes "
                    "this run fell at 4.22 s",
     ),
