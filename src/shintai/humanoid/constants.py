@@ -708,6 +708,10 @@ COM_ITERATIONS = 3  # waist moves then IK; the mass centre settles over the axle
 LIP_K = (-1.41429 * 0.9, -0.404082 * 0.9, -0.18 * 0.9)
 ZMP_DELAY_T = 0.04  # s, T_p of the ZMP's first-order response in [55] (hrpsys eefm_zmp_delay_time_const)
 COM_VEL_FILTER = 0.9  # hrpsys's act_cogvel ← 0.9 act_cogvel + 0.1 (finite difference)
+# s, the chest-attitude estimate's time constant for the CoM read through the IMU (balance/attitude.py): hrpsys's
+# KalmanFilter defaults (Q_angle 0.001, Q_rate 0.003, R_angle 1000) at our 4 ms give a steady-state angle gain of
+# 9.4e-4 per sample, an initial rate 0.23 1/s (issue 26)
+ATTITUDE_TAU = 4.3
 
 # --- the numbers of balance/standing.py ---------------------------------------------------------------------------
 SWING_HEIGHT = 0.05  # m, chosen: hrpsys GaitGenerator's default_step_height

@@ -67,9 +67,10 @@ import numpy as np
 from shintai.core.constants import GRAVITY
 from shintai.core.geometry import wrap_pi
 from shintai.core.runtime import SET, Module, declare
+from shintai.humanoid.balance.attitude import TiltEstimate
 from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
 from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
-from shintai.humanoid.constants import COM_VEL_FILTER, CONTROL_PERIOD, HRP2_LINKS, LIP_K, ZMP_DELAY_T
+from shintai.humanoid.constants import ATTITUDE_TAU, COM_VEL_FILTER, CONTROL_PERIOD, HRP2_LINKS, LIP_K, ZMP_DELAY_T
 from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------
@@ -275,11 +276,25 @@ class StabilizerModule(Module):
 
     ``lip=False`` leaves p_d = p_ref (no LIP tracking); ``force_difference=False`` keeps the heights;
     ``truncate=True`` bounds p_d to the stance soles before the distributor (:func:`truncate_zmp`; off by default,
-    as in hrpsys: the thesis is silent)."""
+    as in hrpsys: the thesis is silent).
+
+    ``com_reading``: ``"world"`` (default) MuJoCo's CoM against the true vertical (module docstring);
+    ``"imu"`` the CoM's offset from the stance feet read through the chest IMU's attitude estimate
+    (:class:`~shintai.humanoid.balance.attitude.TiltEstimate`, time constant ``attitude_tau``), as hrpsys's
+    ``act_cog`` is (forward kinematics from the KalmanFilter's attitude, in the foot-origin frame), and its velocity
+    the difference of that offset (hrpsys's ``act_cogvel``); under a sustained acceleration it balances about the
+    apparent vertical (issue 26). ``read_com`` keeps the (x, ẋ) the LIP tracking last used, in its frame."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
-                 name: str = "stabilizer", period: float = CONTROL_PERIOD, truncate: bool = False):
+                 name: str = "stabilizer", period: float = CONTROL_PERIOD, truncate: bool = False,
+                 com_reading: str = "world", attitude_tau: float = ATTITUDE_TAU):
         super().__init__(name, period)
+        if com_reading not in ("world", "imu"):
+            raise ValueError(f"stabilizer: com_reading is 'world' or 'imu', got {com_reading!r}")
+        self.com_reading = com_reading
+        self.tilt = TiltEstimate(attitude_tau, period) if com_reading == "imu" else None
+        self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
+        self.read_com = (math.nan, math.nan)
         self.truncate = bool(truncate)
         self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
         if len(self.k) != 3 or not all(math.isfinite(v) for v in self.k):
@@ -298,6 +313,9 @@ class StabilizerModule(Module):
         self.com_vel = [0.0, 0.0, 0.0]
         self._prev_ref = None
         self.force_difference.z_ctrl = 0.0
+        if self.tilt is not None:
+            self.tilt.reset(snapshot)
+        self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
 
     def update(self, snapshot):
         dt = self.period
@@ -338,9 +356,23 @@ class StabilizerModule(Module):
                 total += x.fz
         act = np.array(to_ref(num_x / total, num_y / total)) if total > 0 else np.full(2, np.nan)
         k1, k2, k3 = self.k
+        if self.tilt is not None:
+            err = self.tilt.update(snapshot)
         if self.lip and total > 0:
             cx, cy = to_ref(com[0], com[1])
             vx, vy = into_yawed(self.com_vel[0], self.com_vel[1], psi)
+            if self.tilt is not None:  # the offset from the stance feet through the estimated attitude
+                az = sum(w[SIDES[i]].point[2] for i in stance) / n
+                ex, ey, _ = (err @ np.array([com[0] - ax, com[1] - ay, com[2] - az])).tolist()
+                cx, cy = into_yawed(ex, ey, psi)
+                cx, cy = cx + rx, cy + ry
+                if self._read_prev is not None and self._read_support == support:
+                    f = COM_VEL_FILTER
+                    self._read_vel = [f * self._read_vel[0] + (1 - f) * (cx - self._read_prev[0]) / dt,
+                                      f * self._read_vel[1] + (1 - f) * (cy - self._read_prev[1]) / dt]
+                self._read_prev, self._read_support = (cx, cy), support
+                vx, vy = self._read_vel
+            self.read_com = (cx, vx)
             zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act[0]),
                               zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act[1])])
         else:

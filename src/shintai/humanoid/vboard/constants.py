@@ -7,6 +7,9 @@ D_VBOARD = 40.0  # N·m·s/rad, the damping gain SLC reached boarding the V-BOAR
 EXCITE_AMPLITUDE = 6.0e-5  # rad per control period, chosen: a 1 s half-period moves the boards 0.86°, v ±0.3 m/s
 EXCITE_PERIOD = 2.0  # s, chosen: the square wave's period (a triangle of θ, ≈ T_v of Table 6.2 per half)
 LEVELS = (1, 2, 3)
+# the stabilizer's CoM reading on the lift-placed V-BOARD rigs (balance.stabilizer.StabilizerModule's com_reading):
+# "world" = MuJoCo's CoM against the true vertical (issue 26 tests "imu", hrpsys's act_cog through the IMU's attitude)
+COM_READING = "world"
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
 PLANTS = ("board", "table6.2")
 MODES = ("corrected", "saturated", "plain")

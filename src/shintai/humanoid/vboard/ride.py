@@ -13,16 +13,18 @@ balance stack (LIP tracking, ZMP distributor, foot torque damping Eqs. 5.1–5.3
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 
 from shintai.core.runtime import Module
 from shintai.humanoid.balance.foot_attitude import measured_zmp
 from shintai.humanoid.balance.scooter import CHANNELS, ChestPitchControl, ChestPitchIK, FootPitch, Lift, ScooterSensors
+from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Standing
-from shintai.humanoid.constants import LIFT_GAP, LIFT_SPEED, VBOARD
+from shintai.humanoid.constants import ATTITUDE_TAU, LIFT_GAP, LIFT_SPEED, VBOARD
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS
+from shintai.humanoid.vboard.constants import COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
@@ -49,7 +51,8 @@ class VboardRide:
     ``theta_o_error_deg``: the scooter's true θ_O minus the regression intercept (Eq. A.1; both sides), the
     controllers keep the nominal values (§6.2.1); ``D`` the damping gain (levels 2–3); ``excite`` → (u_v, u_ω) a
     known input added at levels 2–3; ``lift=False`` starts standing on the pads (no lowering); ``seed`` the
-    sensors' noise; ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
+    sensors' noise; ``com_reading``, ``attitude_tau`` the stabilizer's CoM reading (lift-placed start; default
+    :data:`~shintai.humanoid.vboard.constants.COM_READING`); ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
     ``governor(lift)`` → the module (the lift, or None, for its start gate), default a
     :class:`~shintai.humanoid.vboard.governor.SpeedGovernor` on ``gains`` ((K_P, K_I, K_D) for v, for ω) with MLC
     if ``learn``. ``standing``: instead of the lift-placed start, a
@@ -62,7 +65,8 @@ class VboardRide:
     def __init__(self, level: int = 2, theta_o_error_deg: float = 0.0, D: float = D_VBOARD, gains=((0.0,) * 3,) * 2,
                  learn: bool = False, governor=None, excite=None, lift: bool = True, gap: float = LIFT_GAP,
                  speed: float = LIFT_SPEED, seed: int = 0, noise: bool = True, posture: bool = False,
-                 standing: Standing | None = None, supervisor: Module | None = None):
+                 standing: Standing | None = None, supervisor: Module | None = None,
+                 com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         check_real("D", D, 0.0, low_open=True)
@@ -81,7 +85,8 @@ class VboardRide:
             stack = {"D": D} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
             # §4.3.3, Fig. 4.10 (B): with chest posture control the IK turns the upper body about the feet
             ik = ChestPitchIK if posture else None
-            self.standing = Standing(body=body, ik=ik, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
+            stab = functools.partial(StabilizerModule, com_reading=com_reading, attitude_tau=attitude_tau)
+            self.standing = Standing(body=body, ik=ik, stabilizer=stab, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
             if self.lift is not None:
                 self.lift.lowering = True
         else:
