@@ -44,10 +44,11 @@ def excitation(axis: str, amplitude: float = EXCITE_AMPLITUDE, period: float = E
 
 def plant_id_rig(axis: str, seed: int, excite_s: float = EXCITE_S, amplitude: float = EXCITE_AMPLITUDE,
                  period: float = EXCITE_PERIOD, theta_o_error_deg: float = THETA_O_ERROR_DEG,
-                 D: float = D_VBOARD) -> Rig:
-    """One identification run: level 2 with the :func:`excitation` of ``axis``, recording the boards' pitch."""
+                 D: float = D_VBOARD, **ride) -> Rig:
+    """One identification run: level 2 with the :func:`excitation` of ``axis``, recording the boards' pitch;
+    ``ride``: more :class:`VboardRide` options (e.g. ``com_reading``)."""
     ride = VboardRide(level=2, theta_o_error_deg=theta_o_error_deg, D=D,
-                      excite=excitation(axis, amplitude, period, excite_s), seed=seed)
+                      excite=excitation(axis, amplitude, period, excite_s), seed=seed, **ride)
 
     def board(snapshot):
         th = {s: float(snapshot[f"board_{s}_pitch"][0]) for s in "rl"}
@@ -83,6 +84,8 @@ def identification(runs) -> dict:
     fv, fw = fit(sv["foot_pitch.u_v"], sv["sensors.v"], wv), fit(sw["foot_pitch.u_omega"], sw["sensors.omega"], ww)
     # the board side of Eqs. 6.6–6.10: the boards' measured pitch increments (u + the damping's d) → true v, ω
     dR, dL = (np.diff(sv[k], prepend=sv[k][0]) for k in ("board_R", "board_L"))
+    # the same fits against the simulator's truth (the sensors' noise and Eq. 6.3's filter out of the way)
+    tv_, tw_ = fit(sv["foot_pitch.u_v"], sv["sensors.true_v"], wv), fit(sw["foot_pitch.u_omega"], sw["sensors.true_omega"], ww)
     bv = fit((dR + dL) / 2, sv["sensors.true_v"], wv)
     dR, dL = (np.diff(sw[k], prepend=sw[k][0]) for k in ("board_R", "board_L"))
     bw = fit((dR - dL) / 2, sw["sensors.true_omega"], ww)
@@ -93,6 +96,8 @@ def identification(runs) -> dict:
     return {"fallen_v": int(runs["v"].state.fallen()), "fallen_omega": int(runs["omega"].state.fallen()),
             "ride_v_s": float(tv[-1]), "ride_omega_s": float(tw[-1]),
             "T_v_s": fv["T"], "K_v": fv["K"], "r2_v": fv["r2"], "T_omega_s": fw["T"], "K_omega": fw["K"], "r2_omega": fw["r2"],
+            "T_v_true_s": tv_["T"], "K_v_true": tv_["K"], "r2_v_true": tv_["r2"],
+            "T_omega_true_s": tw_["T"], "K_omega_true": tw_["K"], "r2_omega_true": tw_["r2"],
             "T_v_board_s": bv["T"], "K_v_board": bv["K"], "r2_v_board": bv["r2"],
             "T_omega_board_s": bw["T"], "K_omega_board": bw["K"], "r2_omega_board": bw["r2"],
             "K_v_eq610": K_V_EQ610, "K_omega_eq610": K_OMEGA_EQ610,
