@@ -1,12 +1,17 @@
 """``humanoid.vboard-plant-id``: the speed plants P_*(s) = K_*/(s(1 + T_* s)) identified on HRP2 riding the V-BOARD
 at behaviour level 2, from a known foot-pitch input and the simulated sensors' v, ω (seed 000 §6.2.2 (D),
-Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.vboard.plant_id`."""
+Eqs. 6.4–6.16, Table 6.2, Fig. 6.9); the identification is :mod:`shintai.humanoid.vboard.plant_id`. The variants
+``chain``/``chain_base`` are issue 26's sign chain (:mod:`shintai.humanoid.vboard.sign_chain`: plot ``sign_chain``,
+metrics ``chain_<link>_<ms>ms``)."""
 
 from __future__ import annotations
 
 from shintai.humanoid.vboard import plots
 from shintai.humanoid.vboard.constants import D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, EXCITE_S, THETA_O_ERROR_DEG
 from shintai.humanoid.vboard.plant_id import AXES, identification, plant_id_rig
+from shintai.humanoid.vboard.sign_chain import chain_difference, chain_readings, chain_rig
+
+CHAIN = ("chain", "chain_base")  # issue 26's probe: a +1° common-mode step of the commanded pitch, and without it
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 
@@ -21,12 +26,17 @@ PARAMS = [
 
 
 def rig(params, variant, seed):
+    if variant in CHAIN:
+        return chain_rig(variant == "chain", seed, D=params["damping_d"], theta_o_error_deg=params["theta_o_error_deg"])
     return plant_id_rig(variant, seed, params["excite_s"], params["amplitude_rad"], params["period_s"],
                         params["theta_o_error_deg"], params["damping_d"])
 
 
 def metrics(runs, params):
-    return identification(runs)
+    out = identification(runs)
+    out.update(chain_readings(*chain_difference(runs["chain"], runs["chain_base"])))
+    out["chain_fallen"] = int(runs["chain"].state.fallen() or runs["chain_base"].state.fallen())
+    return out
 
 
 experiment(
@@ -54,6 +64,6 @@ experiment(
             "T_omega_s": ThesisValue(0.6, "seed 000 Table 6.2, T_ω", "T_omega_s"),
             "K_v": ThesisValue(5.88e2, "seed 000 Table 6.2, K_v = 5.88×10²", "K_v"),
             "K_omega": ThesisValue(1.39e4, "seed 000 Table 6.2, K_ω = 1.39×10⁴", "K_omega")},
-    rig=rig, variants=AXES, filmed=("v",), metrics=metrics, plots=plots.plant_id, video=True,
+    rig=rig, variants=AXES + CHAIN, filmed=("v",), metrics=metrics, plots=plots.plant_id, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
 )

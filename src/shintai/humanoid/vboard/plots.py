@@ -14,6 +14,7 @@ from shintai.humanoid.vboard.governed_ride import governor_series, increase_tick
 from shintai.humanoid.vboard.governor import AXES
 from shintai.humanoid.vboard.plant_id import identification, series, window
 from shintai.humanoid.vboard.ride import theta_o, touchdown
+from shintai.humanoid.vboard.sign_chain import LINKS, PROBE_AFTER, chain_difference
 from shintai.humanoid.vboard.solc import switch_times
 
 
@@ -264,3 +265,26 @@ def plant_id(ctx, runs, params):
             ax[2, j].set_xlabel("t [s]")
         ax[0, 0].set_title("Fig. 6.9 (a): v")
         ax[0, 1].set_title("Fig. 6.9 (b): ω")
+    if "chain" in runs and "chain_base" in runs:
+        sign_chain(ctx, runs, params)
+
+
+def sign_chain(ctx, runs, params):
+    """Issue 26's chain: each link's difference (step run − run without) after the +1° common-mode step of the
+    commanded foot pitch, one panel per link, the probe's read-out instants marked."""
+    tau, diff = chain_difference(runs["chain"], runs["chain_base"])
+    keep = (tau >= -0.2) & (tau <= max(PROBE_AFTER) + 0.05)
+    with ctx.figure("sign_chain", 6, 2, figsize=(12, 14), sharex=True) as (_fig, ax):
+        cells = ax.ravel()
+        for a, (key, label, scale, unit) in zip(cells, LINKS):
+            a.plot(tau[keep], diff[key][keep] * scale, color="k", lw=0.9)
+            a.axhline(0.0, color="0.6", lw=0.5)
+            for t in PROBE_AFTER:
+                a.axvline(t, color="r", lw=0.5, ls=":")
+            a.set_ylabel(f"Δ {label}\n[{unit}]", fontsize=8)
+        for a in cells[len(LINKS):]:
+            a.axis("off")
+        for a in cells[len(LINKS) - 2:len(LINKS)]:
+            a.set_xlabel("t − t_step [s]")
+            a.xaxis.set_tick_params(labelbottom=True)
+        cells[0].set_title("+1° common-mode commanded foot pitch, level 2 (issue 26)")
