@@ -62,4 +62,5 @@ experiment(
     thesis={"v_step_mps": ThesisValue(V_STEP, "seed 000 §7.3.3: 'v^d = 0.3[m/s]のステップ指令'", None)},
     rig=rig, metrics=metrics, plots=lambda ctx, runs, params: plots.free(ctx, runs, params["step_at_s"], V_STEP), video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"duration_s": 1.5, "step_at_s": 0.5},  # past the step and the tap
 )
