@@ -54,7 +54,7 @@ def test_lead_pedal_follows_commanded_crank_rate():
 
 def test_obstacle_navigation_with_legs_stops_at_goal():
     """The default drive (legs, Eq. 4.22 from the navigator's ω_c^ref) goes round the wall and stops: the
-    experiment's rig on the true pose, ≈25 s of driving (longer than its 5 s smoke run, which ends before the
+    experiment's rig on the true pose, ≈22 s of driving (longer than its 5 s smoke run, which ends before the
     wall; the slowest humanoid test)."""
     from shintai.humanoid.experiments import obstacle_navigation as navigation
     from shintai.scenarios.experiment import run_rig
