@@ -1,5 +1,5 @@
 """Every registered environment passes Gymnasium's checker, resets identically from a seed, and runs a random
-policy for 200 steps."""
+policy for a few steps (gym_checks.RANDOM_STEPS)."""
 
 import gymnasium as gym
 import numpy as np
@@ -11,8 +11,8 @@ import shintai.gym
 from shintai.gym import ENVIRONMENTS
 
 IDS = sorted(ENVIRONMENTS)
-# the tricycle's 200 random steps (≈ 5 min of simulated riding) run from tests/gym/test_tricycle.py, a file of
-# its own, so that `pytest -n 2 --dist loadfile` puts them beside this file rather than after it
+# the tricycle's random steps (each a crank sample of the thesis's rig) run from tests/gym/test_tricycle.py, a
+# file of its own, so that `pytest -n 2 --dist loadfile` puts them beside this file rather than after it
 SEPARATE = {"shintai/TricyclePedal-v0"}
 # the humanoid's vehicles run both checks (and their own) in tests/gym/test_vehicles.py
 VEHICLES = {"shintai/VBoardRide-v0", "shintai/NinebotRide-v0"}

@@ -21,7 +21,6 @@ from shintai.humanoid.tricycle.kenshiro import (
     pedal_plan,
     step_margin,
 )
-from shintai.scenarios.runner import run_scenario
 
 K = KENSHIRO
 
@@ -146,10 +145,12 @@ def test_passive_posture_prefers_a_level_foot():
     assert passive_posture(np.array([0.0, -1.5])) is None  # beyond the leg's reach
 
 
-def test_kenshiro_pedaling_scenario_turns_one_revolution(tmp_path):
-    """E8 end to end (no video): one revolution, two role swaps, D_th; every consistency check holds (the
-    reproduction checks of the second half and the active peaks fail at the defaults: see the notes)."""
-    result = run_scenario("humanoid.kenshiro-pedaling", out=tmp_path, quiet=True)
+def test_kenshiro_pedaling_scenario_turns_one_revolution(smoke):
+    """E8 end to end (no video; its smoke run is the default run): one revolution, two role swaps, D_th; every
+    consistency check holds (the reproduction checks of the second half and the active peaks fail at the
+    defaults: see the notes)."""
+    run = smoke("humanoid.kenshiro-pedaling")
+    result, out = run.result, run.out
     assert "error" not in result, result.get("error")
     failed = [c["name"] for c in result["checks"] if not c["ok"] and c["kind"] == "consistency"]
     assert not failed, failed
@@ -157,4 +158,4 @@ def test_kenshiro_pedaling_scenario_turns_one_revolution(tmp_path):
     assert ok["crank_advance_deg"] and ok["revolution_time_upper"]
     m = result["metrics"]
     assert m["role_swaps"] == 2 and m["crank_advance_deg"] > 350
-    assert (tmp_path / "force_trace.png").is_file() and (tmp_path / "active_plan.png").is_file()
+    assert (out / "force_trace.png").is_file() and (out / "active_plan.png").is_file()

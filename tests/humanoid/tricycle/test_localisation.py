@@ -89,11 +89,10 @@ def test_jitter_does_not_spin_particles():
     assert np.abs(pf.p[:, 2]).max() < 0.01
 
 
-def test_odometry_scenario_short(tmp_path):
-    """humanoid.odometry, 0.5 m at −25°: the tricycle turns right and stops; the MCL stays within a few
-    centimetres of the truth and ends nearer than the wheel odometry."""
-    from shintai.scenarios.runner import run_scenario
-    out = run_scenario("humanoid.odometry", out=tmp_path, overrides={"travel_m": "0.4", "drive": "motor"}, quiet=True)
+def test_odometry_scenario_short(smoke):
+    """humanoid.odometry's smoke run, 0.4 m at −25° pedalled by the legs: the tricycle turns right and stops; the
+    MCL stays within a few centimetres of the truth and ends nearer than the wheel odometry."""
+    out = smoke("humanoid.odometry").result
     m = out["metrics"]
     assert "error" not in out and m["stopped"] == 1 and m["overturned"] == 0
     assert m["true_end_yaw_deg"] < -3 and m["true_end_y_m"] < 0  # a right turn at θ_h = −25°
@@ -103,14 +102,16 @@ def test_odometry_scenario_short(tmp_path):
     assert m["mcl_corrections"] == m["mcl_updates"]  # the room is always in view
 
 
-def test_navigation_on_estimated_pose_short(tmp_path):
-    """obstacle-navigation, pose=estimated, 5 s: the scan placed by the MCL pose puts the wall in the costmap,
-    the estimate stays within 5 cm while the wall is in view; only the estimated run's metrics are there."""
-    from shintai.scenarios.runner import run_scenario
-    out = run_scenario("humanoid.obstacle-navigation", out=tmp_path, overrides={"pose": "estimated", "max_s": "5"},
-                       quiet=True)
+def test_navigation_on_estimated_pose_short(smoke):
+    """obstacle-navigation's smoke run, 5 s: the scan placed by the MCL pose puts the wall in the costmap, the
+    estimate stays within 5 cm while the wall is in view; pose=estimated runs the estimated variant alone."""
+    from shintai.scenarios.registry import get
+
+    sc = get("humanoid.obstacle-navigation")
+    assert list(sc.variants(sc.resolve({"pose": "estimated"}))) == ["estimated"]
+    out = smoke("humanoid.obstacle-navigation").result
     m = out["metrics"]
-    assert "error" not in out and "reached" not in m and m["reached_estimated"] == 0
+    assert "error" not in out and m["reached_estimated"] == 0
     assert m["wall_in_costmap_estimated"] == 1 and m["mcl_corrected_share_estimated"] == 1.0
     assert m["min_clearance_estimated_m"] > 0.0 and m["path_length_estimated_m"] > 0.2
     assert m["localisation_max_error_estimated_m"] < 0.05 and m["overturned_estimated"] == 0

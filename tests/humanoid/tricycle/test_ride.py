@@ -17,7 +17,6 @@ from shintai.humanoid.tricycle.ride import (
     signed_travel,
     slalom_goals,
 )
-from shintai.scenarios.runner import run_scenario
 
 
 def test_slalom_script_is_two_curves_then_fig_3_21():
@@ -69,11 +68,10 @@ def test_simultaneous_improved_schedule_is_shorter_on_the_route():
     assert original.duration / improved.duration == pytest.approx(56 / 36 / 0.8)
 
 
-def test_slalom_short_ride_steers_pedals_and_swaps_roles():
-    """E3 shortened: ±10°, 40° of crank per curve, a 60° slalom, Δt = 0.2 s; no fall, every swap
+def test_slalom_short_ride_steers_pedals_and_swaps_roles(smoke):
+    """E3's smoke run: ±10°, 40° of crank per curve, a 60° slalom, Δt = 0.2 s; no fall, every swap
     Eq. 3.19 predicts (one leg swap at 110°, three arm swaps)."""
-    out = run_scenario("humanoid.tricycle-slalom", overrides={
-        "time_scale": "0.25", "curve_deg": "40", "slalom_deg": "60", "limit_deg": "10"}, quiet=True)
+    out = smoke("humanoid.tricycle-slalom").result
     assert out.get("error") is None, out.get("error")
     m = out["metrics"]
     assert m["falls"] == 0 and m["unreachable_ticks"] == 0
@@ -85,9 +83,9 @@ def test_slalom_short_ride_steers_pedals_and_swaps_roles():
     assert m["distance_m"] > 0.5
 
 
-def test_outdoor_short_run_improved_is_faster_with_a_wider_force_gap():
-    out = run_scenario("humanoid.outdoor-run", overrides={
-        "revolutions": "0.2", "time_scale": "0.25", "limit_deg": "10"}, quiet=True)
+def test_outdoor_short_run_improved_is_faster_with_a_wider_force_gap(smoke):
+    """The smoke run: a fifth of a revolution at ±10°, Δt = 0.2 s."""
+    out = smoke("humanoid.outdoor-run").result
     assert out.get("error") is None, out.get("error")
     m = out["metrics"]
     assert m["speed_ratio"] > 1.25

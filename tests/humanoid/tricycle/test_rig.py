@@ -13,7 +13,6 @@ from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.humanoid.tricycle import riding
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.vehicle import grip_position, pedal_position
-from shintai.scenarios.runner import run_scenario
 
 
 @pytest.fixture(scope="module")
@@ -102,10 +101,9 @@ def test_pressing_into_the_pedal_reads_a_plausible_downward_force():
     assert np.hypot(*after[:2]) < 0.5 * after[2]
 
 
-def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force():
-    """E2/E4 shortened: Δt = 0.2 s, a third of a revolution (one swap at 110°), a short both-active run."""
-    out = run_scenario("humanoid.tricycle-pedaling", overrides={
-        "time_scale": "0.25", "revolutions": "0.34", "both_active_revolutions": "0.1"}, quiet=True)
+def test_pedaling_short_run_swaps_at_110_deg_and_holds_the_passive_force(smoke):
+    """E2/E4's smoke run: Δt = 0.2 s, a third of a revolution (one swap at 110°), a short both-active run."""
+    out = smoke("humanoid.tricycle-pedaling").result
     assert out.get("error") is None, out.get("error")
     m = out["metrics"]
     assert m["role_swaps"] == 1 and m["swap_angles_deg"][0] == pytest.approx(110.5, abs=1.0)
@@ -140,23 +138,26 @@ def test_active_samples_take_the_active_foots_axis_after_the_swap_transient():
 def test_steering_short_run_swaps_at_0_and_reaches_both_limits():
     """E1 shortened: ±10° with Δt = 0.2 s; one swap at θ_h = 0, each command reached within Δθ_h
     (6-DoF weld grasp, steering axis 10 mm off: with the default grip grasp and half-width error the
-    fast handle stops ≈1.6° short, the passive arm's damping lag, see the next test)."""
-    out = run_scenario("humanoid.tricycle-steering", overrides={
+    fast handle stops ≈1.6° short, the passive arm's damping lag, see the next test). The active/passive
+    run alone, on the experiment's own rig and metrics (the smoke run is the default grasp's)."""
+    from shintai.humanoid.experiments import tricycle_steering as steering
+    from shintai.scenarios.experiment import run_rig
+    from shintai.scenarios.registry import get
+
+    params = get("humanoid.tricycle-steering").resolve({
         "time_scale": "0.25", "limit_deg": "10", "both_active": "0", "grasp": "weld", "grip_error_mm": "0",
-        "handle_error_mm": "10"}, quiet=True)
-    assert out.get("error") is None, out.get("error")
-    m = out["metrics"]
+        "handle_error_mm": "10"})
+    m = steering.metrics({steering.AP: run_rig(steering.rig(params, steering.AP, 0))}, params)
     assert m["role_swaps"] == 1 and m["swap_angle_deg"] <= 1.0
     assert m["max_handle_error_deg"] <= 5.0
     assert m["handle_range_deg"] == pytest.approx([-10.0, 10.0], abs=1.5)
 
 
-def test_steering_on_a_too_narrow_handle_model_the_passive_arm_relieves_the_squeeze():
+def test_steering_on_a_too_narrow_handle_model_the_passive_arm_relieves_the_squeeze(smoke):
     """§5.4 check 9, shortened (±10°, Δt = 0.2 s): the grips 10 mm farther out than the model on each
     side; two active arms squeeze the handle along the hand line, active + passive much less, and
-    the passive hand carries less than a hand of the both-active pair."""
-    out = run_scenario("humanoid.tricycle-steering", overrides={
-        "time_scale": "0.25", "limit_deg": "10"}, quiet=True)
+    the passive hand carries less than a hand of the both-active pair. The smoke run."""
+    out = smoke("humanoid.tricycle-steering").result
     assert out.get("error") is None, out.get("error")
     m = out["metrics"]
     assert m["squeeze_both_active_rms_n"] > 15.0  # ≈ 20 N: the 20 mm width mismatch

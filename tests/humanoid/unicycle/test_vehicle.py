@@ -22,8 +22,7 @@ from shintai.humanoid.unicycle.vehicle import (
     wheel_velocity,
     zmp_velocity,
 )
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import scene_spec
 
@@ -129,18 +128,28 @@ def test_lip_tracking_reverses_a_static_correction_of_p_d_star():
     assert c + k1 * (c - x_ref) + k3 * (c - x_ref) == pytest.approx(x_ref)
 
 
-def test_unicycle_scenarios_run_short(tmp_path):
-    out = run_scenario("humanoid.unicycle-no-learning", out=tmp_path / "a", quiet=True, overrides={"duration_s": "0.6"})
+def test_a_short_ride_without_learning_stays_up_and_slow(smoke):
+    """The smoke run of humanoid.unicycle-no-learning: it rides the whole duration, upright and slow."""
+    out = smoke("humanoid.unicycle-no-learning").result
     assert "error" not in out, out.get("error")
-    m = out["metrics"]
-    assert m["fallen"] == 0 and m["speed_diverged"] == 0 and m["max_abs_v_mps"] < 0.1 and 0.6 <= m["ride_s"] < 0.7
-    out = run_scenario("humanoid.unicycle-learning", out=tmp_path / "b", quiet=True,
-                       overrides={"duration_s": "2.05", "variants": "reference"})
-    assert "error" not in out, out.get("error")
-    m = out["metrics"]
-    assert m["traj_batches_reference"] == 1 and m["v_batches_reference"] == 1 and m["fallen_reference"] == 0
-    assert m["traj_K_P_reference"] + m["traj_K_I_reference"] + m["traj_K_D_reference"] > 0
-    assert (tmp_path / "b" / "fig7_9_7_10.png").exists()
+    m, duration = out["metrics"], out["params"]["duration_s"]
+    assert m["fallen"] == 0 and m["speed_diverged"] == 0 and m["max_abs_v_mps"] < 0.1
+    assert duration <= m["ride_s"] < duration + 0.1
+
+
+def test_one_mini_batch_of_learning_updates_both_gain_sets(smoke):
+    """The smoke run of humanoid.unicycle-learning, 2.05 s: one mini-batch (every 2 s) of C_traj and C_v, in both
+    placements of the correction."""
+    run = smoke("humanoid.unicycle-learning")
+    assert "error" not in run.result, run.result.get("error")
+    m = run.result["metrics"]
+    for v in ("as_written", "reference"):
+        assert m[f"traj_batches_{v}"] == 1 and m[f"v_batches_{v}"] == 1 and m[f"fallen_{v}"] == 0
+        assert m[f"traj_K_P_{v}"] + m[f"traj_K_I_{v}"] + m[f"traj_K_D_{v}"] > 0
+    assert (run.out / "fig7_9_7_10.png").exists()
+
+
+def test_a_bad_placement_is_a_one_line_parameter_error():
     with pytest.raises(ParameterError) as info:
-        run_scenario("humanoid.unicycle-free", overrides={"placement": "x"}, quiet=True)
+        get("humanoid.unicycle-free").resolve({"placement": "x"})
     assert "\n" not in str(info.value)

@@ -9,7 +9,6 @@ from shintai.humanoid.balance.standing import settle_on_floor, stand_geometry
 from shintai.humanoid.constants import VBOARD
 from shintai.humanoid.vboard.boarding import BOARD_X, boarding_body, boarding_steps
 from shintai.scenarios.registry import ParameterError, get
-from shintai.scenarios.runner import run_scenario
 
 SID = "humanoid.vboard-boarding"
 
@@ -29,15 +28,14 @@ def test_the_scene_the_robot_on_the_floor_the_scooter_ahead_drives_off_steps_ont
 
 
 @pytest.fixture(scope="module")
-def short_run(tmp_path_factory):
-    """Both variants up to 3.4 s: past the right landings (≈3.12 s without SLC, ≈3.22 s with), before the fall
-    without SLC (≈4.4 s). The metrics and the recorded f_Rz, right pad switch of the SLC run."""
-    path = tmp_path_factory.mktemp("boarding")
-    out = run_scenario(SID, out=path, overrides={"max_s": "3.4"}, quiet=True)
-    assert out.get("error") is None, out.get("error")
-    with np.load(path / "log.npz") as log:
+def short_run(smoke):
+    """The smoke run, both variants up to 3.4 s: past the right landings (≈3.12 s without SLC, ≈3.22 s with),
+    before the fall without SLC (≈4.4 s). The metrics and the recorded f_Rz, right pad switch of the SLC run."""
+    run = smoke(SID)
+    assert run.result["params"]["max_s"] == 3.4 and run.result.get("error") is None, run.result.get("error")
+    with np.load(run.out / "log.npz") as log:
         signals = {k: log[f"slc.{k}"] for k in ("f_Rz", "f_Rz_t", "switch_r")}
-    return out["metrics"], signals
+    return run.result["metrics"], signals
 
 
 def test_the_slc_window_opens_on_the_left_landing_and_closes_on_the_right_landing(short_run):

@@ -17,7 +17,7 @@ from shintai.humanoid.vboard.governed_ride import (
     unstable_intervals,
 )
 from shintai.humanoid.vboard.governor import GatedGovernor
-from shintai.scenarios.registry import ParameterError
+from shintai.scenarios.registry import ParameterError, get
 from shintai.scenarios.runner import run_scenario
 
 TABLE = plant_values("table6.2")
@@ -76,24 +76,22 @@ def test_bad_values_raise_one_line():
                            ("humanoid.integrator-comparison", "start", "floor"),
                            ("humanoid.integrator-comparison", "learn_s", "nan")):
         with pytest.raises(ParameterError) as info:
-            run_scenario(sid, overrides={key: text}, quiet=True)
+            get(sid).resolve({key: text})
         assert "\n" not in str(info.value)
 
 
-def test_speed_governing_runs_short(tmp_path):
-    """One mini-batch after the lift lets go: the learn variant updates the gains once (the 'off' baseline is
-    skipped here to keep the test short)."""
-    out = run_scenario("humanoid.speed-governing", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "baseline": "false", "boarding": "false",
-                                  "start_delay_s": "0"})
-    assert "error" not in out, out.get("error")
-    m = out["metrics"]
-    assert m["v_batches_learn"] == 1 and m["omega_batches_learn"] == 1 and "v_batches_off" not in m
+def test_speed_governing_runs_short(smoke):
+    """The smoke run, one mini-batch after the lift lets go: the learn variant updates the gains once, the 'off'
+    baseline (zero gains, level 2) not at all."""
+    run = smoke("humanoid.speed-governing")
+    assert "error" not in run.result, run.result.get("error")
+    m = run.result["metrics"]
+    assert m["v_batches_learn"] == 1 and m["omega_batches_learn"] == 1 and m["v_batches_off"] == 0
     assert m["v_K_P_learn"] + m["v_K_I_learn"] + m["v_K_D_learn"] > 0.0 and m["plant_K_v"] == TABLE["K_v"]
     assert 2.0 < m["ride_learn_s"] < 2.2 and m["fallen_learn"] == 0
     assert m["v_unstable_learn_s"] > 1.99  # gains from 0: outside Eq. 6.41 for the whole first batch
     assert m["v_last_unstable_start_learn_s"] == pytest.approx(0.0, abs=0.01)
-    assert (tmp_path / "fig6_15_learn.png").exists()
+    assert (run.out / "fig6_15_learn.png").exists()
 
 
 def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
@@ -114,20 +112,20 @@ def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
     assert st.damping.feet["L"].D[1] == st.damping.feet["R"].D[1] == learned  # the damping took D from SLC
 
 
-def test_integrator_comparison_runs_short(tmp_path):
-    out = run_scenario("humanoid.integrator-comparison", out=tmp_path, quiet=True,
-                       overrides={"learn_s": "2.1", "plant": "table6.2", "start_delay_s": "0", "start": "lift"})
-    assert "error" not in out, out.get("error")
-    m = out["metrics"]
+def test_integrator_comparison_runs_short(smoke):
+    run = smoke("humanoid.integrator-comparison")
+    assert "error" not in run.result, run.result.get("error")
+    m = run.result["metrics"]
     for k in ("max_ui_jump_corrected", "max_ui_jump_saturated", "max_ui_jump_saturated_replay", "eq643_residual"):
         assert np.isfinite(m[k]), k
     assert m["corrected_replay_error"] < 1e-12 and m["eq643_residual"] < 1e-12
-    assert (tmp_path / "fig6_17.png").exists()
+    assert (run.out / "fig6_17.png").exists()
 
 
 def test_a_fall_ends_the_run_and_keeps_what_was_computed(tmp_path, monkeypatch):
     """Issue 13's 'a fall ends the run with what was computed kept', on the ride's stop rule: a fall (here declared
-    at 0.6 s, before the learning starts) stops the run there; metrics, pictures and the log are still written."""
+    at 0.6 s, before the learning starts) stops the run there; metrics, pictures and the log are still written.
+    A run of its own (the fall is patched in), not the shared smoke run."""
     from shintai.humanoid.balance.standing import Standing
 
     monkeypatch.setattr(Standing, "fallen", lambda self: self.body.t >= 0.6)

@@ -1,4 +1,4 @@
-"""The V-BOARD riding rig (seed 000 §6.2, Table 6.1, Eqs. 6.3, 6.5, 6.7) and its scenarios, short runs."""
+"""The V-BOARD riding rig (seed 000 §6.2, Table 6.1, Eqs. 6.3, 6.5, 6.7) and its scenarios' smoke runs."""
 
 import math
 
@@ -12,8 +12,7 @@ from shintai.humanoid.balance.scooter import ScooterSensors
 from shintai.humanoid.constants import V_PERIOD, VO_LATENCY
 from shintai.humanoid.vboard.ride import VboardRide
 from shintai.humanoid.vboard.vehicle import scooter_velocity
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 
 DT = 0.004
 
@@ -109,17 +108,16 @@ def test_bad_parameters_are_one_clear_line():
     with pytest.raises(ValueError, match="theta_o_error_deg"):
         VboardRide(theta_o_error_deg=math.nan)
     with pytest.raises(ParameterError):
-        run_scenario("humanoid.vboard-posture", overrides={"level": "3"}, quiet=True)
+        get("humanoid.vboard-posture").resolve({"level": "3"})
 
 
-@pytest.mark.parametrize("sid, overrides, keys", [
-    ("humanoid.vboard-levels", {"max_s": "2.5"}, ("drift_level2_m", "zmp_x_max_early_level1_mm")),
-    ("humanoid.vboard-plant-id", {"excite_s": "2"}, ("K_v", "r2_v_board")),
-    ("humanoid.vboard-posture", {"max_s": "2.5"}, ("max_trunk_pitch_with_deg", "travel_ratio")),
+@pytest.mark.parametrize("sid, keys", [
+    ("humanoid.vboard-levels", ("drift_level2_m", "zmp_x_max_early_level1_mm")),
+    ("humanoid.vboard-plant-id", ("K_v", "r2_v_board")),
+    ("humanoid.vboard-posture", ("max_trunk_pitch_with_deg", "travel_ratio")),
 ])
-def test_scenarios_run_short(tmp_path, sid, overrides, keys):
-    out = run_scenario(sid, out=tmp_path, overrides=overrides, quiet=True)
-    assert "error" not in out, out.get("error")
+def test_scenarios_smoke_runs_give_their_key_metrics_and_pictures(smoke, sid, keys):
+    run = smoke(sid)
     for k in keys:
-        assert k in out["metrics"] and np.isfinite(out["metrics"][k]), k
-    assert any(p.suffix == ".png" for p in tmp_path.iterdir())
+        assert k in run.result["metrics"] and np.isfinite(run.result["metrics"][k]), k
+    assert any(p.suffix == ".png" for p in run.out.iterdir())

@@ -53,13 +53,12 @@ def test_bad_settings_are_one_line_parameter_errors(key, value):
     assert "\n" not in str(info.value)
 
 
-def test_solc_runs_short_through_the_boarding_into_mlc(tmp_path):
-    """3.5 s: SLC from the left landing (≈1.98 s) to the right (≈3.22 s), then MLC; D rose, the right took it."""
-    from shintai.scenarios.runner import run_scenario
-
-    out = run_scenario("humanoid.solc", out=tmp_path, quiet=True, overrides={"max_s": "3.5", "plant": "table6.2"})
-    assert "error" not in out, out.get("error")
-    m = out["metrics"]
+def test_solc_runs_short_through_the_boarding_into_mlc(smoke):
+    """The smoke run (3.5 s): SLC from the left landing (≈1.98 s) to the right (≈3.22 s), then MLC; D rose, the
+    right took it."""
+    run = smoke("humanoid.solc")
+    assert "error" not in run.result, run.result.get("error")
+    m = run.result["metrics"]
     assert 1.9 < m["t_slc_start_s"] < 2.05 and 3.1 < m["t_mlc_start_s"] < 3.35 and m["converged"] == 0
     assert m["damping_final"] > m["damping_initial"] == 22.0 and m["right_took_learned_d"] == 1
-    assert m["fallen"] == 0 and (tmp_path / "fig7_20.png").exists()
+    assert m["fallen"] == 0 and (run.out / "fig7_20.png").exists()

@@ -108,4 +108,5 @@ experiment(
                                           "(Fig. 6.17, Fig. 6.16's data)", None)},
     rig=rig, variants=MODES, filmed=("saturated",), metrics=metrics, plots=plots.integrator_comparison, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"learn_s": 2.1, "plant": "table6.2", "start_delay_s": 0},  # the self-boarding start, one mini-batch
 )

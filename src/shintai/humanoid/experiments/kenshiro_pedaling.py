@@ -177,4 +177,5 @@ experiment(
     },
     rig=rig, metrics=metrics, plots=draw,
     video=True,
+    smoke={},  # the experiment itself: one revolution is ≈11 s of body time, ≈2 s of wall
 )

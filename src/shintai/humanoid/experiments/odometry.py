@@ -130,4 +130,5 @@ experiment(
             "localisation_nearest": ThesisValue(1, "seed 000 §7.3.2 'Ground Truth Odometry に最も近い位置に補正"
                                                 "されている'", "localisation_nearest")},
     rig=rig, metrics=metrics, plots=draw, video=True, stochastic=True,
+    smoke={"travel_m": 0.4},
 )

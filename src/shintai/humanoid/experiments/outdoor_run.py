@@ -109,4 +109,5 @@ experiment(
     },
     rig=rig, variants=("original", "improved"), filmed=("improved",), metrics=metrics, plots=draw,
     video=True,
+    smoke={"revolutions": 0.2, "time_scale": 0.25, "limit_deg": 10},
 )

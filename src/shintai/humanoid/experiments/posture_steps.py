@@ -109,4 +109,5 @@ experiment(
     rig=rig, variants=("with", "without"), filmed=("with",), metrics=metrics,
     plots=lambda ctx, runs, params: plots.posture(ctx, runs, STEPS),
     video=True,
+    smoke={"max_s": 8},  # the rear-left wheel reaches the step
 )

@@ -261,4 +261,5 @@ experiment(
     rig=rig, variants=("with", "without"), filmed=("with",), metrics=metrics,
     plots=draw,
     video=True,
+    smoke={"max_s": 8, "slip_rate_n_per_s": 50},  # a fast slip: one recovery starts (its before/after windows need ≈12 s)
 )

@@ -152,4 +152,5 @@ experiment(
     rig=rig, variants=("with", "without"), filmed=("with",), metrics=metrics,
     plots=lambda ctx, runs, params: plots.small_obstacle(ctx, runs, BOARD),
     video=True,
+    smoke={"max_s": 5},  # the obstacle detected (crossing it takes the default run)
 )

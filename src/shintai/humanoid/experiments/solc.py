@@ -102,4 +102,5 @@ experiment(
             "riding_phase_s": ThesisValue(1.5, f"{SEC}: 'Riding Phase by SLC : 4 ≤ t ≤ 5.5'", "riding_phase_s")},
     rig=rig, variants=("solc",), filmed=("solc",), metrics=metrics, plots=plots.solc, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"max_s": 3.5, "plant": "table6.2"},  # SLC boarding into MLC; Table 6.2's plant: no identification run
 )

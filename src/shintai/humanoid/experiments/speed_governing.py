@@ -155,4 +155,5 @@ experiment(
             "eta_omega": ThesisValue(1e-9, "seed 000 Table 6.6: diag(10⁻⁹, 10⁻⁹, 10⁻⁹) for ω", None)},
     rig=rig, variants=variants, filmed=("learn", "boarding"), metrics=metrics, plots=plots.speed_governing, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"learn_s": 2.1, "plant": "table6.2", "start_delay_s": 0},  # one mini-batch per variant
 )

@@ -205,4 +205,5 @@ experiment(
     demo=True,
     estimate_s=13.0,
     video=True,
+    smoke={"time_scale": 0.25, "revolutions": 0.34, "both_active_revolutions": 0.1},  # one swap at 110°
 )

@@ -73,4 +73,5 @@ experiment(
     },
     rig=rig, metrics=metrics, plots=draw,
     video=True,
+    smoke={"time_scale": 0.25, "curve_deg": 40, "slalom_deg": 60, "limit_deg": 10},  # one leg swap, three arm swaps
 )

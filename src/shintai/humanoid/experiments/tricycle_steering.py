@@ -131,4 +131,5 @@ experiment(
     },
     rig=rig, variants=variants, filmed=(AP,), metrics=metrics, plots=draw,
     video=True,
+    smoke={"time_scale": 0.25, "limit_deg": 10},
 )

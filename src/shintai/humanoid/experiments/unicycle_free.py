@@ -82,4 +82,5 @@ experiment(
     variants=lambda p: VARIANTS if p["variants"] == "both" else (p["variants"],),
     filmed=lambda p: ("hand",) if p["variants"] in ("both", "hand") else ("no_hand",),
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"duration_s": 1.5, "step_at_s": 0.5},  # past the step and the tap
 )

@@ -61,4 +61,5 @@ experiment(
     variants=lambda p: tuple(VARIANTS) if p["variants"] == "both" else (p["variants"],),
     filmed=lambda p: ("as_written",) if p["variants"] in ("both", "as_written") else ("reference",),
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"duration_s": 2.05},  # one mini-batch (every 2 s)
 )

@@ -35,4 +35,5 @@ experiment(
                                           "speed_diverged")},
     rig=rig, metrics=metrics, plots=plots.no_learning, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"duration_s": 0.6},
 )

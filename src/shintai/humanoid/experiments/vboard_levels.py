@@ -90,4 +90,5 @@ experiment(
             "theta_o_l_deg": ThesisValue(-1.9972, "seed 000 §6.2.1 / Eq. A.1, θ_LO", None)},
     rig=rig, variants=("level1", "level2"), filmed=("level1", "level2"), metrics=metrics, plots=plots.levels, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"max_s": 2.5},
 )

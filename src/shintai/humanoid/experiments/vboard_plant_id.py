@@ -66,4 +66,5 @@ experiment(
             "K_omega": ThesisValue(1.39e4, "seed 000 Table 6.2, K_ω = 1.39×10⁴", "K_omega")},
     rig=rig, variants=AXES + CHAIN, filmed=("v",), metrics=metrics, plots=plots.plant_id, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"excite_s": 2},
 )

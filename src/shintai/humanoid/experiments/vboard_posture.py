@@ -82,4 +82,5 @@ experiment(
     thesis={},
     rig=rig, variants=("with", "without"), filmed=("with", "without"), metrics=metrics, plots=plots.posture, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
+    smoke={"max_s": 2.5},
 )
