@@ -15,34 +15,21 @@ def test_spine_scenarios_are_registered():
     assert get("spine.control-modes").demo and get("spine.control-modes").video
 
 
-def test_control_modes_short_run(smoke):
-    """All-L tracks the ±20° sequences within a few degrees; L + T loses the spine (Table 4.8 mode 6). The smoke
-    run's 2 s hold: with the joint limits at ±18° (not ±0.31°) all-L's +20° pitch still drifts 1.0–1.2° across the
-    window after a 1.2–1.6 s hold (lost: not at rest), and is at rest (< 0.1°) after 2 s."""
+def test_control_modes_smoke_run_reports_every_mode(smoke):
+    """The smoke run (every mode configuration and the ablation, ±10°, short holds): the checks name Table 4.7's and
+    4.8's rows, the tables carry the thesis's values beside ours, the pictures are drawn. What the modes do at
+    ±20° is tested on the rigs themselves (tests/spine/cla/test_modes.py)."""
     run = smoke("spine.control-modes")
     out, result = run.out, run.result
     assert "error" not in result
     m = result["metrics"]
-    assert m["all_l.collapsed"] == 0 and m["all_l.max_pitch_held_deg"] == 20 and m["all_l.max_roll_held_deg"] == 20
-    assert m["all_l.mean_error_pitch_deg"] < 5 and m["all_l.mean_error_roll_deg"] < 5
-    assert m["l_t.collapsed"] == 1 and m["l_t.collapsed_window"] == 1
-    assert m["all_l.max_pitch_held_window_deg"] == 20 and 0 < m["all_l.mean_current_posture_a"] < 1.1
-    # the three hold tests: L + T falls onto its stops, lost by every one; all-L at rest within its range
-    assert m["l_t.collapsed_fall30"] == 1 and m["all_l.max_roll_held_fall30_deg"] == 20
-    assert m["held_cells_changed_fall30"] >= 0 and m["held_cells_changed_window"] >= 0
     assert "held_cells_agree" not in m  # only over the thesis's ±30° range
-    rows = result["extra"]["postures"]["all_l"]["pitch"]
-    assert all(r["held"] and not r["range_end"] and abs(r["drift_deg"]) < 1 for r in rows)
-    assert any(r["range_end"] and r["range_end_joint"] >= 0 for r in result["extra"]["postures"]["l_t"]["pitch"])
-    # Table 4.7: a finite gap for all-L over the shared postures, none for L + T; postures before the first lost
-    assert 0 <= m["all_l.t47_error_gap_pitch_deg"] < 10 and m["all_l.t47_postures_held_pitch"] == len(rows)
-    assert m["l_t.t47_error_gap_pitch_deg"] is None or math.isnan(m["l_t.t47_error_gap_pitch_deg"])  # not in 4.7
     checks = {c["name"]: c for c in result["checks"]}
-    assert checks["l_t.collapsed"]["ok"] and checks["all_l.mean_error_pitch_deg"]["ok"]
     assert {c["row"] for c in checks.values() if c["kind"] == "reproduction"} == {"003:table4.7", "003:table4.8"}
     assert checks["all_l.t47_error_gap_roll_deg"]["threshold"] == 2.0 and "l_t.max_roll_held_deg" in checks
     table = result["extra"]["table_4_8"]
     assert table["all_l"]["thesis"]["mean_error_pitch_deg"] == 4.73 and "mean_current_a" in table["all_l"]["ours"]
+    assert set(result["extra"]["postures"]) == set(table) | {"all_l_no_interference"}
     for png in ("table_4_8", "posture_errors", "posture_time_series", "spine_3d"):
         assert (out / f"{png}.png").stat().st_size > 10_000
     assert json.loads((out / "metrics.json").read_text())["metrics"] == m
