@@ -1,18 +1,21 @@
-"""The quadruped scenarios run end to end through the scenario runner."""
+"""The quadruped scenarios' smoke runs (tests/smoke.py; the shipped networks' walks at full size): what each
+shows."""
 
 import json
+import shutil
 
 import numpy as np
 import pytest
 
 from shintai.quadruped import constants as C
+from shintai.evolve import SerialExecutor
 from shintai.quadruped import swing_order as S
+from shintai.quadruped import training as T
 
-from shintai.scenarios.runner import run_scenario
 
-
-def test_replay_scenario_passes_and_writes_its_outputs(tmp_path):
-    result = run_scenario("quadruped.replay", out=tmp_path, quiet=True)
+def test_replay_scenario_passes_and_writes_its_outputs(smoke):
+    run = smoke("quadruped.replay")
+    result, out = run.result, run.out
     assert "error" not in result, result.get("error")
     # what does not reproduce (coverage rows 004:table3-7, notes/replay.md); every consistency check holds
     assert {c["name"] for c in result["checks"] if not c["ok"]} == {
@@ -32,33 +35,39 @@ def test_replay_scenario_passes_and_writes_its_outputs(tmp_path):
         assert m[f"{t}_final_error_vector_vs_thesis_m"] == pytest.approx(np.hypot(*d))
     assert "exhaustive_not_worse_than_rbfnn" not in {c["name"] for c in result["checks"]}
     assert m["conventions_fitting_all_tables"] == 0 and m["table6_best_convention_error_m"] < 0.002
-    assert json.loads((tmp_path / "metrics.json").read_text())["scenario"] == "quadruped.replay"
-    assert (tmp_path / "paths.png").exists() and (tmp_path / "body_movement.png").exists()
-    assert (tmp_path / "log.npz").exists()
+    assert json.loads((out / "metrics.json").read_text())["scenario"] == "quadruped.replay"
+    assert (out / "paths.png").exists() and (out / "body_movement.png").exists()
+    assert (out / "log.npz").exists()
 
 
-def run(sid, tmp_path, **overrides):
-    result = run_scenario(sid, out=tmp_path, overrides={k: str(v) for k, v in overrides.items()}, quiet=True)
+def run(smoke, sid):
+    result = smoke(sid).result
     assert "error" not in result, result.get("error")
     return result
 
 
-def test_tiny_training_run_writes_networks_curves_and_resumes_to_the_same_result(tmp_path):
-    tiny = dict(population=4, generations=2, order_generations=1, free_generations=1, environments=2,
-                executor="serial")
-    first = run("quadruped.train", tmp_path, **tiny)
-    m = first["metrics"]
-    assert m["generations"] == 2 and m["order_generations"] == 1 and m["reproduces_shipped"] is None
+def test_tiny_training_run_writes_networks_curves_and_resumes_to_the_same_result(smoke, tmp_path):
+    """The smoke run's tiny training (population 4, 2 + 1 + 1 generations, 2 environments, serial); resumed from
+    its checkpoints in a copy of its folder (as ``resume=true`` does), training gives the same result."""
+    first = smoke("quadruped.train")
+    m, p = first.result["metrics"], first.result["params"]
+    assert m["generations"] == p["generations"] == 2 and m["order_generations"] == p["order_generations"] == 1
+    assert m["reproduces_shipped"] is None
     assert 0.0 <= m["train_success_rate"] <= 1.0 and 0.0 <= m["order_accuracy"] <= 1.0
     for name in ("action_fixed.npz", "swing_order.npz", "action_free.npz", "learning_curves.png", "action.ga.npz"):
-        assert (tmp_path / name).exists()
-    again = run("quadruped.train", tmp_path, **tiny)
-    assert again["metrics"]["best_fitness"] == m["best_fitness"]
-    assert again["metrics"]["free_best_fitness"] == m["free_best_fitness"]
+        assert (first.out / name).exists()
+    folder = tmp_path / "again"
+    shutil.copytree(first.out, folder)
+    settings = T.TrainSettings(p["generations"], p["order_generations"], p["free_generations"], p["mutation_rate"],
+                               p["mutation_sigma"], p["population"], p["environments"], first.result["seed"],
+                               p["init"], p["order_hidden"], p["converge"])
+    again = T.train(folder, settings, SerialExecutor(), resume=True)
+    assert again["action"].best[-1] == m["best_fitness"] and again["free"].best[-1] == m["free_best_fitness"]
 
 
-def test_avoid_known_walks_the_shipped_network_to_the_goal(tmp_path):
-    result = run("quadruped.avoid-known", tmp_path)
+def test_avoid_known_walks_the_shipped_network_to_the_goal(smoke):
+    walk = smoke("quadruped.avoid-known")
+    result, out = walk.result, walk.out
     m = result["metrics"]
     assert m["reached"] == 1 and m["collisions"] == 0 and m["limit_violations"] == 0
     assert m["min_stability_margin_m"] > 0 and m["final_error_m"] <= 0.2
@@ -66,23 +75,23 @@ def test_avoid_known_walks_the_shipped_network_to_the_goal(tmp_path):
     on_top = set(m["legs_on_obstacle"].replace("none", ""))
     assert m["climbed_thesis_legs"] == len(on_top & {"1", "3"}) and m["climbed_other_legs"] == len(on_top - {"1", "3"})
     assert len(result["extra"]["cycles"]) == m["cycles"]
-    table = (tmp_path / "cycles.md").read_text().splitlines()
+    table = (out / "cycles.md").read_text().splitlines()
     assert len([line for line in table if line.startswith("| ")]) == m["cycles"] + 1  # header + one row a cycle
     assert result["thesis"]["cycles"]["value"] == 9
-    assert (tmp_path / "walk_path.png").exists() and (tmp_path / "walk_legs.png").exists()
+    assert (out / "walk_path.png").exists() and (out / "walk_legs.png").exists()
 
 
-def test_avoid_unseen_and_free_gait_run_the_shipped_networks(tmp_path):
-    m = run("quadruped.avoid-unseen", tmp_path / "unseen")["metrics"]
+def test_avoid_unseen_and_free_gait_run_the_shipped_networks(smoke):
+    m = run(smoke, "quadruped.avoid-unseen")["metrics"]
     assert m["reached"] == 1 and m["collisions"] == 0
-    free = run("quadruped.free-gait", tmp_path / "free")["metrics"]
+    free = run(smoke, "quadruped.free-gait")["metrics"]
     for key in ("s621", "s622"):
         assert free[f"{key}_reached"] == 1 and free[f"{key}_baseline_reached"] == 1
     assert free["order_changes"] == free["s621_order_changes"] + free["s622_order_changes"]
 
 
-def test_swing_order_compares_the_three_strategies_on_one_action_sequence(tmp_path):
-    result = run("quadruped.swing-order", tmp_path)
+def test_swing_order_compares_the_three_strategies_on_one_action_sequence(smoke):
+    result = run(smoke, "quadruped.swing-order")
     m = result["metrics"]
     assert m["body_movement_exhaustive_mm"] <= m["body_movement_fixed_mm"]
     assert m["table3_body_movement_exhaustive_mm"] <= m["table3_body_movement_fixed_mm"]
@@ -91,8 +100,8 @@ def test_swing_order_compares_the_three_strategies_on_one_action_sequence(tmp_pa
     assert len(result["extra"]["br_per_cycle_mm"]["ours"]["fixed"]) == m["cycles"]
 
 
-def test_generalization_reports_rates_over_training_and_unseen_environments(tmp_path):
-    m = run("quadruped.generalization", tmp_path, unseen=12)["metrics"]
+def test_generalization_reports_rates_over_training_and_unseen_environments(smoke):
+    m = run(smoke, "quadruped.generalization")["metrics"]  # 12 unseen environments
     assert m["train_success_rate"] >= 0.9
     assert 0.0 <= m["unseen_success_rate"] <= 1.0
     assert m["unseen_collision_rate"] + m["unseen_limit_rate"] + m["unseen_timeout_rate"] == pytest.approx(
@@ -123,8 +132,8 @@ def test_checks_on_the_printed_tables_are_consistency_and_the_walks_decide_the_r
     assert standin.covers == ("004:fig26",) and next(r for r in ROWS if r.key == "004:fig26").difference
 
 
-def test_the_table3_walk_and_the_real_robot_standin_run_the_shipped_network(tmp_path):
-    m = run("quadruped.avoid-s52", tmp_path / "s52")["metrics"]
+def test_the_table3_walk_and_the_real_robot_standin_run_the_shipped_network(smoke):
+    m = run(smoke, "quadruped.avoid-s52")["metrics"]
     assert m["reached"] == 1 and m["collisions"] == 0 and m["passing_x_m"] > 0
-    s = run("quadruped.real-robot-standin", tmp_path / "standin")["metrics"]
+    s = run(smoke, "quadruped.real-robot-standin")["metrics"]
     assert s["first_cycle_straight"] == 1 and s["reached"] == 1 and s["passing_x_m"] > 0

@@ -12,7 +12,6 @@ from shintai.quadruped import robot as R
 from shintai.quadruped import sensing as U
 from shintai.quadruped import training as T
 from shintai.quadruped import world as W
-from shintai.scenarios.runner import run_scenario
 
 RAD = math.radians
 
@@ -190,8 +189,9 @@ def test_range_noise_is_seeded():
         U.SensedObstacles(noise_std=-0.1)
 
 
-def test_sensing_ablation_scenario_runs_on_a_subset(tmp_path):
-    result = run_scenario("quadruped.sensing-ablation", out=tmp_path, overrides={"environments": "6"}, quiet=True)
+def test_sensing_ablation_scenario_runs_on_a_subset(smoke):
+    run = smoke("quadruped.sensing-ablation")  # 6 of the 96 environments
+    result = run.result
     assert "error" not in result, result.get("error")
     m = result["metrics"]
     assert {c["name"]: c["ok"] for c in result["checks"]} == {
@@ -203,4 +203,4 @@ def test_sensing_ablation_scenario_runs_on_a_subset(tmp_path):
     assert m["s421_sensed_reached"] in (0, 1) and m["s422_sensed_final_error_m"] > 0
     assert len(result["extra"]["environments"]) == 6 and len(result["extra"]["success_vs_noise"]) == 6
     for name in ("sensed_walks.png", "success.png", "sensed_features.png"):
-        assert (tmp_path / name).exists()
+        assert (run.out / name).exists()

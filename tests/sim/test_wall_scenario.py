@@ -32,9 +32,8 @@ def test_short_run_holds_its_checks_and_renders(tmp_path):
     assert film["frames"] >= 2 and film["speed"] >= 1 and (tmp_path / "video.poster.jpg").is_file()
 
 
-def test_an_update_period_off_the_control_step_is_a_parameter_error(tmp_path):
-    from shintai.scenarios.registry import ParameterError
-    from shintai.scenarios.runner import run_scenario
+def test_an_update_period_off_the_control_step_is_a_parameter_error():
+    from shintai.scenarios.registry import ParameterError, get
 
     with pytest.raises(ParameterError, match="update_s must be a whole multiple of the 4 ms control step"):
-        run_scenario("sim.wall-force", tmp_path, {"update_s": "0.05"}, quiet=True)
+        get("sim.wall-force").resolve({"update_s": "0.05"})

@@ -1,4 +1,5 @@
-"""Registered snake scenarios: a short snake.tracking run and the full switching ablation (spec §5.4 #9, #10, #12)."""
+"""Registered snake scenarios, from their smoke runs: a 4 s snake.tracking run and the full switching ablation
+(spec §5.4 #9, #10, #12)."""
 
 import json
 import math
@@ -14,16 +15,17 @@ from shintai.scenarios.runner import run_scenario
 from shintai.snake.constants import CH3_GAINS
 
 
-@pytest.fixture(scope="module")
-def short_tracking(tmp_path_factory):
-    out = tmp_path_factory.mktemp("snake-tracking")
-    return out, run_scenario("snake.tracking", out=out, overrides={"duration_s": "4"}, quiet=True)
+@pytest.fixture
+def short_tracking(smoke):
+    run = smoke("snake.tracking")  # 4 s
+    return run.out, run.result
 
 
-@pytest.fixture(scope="module")
-def ablation(tmp_path_factory):
-    out = tmp_path_factory.mktemp("snake-ablation")
-    return out, run_scenario("snake.switching-ablation", out=out, quiet=True)
+@pytest.fixture
+def ablation(smoke):
+    run = smoke("snake.switching-ablation")  # the full 120 s
+    assert run.result["params"] == get("snake.switching-ablation").resolve()
+    return run.out, run.result
 
 
 def test_short_tracking_run_meets_its_tracking_checks(short_tracking):
@@ -79,11 +81,11 @@ def test_whole_run_joint_angles_stay_inside_the_limit(ablation):
 
 def test_bad_parameters_are_rejected_before_running(tmp_path):
     with pytest.raises(ParameterError, match="duration_s"):
-        run_scenario("snake.tracking", out=tmp_path, overrides={"duration_s": "500"})
+        get("snake.tracking").resolve({"duration_s": "500"})
     with pytest.raises(ParameterError, match="plant"):
-        run_scenario("snake.tracking", out=tmp_path, overrides={"plant": "bullet"})
+        get("snake.tracking").resolve({"plant": "bullet"})
     assert get("snake.tracking").resolve({"candidates": "80"})["candidates"] == 80
-    with pytest.raises(ParameterError, match="--video"):  # the kinematic plant has nothing to film
+    with pytest.raises(ParameterError, match="--video"):  # the runner's: the kinematic plant has nothing to film
         run_scenario("snake.tracking", out=tmp_path, video=True)
 
 

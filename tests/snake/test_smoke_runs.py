@@ -3,7 +3,15 @@
 import pytest
 from smoke import check_contract
 
-RUNS = ('snake.caging', 'snake.handcart', 'snake.switching-ablation', 'snake.tracking', 'snake.two-plane-pitch', 'snake.two-plane-roll',)
+RUNS = (
+    "snake.caging",
+    "snake.door",
+    "snake.handcart",
+    "snake.switching-ablation",
+    "snake.tracking",
+    "snake.two-plane-pitch",
+    "snake.two-plane-roll",
+)
 
 
 @pytest.mark.parametrize("scenario_id", RUNS)

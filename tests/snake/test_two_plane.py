@@ -8,7 +8,6 @@ import pytest
 
 from shintai.core.runtime import ChannelError, FunctionModule, Loop
 from shintai.scenarios.experiment import variant_metric
-from shintai.scenarios.runner import run_scenario
 from shintai.snake import model3d as K
 from shintai.snake import two_plane as TP
 from shintai.snake import two_plane_runs as S
@@ -284,9 +283,9 @@ def test_short_run_head_transition_then_first_landing(short_run):
     assert m["max_connection_wheels"] == TWO_PLANE.n_c_max
 
 
-def test_scenario_writes_metrics_checks_and_pictures(tmp_path):
-    out = tmp_path / "pitch"
-    result = run_scenario("snake.two-plane-pitch", out=out, overrides={"duration_s": "18"}, quiet=True)
+def test_scenario_writes_metrics_checks_and_pictures(smoke):
+    run = smoke("snake.two-plane-pitch")  # 18 s, with and without the null space
+    out, result = run.out, run.result
     assert "error" not in result and result["sim_time_s"] == pytest.approx(36.0)
     m = result["metrics"]
     assert m["min_edge_clearance_m"] > m["min_edge_clearance_no_nullspace_m"]

@@ -1,11 +1,10 @@
-"""The posture database (seed 003 §5.9.1), the push trigger's two levels (§5.9.3), and a short
-spine.posture-database run."""
+"""The posture database (seed 003 §5.9.1), the push trigger's two levels (§5.9.3), and spine.posture-database's
+smoke run."""
 
 import numpy as np
 import pytest
 
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 from shintai.spine.posture_database import PostureDatabase
 from shintai.spine.robots import CLA
 from shintai.spine.tactile import STRONG, WEAK, PushTrigger, TriggerLevels, moment_arms, nudge_target, push_moment
@@ -114,18 +113,16 @@ def test_push_moment_sign_and_nudge():
     assert np.degrees(whole[1]) == pytest.approx(6.0) and lengths.shape == (8,)
 
 
-def test_posture_database_short_run(tmp_path):
-    result = run_scenario("spine.posture-database", out=tmp_path, quiet=True,
-                          overrides={"session": "tiny", "execute": "false", "nn_iterations": "100"})
-    m = result["metrics"]
+def test_posture_database_short_run(smoke):
+    run = smoke("spine.posture-database")
+    m = run.result["metrics"]
     assert m["triggers_weak_as_meant"] == 1 and m["triggers_strong"] == 0 and m["nudges"] == 1
     assert m["triggers_unprompted"] == 0 and m["node_pairs_within_threshold"] == 0  # metric kept, check dropped
     assert m["nodes_created_move"] >= 1 and m["history_length"] < m["direct_teaching_samples"]
     assert m["replay_posture_error_max_deg"] < 5.0
-    assert (tmp_path / "node_graph.png").exists()
+    assert (run.out / "node_graph.png").exists()
 
 
-def test_posture_database_rejects_crossed_levels(tmp_path):
+def test_posture_database_rejects_crossed_levels():
     with pytest.raises(ParameterError):
-        run_scenario("spine.posture-database", out=tmp_path, quiet=True,
-                     overrides={"weak_nm": "1.0", "strong_nm": "0.5"})
+        get("spine.posture-database").resolve({"weak_nm": "1.0", "strong_nm": "0.5"})

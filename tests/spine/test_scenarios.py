@@ -1,4 +1,5 @@
-"""Short runs of the spine scenarios: their outputs, and the behaviour each is about."""
+"""The spine scenarios' smoke runs (tests/smoke.py, sizes declared beside each experiment): the behaviour each is
+about."""
 
 import json
 import math
@@ -6,7 +7,6 @@ import math
 import pytest
 
 from shintai.scenarios.registry import ParameterError, get
-from shintai.scenarios.runner import run_scenario
 
 
 def test_spine_scenarios_are_registered():
@@ -15,60 +15,38 @@ def test_spine_scenarios_are_registered():
     assert get("spine.control-modes").demo and get("spine.control-modes").video
 
 
-@pytest.fixture(scope="module")
-def control_modes(tmp_path_factory):
-    out = tmp_path_factory.mktemp("control-modes")
-    # a 2 s hold: with the joint limits at ±18° (not ±0.31°) all-L's +20° pitch still drifts 1.0–1.2° across the
-    # window after a 1.2–1.6 s hold (lost: not at rest), and is at rest (< 0.1°) after 2 s
-    result = run_scenario("spine.control-modes", out=out, quiet=True, overrides={
-        "modes": "all_l,l_t", "max_angle_deg": "20", "hold_s": "2.0", "move_s": "0.5", "window_s": "0.4",
-        "ablation": "false"})
-    return out, result
-
-
-def test_control_modes_short_run(control_modes):
-    """All-L tracks the ±20° sequences within a few degrees; L + T loses the spine (Table 4.8 mode 6)."""
-    out, result = control_modes
+def test_control_modes_smoke_run_reports_every_mode(smoke):
+    """The smoke run (every mode configuration and the ablation, ±10°, short holds): the checks name Table 4.7's and
+    4.8's rows, the tables carry the thesis's values beside ours, the pictures are drawn. What the modes do at
+    ±20° is tested on the rigs themselves (tests/spine/cla/test_modes.py)."""
+    run = smoke("spine.control-modes")
+    out, result = run.out, run.result
     assert "error" not in result
     m = result["metrics"]
-    assert m["all_l.collapsed"] == 0 and m["all_l.max_pitch_held_deg"] == 20 and m["all_l.max_roll_held_deg"] == 20
-    assert m["all_l.mean_error_pitch_deg"] < 5 and m["all_l.mean_error_roll_deg"] < 5
-    assert m["l_t.collapsed"] == 1 and m["l_t.collapsed_window"] == 1
-    assert m["all_l.max_pitch_held_window_deg"] == 20 and 0 < m["all_l.mean_current_posture_a"] < 1.1
-    # the three hold tests: L + T falls onto its stops, lost by every one; all-L at rest within its range
-    assert m["l_t.collapsed_fall30"] == 1 and m["all_l.max_roll_held_fall30_deg"] == 20
-    assert m["held_cells_changed_fall30"] >= 0 and m["held_cells_changed_window"] >= 0
     assert "held_cells_agree" not in m  # only over the thesis's ±30° range
-    rows = result["extra"]["postures"]["all_l"]["pitch"]
-    assert all(r["held"] and not r["range_end"] and abs(r["drift_deg"]) < 1 for r in rows)
-    assert any(r["range_end"] and r["range_end_joint"] >= 0 for r in result["extra"]["postures"]["l_t"]["pitch"])
-    # Table 4.7: a finite gap for all-L over the shared postures, none for L + T; postures before the first lost
-    assert 0 <= m["all_l.t47_error_gap_pitch_deg"] < 10 and m["all_l.t47_postures_held_pitch"] == len(rows)
-    assert m["l_t.t47_error_gap_pitch_deg"] is None or math.isnan(m["l_t.t47_error_gap_pitch_deg"])  # not in 4.7
     checks = {c["name"]: c for c in result["checks"]}
-    assert checks["l_t.collapsed"]["ok"] and checks["all_l.mean_error_pitch_deg"]["ok"]
     assert {c["row"] for c in checks.values() if c["kind"] == "reproduction"} == {"003:table4.7", "003:table4.8"}
     assert checks["all_l.t47_error_gap_roll_deg"]["threshold"] == 2.0 and "l_t.max_roll_held_deg" in checks
     table = result["extra"]["table_4_8"]
     assert table["all_l"]["thesis"]["mean_error_pitch_deg"] == 4.73 and "mean_current_a" in table["all_l"]["ours"]
+    assert set(result["extra"]["postures"]) == set(table) | {"all_l_no_interference"}
     for png in ("table_4_8", "posture_errors", "posture_time_series", "spine_3d"):
         assert (out / f"{png}.png").stat().st_size > 10_000
     assert json.loads((out / "metrics.json").read_text())["metrics"] == m
 
 
-def test_control_modes_rejects_unknown_modes(tmp_path):
+def test_control_modes_rejects_unknown_modes():
     """A bad parameter is a parameter error before anything runs (exit 2), not a failed run."""
     with pytest.raises(ParameterError, match="unknown or repeated mode configuration"):
-        run_scenario("spine.control-modes", out=tmp_path, quiet=True, overrides={"modes": "all_x"})
+        get("spine.control-modes").resolve({"modes": "all_x"})
     with pytest.raises(ParameterError, match="window_s"):
-        run_scenario("spine.control-modes", out=tmp_path, quiet=True, overrides={"hold_s": "1.0", "window_s": "2.0"})
+        get("spine.control-modes").resolve({"hold_s": "1.0", "window_s": "2.0"})
     with pytest.raises(ParameterError, match="speedups"):
-        run_scenario("spine.teach-playback", out=tmp_path, quiet=True, overrides={"speedups": "1,0"})
+        get("spine.teach-playback").resolve({"speedups": "1,0"})
 
 
-def test_teach_playback_short_run(tmp_path):
-    result = run_scenario("spine.teach-playback", out=tmp_path, quiet=True,
-                          overrides={"speedups": "1,4,8", "key_postures": "false"})
+def test_teach_playback_short_run(smoke):
+    result = smoke("spine.teach-playback").result
     m = result["metrics"]
     assert m["speedup_4.relative_length_error"] < 0.1 and m["speedup_4.saturated_fraction"] == 0
     assert m["speedup_8.saturated_fraction"] > 0.05
@@ -79,54 +57,51 @@ def test_teach_playback_short_run(tmp_path):
     assert all(c["kind"] == "consistency" for c in result["checks"])  # the outcome follows from the chosen speed
 
 
-def test_software_spring_short_run(tmp_path):
-    result = run_scenario("spine.software-spring", out=tmp_path, quiet=True,
-                          overrides={"k_s_list": "50,400", "push_s": "0.8", "release_s": "1.5"})
+def test_software_spring_short_run(smoke):
+    result = smoke("spine.software-spring").result
     assert result["ok"], [c for c in result["checks"] if not c["ok"]]
     m = result["metrics"]
     assert m["k_s_400.tension_per_length_n_mm"] > 4 * m["k_s_50.tension_per_length_n_mm"]
 
 
-def test_rabbit_stiffening_short_run(tmp_path):
-    result = run_scenario("spine.rabbit-stiffening", out=tmp_path, quiet=True,
-                          overrides={"precompressions_mm": "0.25,1.5", "ablation": "false"})
-    m = result["metrics"]
+def test_rabbit_stiffening_short_run(smoke):
+    run = smoke("spine.rabbit-stiffening")
+    m = run.result["metrics"]
     assert m["stiffness_monotone"] == 1 and m["stiffness_ratio"] > 2
     assert m["pre_1.5mm.disc_compression_mm"] > m["pre_0.25mm.disc_compression_mm"]
-    assert (tmp_path / "rabbit_stiffness.png").exists()
+    assert (run.out / "rabbit_stiffness.png").exists()
 
 
-def test_inverse_model_short_run(tmp_path):
+def test_inverse_model_short_run(smoke):
     """§4.4.3 on a short training: the NN beats Jacobian integration (Cla's rank-6 J_m lands the
     integration on another posture) and answers far faster; both networks and every metric report."""
-    result = run_scenario("spine.inverse-model", out=tmp_path, quiet=True,
-                          overrides={"iterations": "300", "test_postures": "10"})
+    result = smoke("spine.inverse-model").result
     m = result["metrics"]
     assert m["nn_test_error_norm_deg"] < m["jacobian_test_error_norm_deg"]
     assert math.isfinite(m["nn4_test_error_norm_deg"]) and m["nn_train_max_joint_error_deg"] < 5.0
     assert m["nn_query_us"] * 1e-6 < m["jacobian_query_s"]
 
 
-def test_bebe_tracking_short_run(tmp_path):
+def test_bebe_tracking_short_run(smoke):
     """§4.8 on short runs: the target is mostly in the dead zone, pushes are recovered, and switching
     off before on keeps few muscles on (the on-first ablation piles them up)."""
-    result = run_scenario("spine.bebe-tracking", out=tmp_path, quiet=True,
-                          overrides={"tracking_s": "4", "disturbance_s": "4", "forced_s": "3"})
+    result = smoke("spine.bebe-tracking").result
     m = result["metrics"]
     assert "error" not in result
     assert m["dead_zone_fraction"] > 0.5 and m["disturbance_dead_zone_fraction"] > 0.5
     assert m["max_on_muscles"] < m["max_on_muscles_on_first"] / 2
 
 
-def test_sq43_design_short_run(tmp_path):
+def test_sq43_design_short_run(smoke):
     """§3.2.3: the four compass searches end at local optima within |a_i| ≤ 30° (consistency); the thesis's
     outcome — which start wins, which stall at once, which path start 4 joins — is compared by reproduction
     checks on values of ours that are well defined (whatever they are)."""
-    result = run_scenario("spine.sq43-design", out=tmp_path, quiet=True, overrides={"step_deg": "2"})
+    result = smoke("spine.sq43-design").result
     checks = {c["name"]: c for c in result["checks"]}
     assert all(c["ok"] for c in checks.values() if c["kind"] == "consistency"), checks
     outcome = {"best_start", "start4_joins_path", "travel_deg_start1", "travel_deg_start3"}
     assert outcome <= {n for n, c in checks.items() if c["kind"] == "reproduction"}
     m = result["metrics"]
     assert m["best_start"] in (1, 2, 3, 4) and m["start4_joins_path"] in (0, 1, 2, 3)
-    assert m["travel_deg_start1"] == 2 * m["steps_start1"] and m["travel_deg_start3"] == 2 * m["steps_start3"]
+    step = result["params"]["step_deg"]
+    assert m["travel_deg_start1"] == step * m["steps_start1"] and m["travel_deg_start3"] == step * m["steps_start3"]

@@ -6,8 +6,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 from shintai.spine.cla import crawl as CC
 from shintai.spine.robots import CLA_LIMIT_RAD, CRAWL_PHASE_S
 
@@ -89,18 +88,18 @@ def test_crawl_moves_forward_and_batches_agree():
     assert CC.CrawlFitness(3.0)(CC.HAND_MADE[None])[0] == pytest.approx(one["fitness"][0])
 
 
-def test_scenario_short_run(tmp_path):
-    result = run_scenario("spine.cla-crawl-ga", out=tmp_path, quiet=True, overrides={
-        "generations": "2", "population": "4", "executor": "serial", "eval_s": "2"})
+def test_scenario_short_run(smoke):
+    run = smoke("spine.cla-crawl-ga")
+    result = run.result
     assert "error" not in result
     m = result["metrics"]
     for v in ("rigid", "hand_made", "evolved"):
         for key in ("distance_m", "torque_integral_nms", "peak_torque_nm", "heading_drift_deg", "fitness"):
             assert math.isfinite(m[f"{v}.{key}"])
     assert m["rigid.max_spine_deg"] < 0.5 and m["rigid.spine_torque_integral_nms"] == 0
-    assert m["generations"] == 2 and m["crawl_improvement"] >= 0
+    assert m["generations"] == result["params"]["generations"] and m["crawl_improvement"] >= 0
     assert m["evolved.fitness"] == pytest.approx(m["crawl_best_fitness"])  # the replay is the GA's evaluation
     for name in ("crawl_curve", "crawl_comparison", "crawl_paths"):
-        assert (tmp_path / f"{name}.png").exists()
+        assert (run.out / f"{name}.png").exists()
     with pytest.raises(ParameterError, match="eval_s"):
-        run_scenario("spine.cla-crawl-ga", out=tmp_path, quiet=True, overrides={"eval_s": "0"})
+        get("spine.cla-crawl-ga").resolve({"eval_s": "0"})

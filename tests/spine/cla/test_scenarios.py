@@ -1,30 +1,26 @@
-"""Short runs of the whole-body Cla behaviours (levelling, throw) and the pull's plan (seed 003 §5.2.2–5.2.4)."""
+"""The smoke runs of the whole-body Cla behaviours (levelling, throw) and the pull's plan (seed 003 §5.2.2–5.2.4)."""
 
 import numpy as np
 
-from shintai.scenarios.runner import run_scenario
 from shintai.spine.cla.body import ClaBody
 from shintai.spine.cla.pull import TIMELINE, PullPattern, arm_keyframes, hand_at, object_x, reach_at_desk
 
 
-def test_levelling_short(tmp_path):
-    result = run_scenario("spine.cla-levelling", out=tmp_path, quiet=True, overrides={
-        "calibration_s": "0.2", "nn_iterations": "100", "tilt2_s": "2.5", "duration_s": "2.6", "move_s": "0.4",
-        "settle_s": "0.1", "window_s": "0.05"})  # the first tilt only (0.5–1.5 s), levelled by 2.5 s
-    m = result["metrics"]
+def test_levelling_short(smoke):
+    run = smoke("spine.cla-levelling")  # the first tilt only (0.5–1.5 s), levelled by 2.5 s
+    m = run.result["metrics"]
     assert m["adjustments"] >= 1
     assert m["settled_tilt_1_without_deg"] > 8.0 and m["settled_tilt_1_with_deg"] < 5.0
-    assert (tmp_path / "shoulder_tilt.png").exists()
+    assert (run.out / "shoulder_tilt.png").exists()
 
 
-def test_throw_short(tmp_path):
-    result = run_scenario("spine.cla-throw", out=tmp_path, quiet=True, overrides={
-        "calibration_s": "0.2", "windup_s": "0.4"})
-    m = result["metrics"]
+def test_throw_short(smoke):
+    run = smoke("spine.cla-throw")
+    m = run.result["metrics"]
     assert m["spine_yaw_travel_without_spine_deg"] < 1.0 < m["spine_yaw_travel_with_spine_deg"]
     assert m["hand_speed_with_spine_mps"] > 1.0 and m["hand_speed_without_spine_mps"] > 1.0
     assert m["spine_start_s"] < m["shoulder_start_s"] < m["elbow_start_s"]  # §5.2.3's order
-    assert (tmp_path / "hand_speed.png").exists()
+    assert (run.out / "hand_speed.png").exists()
 
 
 def test_pull_plan_reaches_behind_the_object_only_when_leaning():

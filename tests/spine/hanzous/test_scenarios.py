@@ -1,12 +1,12 @@
-"""Short runs of spine.hanzous-brachiation and spine.hanzous-ga (seed 003 §3.3.3–3.3.4, §5.7.3–5.7.5)."""
+"""The smoke runs of spine.hanzous-brachiation and spine.hanzous-ga (seed 003 §3.3.3–3.3.4, §5.7.3–5.7.5)."""
 
 import numpy as np
 
-from shintai.scenarios.runner import run_scenario
 
 
-def test_hanzous_brachiation_compares_stiff_soft_and_cam_changed(tmp_path):
-    result = run_scenario("spine.hanzous-brachiation", out=tmp_path, quiet=True, overrides={"all_sequences": "false"})
+def test_hanzous_brachiation_compares_stiff_soft_and_cam_changed(smoke):
+    run = smoke("spine.hanzous-brachiation")
+    result, out = run.result, run.out
     assert "error" not in result
     m = result["metrics"]
     for policy in ("stiff", "real"):  # the sequence evolved under the cam change misses the bar with a soft trunk
@@ -17,22 +17,22 @@ def test_hanzous_brachiation_compares_stiff_soft_and_cam_changed(tmp_path):
     assert {c["row"] for c in checks.values()} == {"003:fig3.13", "003:fig5.23", "003:fig5.24"}
     assert checks["success_real"]["ok"] and m["fitness_real"] > 2.0
     for png in ("trunk_root_force", "trunk_stiffness"):
-        assert (tmp_path / f"{png}.png").stat().st_size > 10_000
-    log = np.load(tmp_path / "log.npz")
+        assert (out / f"{png}.png").stat().st_size > 10_000
+    log = np.load(out / "log.npz")
     assert "real.stiffness_nm_rad" in log and log["soft.stiffness_nm_rad"].max() < log["stiff.stiffness_nm_rad"].min()
 
 
-def test_hanzous_ga_tiny_budget(tmp_path):
-    """Population 4, the initial generation only, serial: one GA per policy, replayed and recorded."""
-    result = run_scenario("spine.hanzous-ga", out=tmp_path, quiet=True, overrides={
-        "generations": "1", "population": "4", "executor": "serial"})
+def test_hanzous_ga_tiny_budget(smoke):
+    """Population 4, the initial generation only, serial (the smoke run): one GA per policy, replayed and recorded."""
+    run = smoke("spine.hanzous-ga")
+    result, out = run.result, run.out
     assert "error" not in result
     m = result["metrics"]
     checks = {c["name"]: c for c in result["checks"]}
     for policy in ("stiff", "soft", "real"):
         assert m[f"best_fitness_{policy}"] >= m[f"designed_fitness_{policy}"]
         assert checks[f"best_fitness_{policy}"]["ok"] and f"success_{policy}" in checks
-        assert (tmp_path / f"ga_{policy}.ga.npz").exists()
-    with np.load(tmp_path / "best_genomes.npz") as f:
+        assert (out / f"ga_{policy}.ga.npz").exists()
+    with np.load(out / "best_genomes.npz") as f:
         assert f["real"].shape == (70,)
-    assert (tmp_path / "ga_curves.png").exists()
+    assert (out / "ga_curves.png").exists()

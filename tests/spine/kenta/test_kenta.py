@@ -9,8 +9,7 @@ import pytest
 
 from shintai.core.constants import KGF_N
 from shintai.scenarios.experiment import Rig, run_rig
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 from shintai.spine.control import SETPOINTS
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.inverse_model import jacobian_integration
@@ -128,25 +127,24 @@ def test_length_estimate_ill_conditioned_off_straight():
     assert jacobian_integration(model, model.lengths(prev) + 1e-5 * U[:, 24], theta0=prev).length_residual_m > 1e-5
 
 
-def test_taught_postures_short_run(tmp_path):
-    """Three postures taught and replayed once: every metric computed, the picture written."""
-    result = run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
-                          overrides={"zeroing_s": "0.2", "hold_s": "0.1", "cycles": "1", "period_s": "0.2",
-                                     "move_s": "0.1", "lock_s": "0.1"})
+def test_taught_postures_short_run(smoke):
+    """Three postures taught and replayed once (the smoke run): every metric computed, the picture written."""
+    run = smoke("spine.kenta-taught-postures")
+    result = run.result
     assert "error" not in result
     m = result["metrics"]
     assert all(math.isfinite(m[f"posture_{k}_error_deg"]) for k in (1, 2, 3))
-    assert 0.0 <= m["nearest_taught_fraction"] <= 1.0 and m["cycle_period_s"] == pytest.approx(0.6)
-    assert (tmp_path / "replay.png").exists()
+    assert 0.0 <= m["nearest_taught_fraction"] <= 1.0
+    assert m["cycle_period_s"] == pytest.approx(3 * result["params"]["period_s"])  # three postures a cycle
+    assert (run.out / "replay.png").exists()
     assert m["muscle_rank"] == 24 and m["balanced_tension_exists"] == 0.0 and m["locked_taut_muscles"] <= 40
 
 
-def test_bad_settings_are_one_clear_error(tmp_path):
+def test_bad_settings_are_one_clear_error():
     with pytest.raises(ParameterError):
-        run_scenario("spine.tracking-loops", out=tmp_path, quiet=True, overrides={"robots": "bebe"})
+        get("spine.tracking-loops").resolve({"robots": "bebe"})
     with pytest.raises(ParameterError):
-        run_scenario("spine.kenta-taught-postures", out=tmp_path, quiet=True,
-                     overrides={"move_s": "3", "period_s": "2"})
+        get("spine.kenta-taught-postures").resolve({"move_s": "3", "period_s": "2"})
 
 
 def test_kenta_muscles_cannot_hold_every_direction():

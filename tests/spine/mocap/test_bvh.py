@@ -1,12 +1,11 @@
-"""The BVH reader and writer, the shipped clip, the retargeting and a short run of spine.bvh-retarget."""
+"""The BVH reader and writer, the shipped clip, the retargeting and spine.bvh-retarget's smoke run."""
 
 import json
 
 import numpy as np
 import pytest
 
-from shintai.scenarios.registry import ParameterError
-from shintai.scenarios.runner import run_scenario
+from shintai.scenarios.registry import ParameterError, get
 from shintai.spine.mocap import bvh as bvh
 from shintai.spine.mocap import retarget as mocap
 from shintai.spine.mocap.constants import TWIST_PEAK_DEG
@@ -137,27 +136,29 @@ def test_spined_robots_twist_and_the_rigid_humanoid_does_not():
     assert mocap.retarget(human, "kenta", "by_joint").twist_deg.max() < 35
 
 
-def test_scenario_short_run(tmp_path):
-    result = run_scenario("spine.bvh-retarget", out=tmp_path, quiet=True, overrides={"mujoco_frames": "false"})
+def test_scenario_short_run(smoke):
+    run = smoke("spine.bvh-retarget")
+    result = run.result
     assert "error" not in result and all(c["ok"] for c in result["checks"])
     m = result["metrics"]
     assert m["twist_tracking_error_cla_deg"] < 5 and m["twist_tracking_error_kenta_deg"] < 5
     assert m["max_twist_hrp_rigid_deg"] == 0 and m["saturation_hrp2_s"] > 0 and m["arm_saturation_hrp2_s"] > 0
-    assert (tmp_path / "twist.png").is_file() and (tmp_path / "figures.png").is_file()
-    assert json.loads((tmp_path / "metrics.json").read_text())["scenario"] == "spine.bvh-retarget"
+    assert (run.out / "twist.png").is_file() and (run.out / "figures.png").is_file()
+    assert json.loads((run.out / "metrics.json").read_text())["scenario"] == "spine.bvh-retarget"
 
 
 def test_scenario_user_file(tmp_path):
+    """A user's BVH file is a parameter (its clip read when the parameters are resolved); a file it cannot play
+    is a one-line parameter error."""
     user = tmp_path / "mine.bvh"
     user.write_text(mocap.SHIPPED_CLIP.read_text())
-    result = run_scenario("spine.bvh-retarget", out=tmp_path / "run", quiet=True,
-                          overrides={"bvh": str(user), "mujoco_frames": "false"})
-    assert result["params"]["bvh"] == str(user) and result["metrics"]["frames"] == 91
+    sc = get("spine.bvh-retarget")
+    assert sc.resolve({"bvh": str(user)})["bvh"] == str(user) and mocap.load(str(user)).n_frames == 91
     bad = tmp_path / "bad.bvh"
     bad.write_text(SMALL.replace("Frames: 2", "Frames: two"))
     with pytest.raises(ParameterError, match=r"^--set bvh: .*bad\.bvh:17: expected 'Frames: n'"):
-        run_scenario("spine.bvh-retarget", out=tmp_path / "bad", quiet=True, overrides={"bvh": str(bad)})
+        sc.resolve({"bvh": str(bad)})
     with pytest.raises(ParameterError, match="no left shoulder joint"):
         small = tmp_path / "small.bvh"
         small.write_text(SMALL)
-        run_scenario("spine.bvh-retarget", out=tmp_path / "small", quiet=True, overrides={"bvh": str(small)})
+        sc.resolve({"bvh": str(small)})

@@ -29,6 +29,7 @@ from shintai.scenarios.registry import Check, ThesisValue, scenario
     demo=True,
     estimate_s=1.0,
     video=True,
+    smoke={},
 )
 def avoid_known(ctx) -> dict:
     return avoid(ctx, W.scenario_421(), climbers=(1, 3))

@@ -37,6 +37,7 @@ LEGS = ("derived: §5.2.1 names no legs for this walk; in the same environment �
                                         "Table 3's actions in our executor: legs 2 and 4)", "legs_on_obstacle"),
         "direction": ThesisValue("right", "seed 004 Table 3 (ΔXr > 0 while passing)", "passing_x_m"),
     },
+    smoke={},
 )
 def avoid_s52(ctx) -> dict:
     return avoid(ctx, W.scenario_52(), climbers=(2, 4))

@@ -28,6 +28,7 @@ from shintai.scenarios.registry import Check, ThesisValue, scenario
                                            "climbed_thesis_legs"),
     },
     video=True,
+    smoke={},
 )
 def avoid_unseen(ctx) -> dict:
     return avoid(ctx, W.scenario_422(), climbers=(2, 4))

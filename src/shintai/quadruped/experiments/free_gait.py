@@ -76,6 +76,7 @@ def free_walk(ctx, key: str, env: W.Environment, free, fixed, order) -> tuple[di
                                    "seed 004 Table 7", "s622_orders"),
     },
     video=True,
+    smoke={},
 )
 def free_gait(ctx) -> dict:
     p = ctx.params

@@ -47,6 +47,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
             "unseen_success_rate": ThesisValue(
         "no rate; 'paths to the destination were obtained in unlearned environments' (one example, §4.2.2)",
         "seed 004 §7", "unseen_success_rate")},
+    smoke={"unseen": 12},
 )
 def generalization(ctx) -> dict:
     p = ctx.params

@@ -49,6 +49,7 @@ class FirstStepStraight:
                                         "legs_on_obstacle"),
         "direction": ThesisValue("right", "seed 004 §4.3", "passing_x_m"),
     },
+    smoke={},
 )
 def real_robot_standin(ctx) -> dict:
     env = W.scenario_43()

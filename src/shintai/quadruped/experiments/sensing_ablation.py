@@ -50,6 +50,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
                                                 "s421_known_final_error_m"),
         "s422_known_final_error_m": ThesisValue(0.054, "seed 004 §4.2.2 (known obstacles)",
                                                 "s422_known_final_error_m")},
+    smoke={"environments": 6},
 )
 def sensing_ablation(ctx) -> dict:
     p = ctx.params

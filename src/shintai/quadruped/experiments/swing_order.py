@@ -48,6 +48,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
         "network_matches_exhaustive": ThesisValue(8, "seed 004 Tables 4-5: differs in cycles 1 and 5 of 10",
                                                   "network_matches_exhaustive"),
     },
+    smoke={},
 )
 def swing_order(ctx) -> dict:
     env = W.scenario_52()

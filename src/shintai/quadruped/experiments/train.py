@@ -106,6 +106,8 @@ def _train_metrics(settings: T.TrainSettings, results: dict) -> dict:
     stochastic=True,
     thesis={"generations": ThesisValue("not reported", "seed 004 §4.1.2 (no generation count, no learning curve)",
                                        "generations")},
+    smoke={"population": 4, "generations": 2, "order_generations": 1, "free_generations": 1, "environments": 2,
+           "executor": "serial"},
 )
 def train_networks(ctx) -> dict:
     p = ctx.params

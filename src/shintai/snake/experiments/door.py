@@ -7,6 +7,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import run_variants
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
+from shintai.snake.constants import DOOR
 from shintai.snake.door_operator import DoorRun, door_rig, pull_metrics, pull_rig
 from shintai.snake.plots import plot_door
 
@@ -23,7 +24,7 @@ def compute(ctx):
         if variant == PULL:
             return pull_rig()
         k = 0 if variant == "nominal" else int(variant.rsplit("_", 1)[1])
-        return door_rig(seed=seed + k, perturbed=k > 0, head_pose=params["head_pose"])
+        return door_rig(seed=seed + k, perturbed=k > 0, head_pose=params["head_pose"], duration=params["duration_s"])
 
     ctx.runs = run_variants(ctx, rig, ["nominal", *perturbed, PULL], filmed=("nominal",))
     outcomes = [DoorRun.of(ctx.runs[name]) for name in ("nominal", *perturbed)]
@@ -55,6 +56,8 @@ experiment(
         Param("runs", 3, "perturbed runs for the success rate (head ±1 cm/±0.03 rad, spring ±20 %)", lo=0, hi=20),
         Param("head_pose", "model", "head pose for the controller: internal-model estimate (thesis Fig. 3.15) "
               "or mocap", choices=("model", "mocap")),
+        Param("duration_s", DOOR.t_budget, "simulated time allowed each door run (the operator's budget; shorter: "
+              "a short run that ends in phase 1)", lo=0.5, hi=DOOR.t_budget),
     ),
     checks=(
         Check("phase_reached", ">=", 2, "thesis Fig. 3.16 blocks 3–4 / spec §5.4 #20: after phase 2 the tail is "
@@ -71,4 +74,5 @@ experiment(
     },
     compute=compute, plots=plots,
     video=True,
+    smoke={"runs": 1, "duration_s": 2.0},
 )

@@ -68,5 +68,5 @@ experiment(
     video=lambda params: params["plant"] == "mujoco",
     demo_params={"plant": "mujoco"},  # the demo films the physical snake (the thesis's own runs are kinematic)
     estimate_s=60.0,
-    smoke={"duration_s": 1.0},
+    smoke={"duration_s": 4.0},  # two mode selections (t = 0, 2 s)
 )

@@ -18,5 +18,5 @@ experiment(
     variants=lambda params: variants(params["null_space"]),
     metrics=lambda runs, params: condition_metrics(runs, params["null_space"]),
     plots=lambda ctx, runs, params: plot_two_plane(ctx, runs, params["null_space"]),
-    smoke={"duration_s": 2.0, "null_space": False},
+    smoke={"duration_s": 18.0},  # the first front shift, with and without the null space
 )

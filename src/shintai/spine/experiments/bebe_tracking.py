@@ -70,6 +70,7 @@ RUN_KEYS = ("dead_zone_px", "cos_threshold", "target_amplitude_m", "target_perio
                                   "forced_left_final_px"),
         "muscle_count": ThesisValue(36, "§4.8.2"),
     },
+    smoke={"tracking_s": 4, "disturbance_s": 2, "forced_s": 2},
 )
 def bebe_tracking(ctx) -> dict:
     p = ctx.params

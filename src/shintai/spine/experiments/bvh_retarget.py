@@ -108,4 +108,5 @@ experiment(
                                                "max_twist_cla_deg")},
     constraints=((_bvh_ok, "bvh: a readable BVH file with a pelvis, chest, shoulders and hips"),),
     compute=compute, plots=plots, video=True,
+    smoke={},
 )

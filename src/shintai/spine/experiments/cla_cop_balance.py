@@ -70,4 +70,5 @@ experiment(
     covers=("003:fig5.8",),
     video=True,
     rig=rig, variants=CB.VARIANTS, metrics=metrics, plots=P.cop_balance,
+    smoke={"fraction": 0.05},
 )

@@ -69,6 +69,7 @@ def _variant_metrics(name: str, genes, sensors: np.ndarray, eval_s: float) -> di
         "genes": ThesisValue("the spine's roll amounts and timings, normalised",
                              "seed 003 §5.2.9 '脊椎の roll 方向の変形量と変形のタイミング … を正規化し, これを遺伝子とし'"),
     },
+    smoke={"generations": 2, "population": 4, "executor": "serial", "eval_s": 2},
 )
 def cla_crawl_ga(ctx) -> dict:
     p = ctx.params

@@ -93,4 +93,6 @@ experiment(
                  (lambda p: p["tilt2_s"] >= TILT1_S + 1.5, f"tilt2_s: at least {TILT1_S + 1.5:g} s")],
     video=True,
     compute=compute, plots=plots,
+    smoke={"calibration_s": 0.2, "nn_iterations": 100, "tilt2_s": 2.5, "duration_s": 2.6, "move_s": 0.4,
+           "settle_s": 0.1, "window_s": 0.05},
 )

@@ -87,4 +87,5 @@ experiment(
     covers=("003:fig5.7",),
     video=True,
     rig=rig, variants=PP.VARIANTS, metrics=metrics, plots=P.pick_place,
+    smoke={"fraction": 0.05},
 )

@@ -64,4 +64,5 @@ experiment(
                                 "seed 003 " + QUOTE, "object_pulled_with_spine_m")},
     video=True,
     rig=rig, variants=VARIANTS, metrics=metrics, plots=plots,
+    smoke={"calibration_s": 0.1, "move_s": 0.2},
 )

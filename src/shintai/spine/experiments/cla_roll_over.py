@@ -65,4 +65,5 @@ experiment(
     covers=("003:fig5.9",),
     video=True,
     rig=rig, variants=RO.VARIANTS, metrics=metrics, plots=P.roll_over,
+    smoke={"fraction": 0.05},
 )

@@ -67,4 +67,5 @@ experiment(
                   "spine_s >= shoulder_s >= elbow_s (the proximal part moves longest, §5.2.3's order)")],
     video=True,
     rig=rig, variants=VARIANTS, filmed=("with_spine", "without_spine"), metrics=metrics, plots=plots,
+    smoke={"calibration_s": 0.2, "windup_s": 0.4},
 )

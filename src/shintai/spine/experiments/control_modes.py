@@ -161,5 +161,6 @@ experiment(
     demo=True,
     demo_params={"modes": "all_l,all_ll", "ablation": "false"},  # 4 of the 17 runs, the filmed all_ll.pitch kept
     estimate_s=255.0,
+    smoke={"max_angle_deg": 10, "hold_s": 0.5, "move_s": 0.1, "window_s": 0.1},  # all 17 runs, every check's metric
     video=True,
 )

@@ -112,4 +112,5 @@ experiment(
     },
     compute=compute, plots=plots,
     video=True,
+    smoke={"all_sequences": False},
 )

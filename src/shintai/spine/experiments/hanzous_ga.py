@@ -88,4 +88,5 @@ experiment(
     },
     compute=compute, plots=plots,
     video=True,
+    smoke={"generations": 1, "population": 4, "executor": "serial"},
 )

@@ -96,6 +96,7 @@ def table_4_2(model) -> list[dict]:
                                        "jacobian_test_error_norm_deg"),
         "jacobian_time": ThesisValue("19–2100 s per posture", "§4.4.3 Table 4.2", "jacobian_query_s"),
     },
+    smoke={"iterations": 300, "test_postures": 10},
 )
 def inverse_model_scenario(ctx) -> dict:
     p, model = ctx.params, CLA.model

@@ -77,4 +77,5 @@ experiment(
     video=True,
     rig=rig, variants=VARIANTS, filmed=("replay",), metrics=metrics,
     plots=lambda ctx, runs, params: taught_postures(ctx, replay_result(*_replay(runs))["series"]),
+    smoke={"zeroing_s": 0.2, "hold_s": 0.1, "cycles": 1, "period_s": 0.2, "move_s": 0.1, "lock_s": 0.1},
 )

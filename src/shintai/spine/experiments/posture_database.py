@@ -78,6 +78,7 @@ Q_TIME = "seed 003 §5.9.2 '一定の速さで姿勢履歴を辿ると, 教示�
     constraints=[(lambda p: p["weak_nm"] < p["strong_nm"], "weak_nm must be below strong_nm"),
                  (lambda p: p["weak_push_n"] < p["strong_push_n"], "weak_push_n must be below strong_push_n")],
     video=True,
+    smoke={"session": "tiny", "nn_iterations": 100},
 )
 def posture_database_scenario(ctx):
     p = ctx.params

@@ -93,4 +93,5 @@ experiment(
     constraints=[(lambda p: _levels_ok(p["precompressions_mm"]),
                   "precompressions_mm: a comma list of distinct numbers [mm]")],
     rig=rig, variants=variants, metrics=metrics, plots=plots,
+    smoke={"precompressions_mm": "0.25,1.5"},
 )

@@ -95,4 +95,5 @@ experiment(
     rig=rig, variants=variants, filmed=lambda p: list(trial_names(p))[-1:],  # the stiffest spring
     metrics=metrics, plots=plots,
     video=True,
+    smoke={"k_s_list": "50,400", "push_s": 0.8, "release_s": 1.5},
 )

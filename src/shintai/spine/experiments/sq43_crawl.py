@@ -103,4 +103,5 @@ experiment(
                                  "crawl_forward_mm")},
     video=True,
     rig=rig, variants=VARIANTS, filmed=("crawl",), metrics=metrics, plots=plots,
+    smoke={"cycles": 1},
 )

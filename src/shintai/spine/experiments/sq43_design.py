@@ -86,6 +86,7 @@ def grid_optimum(f, step: float) -> tuple[np.ndarray, float]:
                                     "start4_joins_path"),
         "optimum": ThesisValue("not in the text (Fig. 3.5 only)", "§3.2.3", "best_a1_deg"),
     },
+    smoke={"step_deg": 2},
 )
 def sq43_design(ctx) -> dict:
     p = ctx.params

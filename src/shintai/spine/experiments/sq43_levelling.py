@@ -80,4 +80,5 @@ experiment(
                                 "§3.2.4 Fig. 3.6 (photographs only, no number)", "settled_roll_up_without_deg")},
     video=True,
     rig=rig, variants=VARIANTS, filmed=("with",), metrics=metrics, plots=plots,
+    smoke={"rise_mm": 15},
 )

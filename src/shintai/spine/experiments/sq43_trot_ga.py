@@ -49,6 +49,7 @@ VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance":
                                     "generations_to_converge"),
             "ga": ThesisValue("genes 6, population 20, crossover 0.2, mutation 0.02, culling 0.4", "§5.6.2")},
     video=True,
+    smoke={"generations": 2, "population": 4, "executor": "serial", "duration_s": 1.5},
 )
 def sq43_trot_ga(ctx):
     p = ctx.params

@@ -51,6 +51,7 @@ def _positive_integers(text: str) -> bool:
             "sample_period": ThesisValue("20 ms", "§5.9.2")},
     constraints=[(lambda p: _positive_integers(p["speedups"]), "speedups: a comma list of distinct positive integers")],
     video=True,
+    smoke={},  # every speed-up the checks name, and the key postures
 )
 def teach_playback_scenario(ctx):
     p = ctx.params

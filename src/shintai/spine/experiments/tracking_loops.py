@@ -94,4 +94,5 @@ experiment(
     constraints=[(lambda p: _robots(p) and set(_robots(p)) <= set(LOOPS), "robots: a comma list of kenta, cla")],
     video=True,
     rig=rig, variants=_robots, metrics=metrics, plots=lambda ctx, runs, p: tracking(ctx, runs),
+    smoke={"duration_s": 0.5, "zeroing_s": 0.2},
 )

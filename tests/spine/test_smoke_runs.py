@@ -1,0 +1,26 @@
+"""The registry test for the spine experiments outside Cla's folder (Kenta, SQ43, Hanzous, BeBe, the rabbit, mocap
+and the shared layers): each runs at its declared smoke sizes (tests/smoke.py); Cla's are in cla/ (two files, so
+``--dist loadfile`` spreads the spine's runs over two workers)."""
+
+import pytest
+from smoke import check_contract
+
+RUNS = (
+    "spine.bebe-tracking",
+    "spine.bvh-retarget",
+    "spine.hanzous-brachiation",
+    "spine.hanzous-ga",
+    "spine.inverse-model",
+    "spine.kenta-taught-postures",
+    "spine.rabbit-stiffening",
+    "spine.sq43-crawl",
+    "spine.sq43-design",
+    "spine.sq43-levelling",
+    "spine.sq43-trot-ga",
+    "spine.tracking-loops",
+)
+
+
+@pytest.mark.parametrize("scenario_id", RUNS)
+def test_runs_at_its_smoke_size(scenario_id, smoke):
+    check_contract(scenario_id, smoke(scenario_id))
