@@ -325,6 +325,9 @@ class Loop:
             raise ValueError(f"loop: module names must be unique, got {names}")
         self.channels = self._declare(body, channels)
         self.internal = {n: c for n, c in self.channels.items() if n not in body.channels}
+        # the body's additive channels: a Python float contributed to one is summed as a float, the same
+        # IEEE double sums as on 0-d arrays without building them (a joint servo target per channel)
+        self._body_scalars = {n for n, c in body.channels.items() if c.kind == ADD}
         self.recorder = recorder
         self.base = {k: np.asarray(v, dtype=float) for k, v in (base or {}).items()}
         for k in self.base:
@@ -416,6 +419,9 @@ class Loop:
                 c = self.channels.get(channel)
                 if c is None:
                     self._channel(channel, f"module {self.modules[i].name!r}")
+                if type(value) is float and channel in self._body_scalars:  # a float stays one (no copy to make)
+                    command[channel] = command[channel] + value if channel in command else value
+                    continue
                 value = np.asarray(value, dtype=float)
                 if c.kind == SET:
                     if channel in set_writers:

@@ -171,17 +171,24 @@ class Hrp2Limb:
         Such solves are counted in ``fallbacks``.
 
         The DLS IK (a hand; a foot's fallback) starts from the limb's previous command."""
-        if self.kind == "foot":
-            x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
-            (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
-            pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
-            result = leg_ik(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
-            if result.ok:
-                q = self.body.data.qpos.copy()
-                q[self.qadr] = result.q
-                return ik.IKResult(q, True, (0.0, 0.0))
-            self.fallbacks += 1
-        return self.dls_solve(xi)
+        leg = self.closed_form(xi) if self.kind == "foot" else None
+        if leg is None:
+            return self.dls_solve(xi)
+        q = self.body.data.qpos.copy()
+        q[self.qadr] = leg
+        return ik.IKResult(q, True, (0.0, 0.0))
+
+    def closed_form(self, xi) -> np.ndarray | None:
+        """A foot's six leg angles for ξ by the closed-form leg IK in the waist frame (:meth:`solve`); None
+        where it gives no answer inside the limits (counted in ``fallbacks``)."""
+        x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
+        (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
+        pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
+        result = leg_ik(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
+        if result.ok:
+            return result.q
+        self.fallbacks += 1
+        return None
 
     def dls_solve(self, xi) -> ik.IKResult:
         """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
@@ -195,13 +202,18 @@ class Hrp2Limb:
         return self.solve(xi).ok
 
     def command(self, xi, snapshot) -> dict:
-        """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable."""
-        result = self.solve(xi)
-        if result.ok:
-            self.q = result.q[self.qadr]
+        """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable. A foot's
+        closed form gives its six angles directly (no whole qpos to fill); the targets are Python floats."""
+        leg = self.closed_form(xi) if self.kind == "foot" else None
+        if leg is not None:
+            self.q = leg
         else:
-            self.unreachable += 1
-        return dict(zip(self.joints, self.q))
+            result = self.dls_solve(xi)
+            if result.ok:
+                self.q = result.q[self.qadr]
+            else:
+                self.unreachable += 1
+        return dict(zip(self.joints, self.q.tolist()))
 
 
 def riding_limbs(body: MujocoBody, kind: str) -> dict[str, Hrp2Limb]:
