@@ -20,42 +20,34 @@ _FIRST_ROWS = 1024  # rows a new column holds before it first doubles
 class _Column:
     """One signal: ``n`` samples (rows of ``shape``) and their times, in blocks grown by doubling."""
 
-    __slots__ = ("shape", "rows", "times", "n")
+    __slots__ = ("shape", "rows", "times", "n", "capacity")
 
     def __init__(self, shape: tuple, capacity: int = _FIRST_ROWS):
         self.shape = shape
         self.rows = np.empty((capacity, *shape))
         self.times = np.empty(capacity)
-        self.n = 0
+        self.n, self.capacity = 0, capacity
 
-    def append(self, t: float, value) -> None:
-        n = self.n
-        if n == len(self.times):
-            self._grow(2 * n)
-        if type(value) is float:
-            if self.shape:
-                raise ValueError(f"a signal's samples keep the shape of its first one, {self.shape}; got a float")
-        elif not (type(value) is np.ndarray and value.shape == self.shape):
-            value = np.asarray(value, dtype=float)  # anything else goes through NumPy's conversion
-            if value.shape != self.shape:
-                raise ValueError(f"a signal's samples keep the shape of its first one, {self.shape}; got {value.shape}")
-        self.rows[n] = value  # = np.array(value, dtype=float): the same conversion to float64
-        self.times[n] = t
-        self.n = n + 1
+    def row(self, value):
+        """``value`` as a row of this column: a float array of its shape (a sample of another shape is an error)."""
+        value = np.asarray(value, dtype=float)
+        if value.shape != self.shape:
+            raise ValueError(f"a signal's samples keep the shape of its first one, {self.shape}; got {value.shape}")
+        return value
 
     def extend(self, other: _Column) -> None:
         if other.shape != self.shape:
             raise ValueError(f"merged signals differ in shape: {self.shape} and {other.shape}")
-        if self.n + other.n > len(self.times):
-            self._grow(max(2 * len(self.times), self.n + other.n))
+        if self.n + other.n > self.capacity:
+            self.grow(max(2 * self.capacity, self.n + other.n))
         self.rows[self.n:self.n + other.n] = other.rows[:other.n]
         self.times[self.n:self.n + other.n] = other.times[:other.n]
         self.n += other.n
 
-    def _grow(self, capacity: int) -> None:
+    def grow(self, capacity: int) -> None:
         rows, times = np.empty((capacity, *self.shape)), np.empty(capacity)
         rows[:self.n], times[:self.n] = self.rows[:self.n], self.times[:self.n]
-        self.rows, self.times = rows, times
+        self.rows, self.times, self.capacity = rows, times, capacity
 
 
 class Recorder:
@@ -69,10 +61,19 @@ class Recorder:
         t = float(t)
         columns = self._columns
         for name, value in signals.items():
-            column = columns.get(name)
-            if column is None:
-                column = columns[name] = _Column(np.shape(value))
-            column.append(t, value)
+            c = columns.get(name)
+            if c is None:
+                c = columns[name] = _Column(np.shape(value))
+            n = c.n
+            if n == c.capacity:
+                c.grow(2 * n)
+            # a float (np.float64 too) into a scalar column, an array of the column's shape as it is: written
+            # with the same conversion to float64 as np.array(value, dtype=float); anything else checked first
+            if not (c.shape == () and isinstance(value, float) or type(value) is np.ndarray and value.shape == c.shape):
+                value = c.row(value)
+            c.rows[n] = value
+            c.times[n] = t
+            c.n = n + 1
 
     def __contains__(self, name: str) -> bool:
         return name in self._columns
