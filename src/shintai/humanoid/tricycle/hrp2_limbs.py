@@ -128,6 +128,10 @@ class Hrp2Limb:
         self._ft_key = f"{self.sensor}_force"
         self._ft_weight = body.model.body_subtreemass[body.model.site_bodyid[self._ft_site]] * body.model.opt.gravity
         self._site_id = body.id("site", self.site)
+        # the contact site's and the F/T site's rows of the data, as views taken once (MujocoBody keeps its data)
+        self._site_xpos = body.data.site_xpos[self._site_id]
+        self.site_rot = body.data.site_xmat[self._site_id].reshape(3, 3)
+        self._ft_rot = body.data.site_xmat[self._ft_site].reshape(3, 3)
         # One FK / F/T reading per snapshot (the laws and the logging ask several times a tick); the
         # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
         self._point = self._force = (None, None)
@@ -136,7 +140,7 @@ class Hrp2Limb:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
         snap, value = self._point
         if snap is not snapshot:
-            value = self.frame.to_vehicle(self.body.data.site_xpos[self._site_id])
+            value = self.frame.to_vehicle(self._site_xpos)
             self._point = (snapshot, value)
         return value.copy()
 
@@ -144,8 +148,8 @@ class Hrp2Limb:
         """f^msr: the environment's force on the hand / foot, vehicle frame [N] (Eq. 3.13)."""
         snap, value = self._force
         if snap is not snapshot:
-            rot = self.body.data.site_xmat[self._ft_site].reshape(3, 3)  # = ft_reaction(...)[0], faster
-            value = self.frame.rotate_to_vehicle(-rot @ snapshot[self._ft_key] - self._ft_weight)
+            # = ft_reaction(...)[0], faster
+            value = self.frame.rotate_to_vehicle(-self._ft_rot @ snapshot[self._ft_key] - self._ft_weight)
             self._force = (snapshot, value)
         return value.copy()
 
