@@ -63,7 +63,7 @@ from shintai.humanoid.robots.hrp2 import build_hrp2
 from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik_floats
 from shintai.sim.body import MujocoBody
 
-_EYE9 = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)  # an upright waist / a level sole, row-major
+_EYE9 = tuple(np.eye(3).ravel().tolist())  # an upright waist / a level sole, row-major
 PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen there), what the boarding steps onto
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **DAMPING_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
