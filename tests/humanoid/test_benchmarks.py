@@ -11,6 +11,7 @@ def test_tricycle_overhead_runs_both_configurations_for_the_same_simulated_time(
         assert out[f"{name}_physics_steps"] > 0
         assert out[f"{name}_sim_time_s"] > 0.0
         assert math.isfinite(out[f"{name}_overhead_ratio"]) and out[f"{name}_overhead_ratio"] > 0.0
+        assert out[f"{name}_physics_us"] > 0.0 and out[f"{name}_control_us"] > 0.0  # where the tick went
 
 
 def test_leg_ik_benchmark_times_both_solvers_on_the_same_targets():

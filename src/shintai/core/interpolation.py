@@ -70,22 +70,34 @@ class Segment:
 
     def state(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity, acceleration at time t (clamped to [0, T])."""
+        return (self.position(t), *self.rates(t))
+
+    def position(self, t: float) -> np.ndarray:
+        """x(t) = Σ c_k t^k (t clamped to [0, T])."""
         t = min(max(t, 0.0), self.T)
         c = self.coeffs
         if c.ndim == 2:  # (terms, dof): the same products as below, without tensordot's bookkeeping
-            k, k1, k1m1, k2k2m1, k2m2 = _powers(len(c))
+            k = _powers(len(c))[0]
             n, dof = c.shape
-            x = np.dot((t ** k).reshape(1, n), c).reshape(dof)
+            return np.dot((t ** k).reshape(1, n), c).reshape(dof)
+        return np.tensordot(t ** np.arange(len(c)), c, axes=1)
+
+    def rates(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """(ẋ(t), ẍ(t)) = (Σ k c_k t^(k−1), Σ k (k−1) c_k t^(k−2)) (t clamped to [0, T])."""
+        t = min(max(t, 0.0), self.T)
+        c = self.coeffs
+        if c.ndim == 2:
+            _, k1, k1m1, k2k2m1, k2m2 = _powers(len(c))
+            n, dof = c.shape
             v = np.dot((k1 * t ** k1m1).reshape(1, n - 1), c[1:]).reshape(dof)
             a = (np.dot((k2k2m1 * t ** k2m2).reshape(1, n - 2), c[2:]).reshape(dof)
-                 if n > 2 else np.zeros_like(x))
-            return x, v, a
+                 if n > 2 else np.zeros(dof))
+            return v, a
         k = np.arange(len(c))
-        x = np.tensordot(t ** k, c, axes=1)
         v = np.tensordot(k[1:] * t ** (k[1:] - 1), c[1:], axes=1)
         a = (np.tensordot(k[2:] * (k[2:] - 1) * t ** (k[2:] - 2), c[2:], axes=1)
-             if len(c) > 2 else np.zeros_like(x))
-        return x, v, a
+             if len(c) > 2 else np.zeros_like(v))
+        return v, a
 
 
 _POWERS: dict[int, tuple] = {}
@@ -138,6 +150,7 @@ class SequencePlayer(Module):
         super().__init__(name, period)
         self.via = via  # minjerksequence's velocity rule at an intermediate posture (see via_velocity)
         self.x = np.atleast_1d(np.asarray(x0, dtype=float)).copy()
+        self._due = None  # (segment, time) whose velocity and acceleration are not formed yet
         self.v = np.zeros_like(self.x)
         self.a = np.zeros_like(self.x)
         self.queue: deque[QueueEntry] = deque()
@@ -187,6 +200,35 @@ class SequencePlayer(Module):
     def state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         return self.x.copy(), self.v.copy(), self.a.copy()
 
+    # v and a are formed when read (a re-plan, ``state``), from the segment time ``advance`` reached: most
+    # ticks only need x (the tricycle's limbs advance two players every 4 ms tick)
+
+    @property
+    def v(self) -> np.ndarray:
+        self._form_rates()
+        return self._v
+
+    @v.setter
+    def v(self, value: np.ndarray) -> None:
+        self._form_rates()
+        self._v = value
+
+    @property
+    def a(self) -> np.ndarray:
+        self._form_rates()
+        return self._a
+
+    @a.setter
+    def a(self, value: np.ndarray) -> None:
+        self._form_rates()
+        self._a = value
+
+    def _form_rates(self) -> None:
+        if self._due is not None:
+            segment, t = self._due
+            self._due = None
+            self._v, self._a = segment.rates(t)
+
     # -- time --
 
     def _end_velocity(self, entry: QueueEntry) -> np.ndarray:
@@ -226,7 +268,8 @@ class SequencePlayer(Module):
             left = self.segment.T - self.elapsed
             if remaining < left:
                 self.elapsed += remaining
-                self.x, self.v, self.a = self.segment.state(self.elapsed)
+                self.x = self.segment.position(self.elapsed)
+                self._due = (self.segment, self.elapsed)
                 return self.x.copy()
             remaining -= left
             self.x, self.v, self.a = self.segment.state(self.segment.T)

@@ -325,6 +325,9 @@ class Loop:
             raise ValueError(f"loop: module names must be unique, got {names}")
         self.channels = self._declare(body, channels)
         self.internal = {n: c for n, c in self.channels.items() if n not in body.channels}
+        # the body's additive channels: a Python float contributed to one is summed as a float, the same
+        # IEEE double sums as on 0-d arrays without building them (a joint servo target per channel)
+        self._body_scalars = {n for n, c in body.channels.items() if c.kind == ADD}
         self.recorder = recorder
         self.base = {k: np.asarray(v, dtype=float) for k, v in (base or {}).items()}
         for k in self.base:
@@ -336,6 +339,7 @@ class Loop:
         self.command: Command = {}
         self._bounds = np.cumsum([0] + [len(s) for s in self.stages]).tolist()
         self._now = [c for c in self.internal.values() if c.delay == 0]
+        self._now_names = frozenset(c.name for c in self._now)
         self._later = {n: deque([c.default] * c.delay, maxlen=c.delay) for n, c in self.internal.items() if c.delay}
         self._started = False
         for m in self.modules:
@@ -407,15 +411,21 @@ class Loop:
             for m in fresh:
                 m.reset(snap)
 
-    def _combine(self, command: Command, lo: int, hi: int, set_writers: dict) -> None:
+    def _combine(self, command: Command, lo: int, hi: int, set_writers: dict) -> list:
+        """Add the held contributions of modules ``lo``..``hi`` into ``command``; returns the channels they wrote."""
+        written = []
         for i in range(lo, hi):
             part = self.held[i]
             if not part:
                 continue
+            written += part
             for channel, value in part.items():
                 c = self.channels.get(channel)
                 if c is None:
                     self._channel(channel, f"module {self.modules[i].name!r}")
+                if type(value) is float and channel in self._body_scalars:  # a float stays one (no copy to make)
+                    command[channel] = command[channel] + value if channel in command else value
+                    continue
                 value = np.asarray(value, dtype=float)
                 if c.kind == SET:
                     if channel in set_writers:
@@ -427,6 +437,7 @@ class Loop:
                     command[channel] = command[channel] + value
                 else:
                     command[channel] = value.copy()
+        return written
 
     def step(self) -> Snapshot:
         """Run one body step; returns the snapshot the first stage saw (later stages also saw the
@@ -436,6 +447,7 @@ class Loop:
         snap = self.view(self.body.snapshot())
         command = {k: v.copy() for k, v in self.base.items()}
         set_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
+        written = list(self.base)  # shown with what the first stage writes
         for s in range(len(self.stages)):
             lo, hi = self._bounds[s], self._bounds[s + 1]
             for i in range(lo, hi):
@@ -446,10 +458,11 @@ class Loop:
                     rec = self.timing[m.name]
                     rec.total_s += time.perf_counter() - t0
                     rec.calls += 1
-            self._combine(command, lo, hi, set_writers)
-            for c in self._now:
-                if c.name in command:
-                    snap[c.name] = command[c.name]
+            written += self._combine(command, lo, hi, set_writers)
+            for name in written:
+                if name in self._now_names:  # what this stage wrote to an undelayed loop channel
+                    snap[name] = command[name]
+            written = []
         self.command = command
         if self.internal:
             for name, queue in self._later.items():

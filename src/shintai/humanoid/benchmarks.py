@@ -9,6 +9,10 @@
 * ``humanoid.standing-overhead`` — the standing stack's 4 ms tick (:class:`~shintai.humanoid.balance.standing.Standing`)
   against bare mj_step for the same physics steps.
 
+The tricycle and standing benches also say where the tick went (:func:`tick_shares`): physics (the run's own
+mj_step calls, and their ratio to bare mj_step), control (the modules) and the rest (snapshot, combining,
+recording, the loop).
+
 Measured histories are in git (this docstring's earlier versions) and the benchmarks' ``bench.json``.
 """
 
@@ -43,28 +47,56 @@ def bare_steps(model: mujoco.MjModel, keyframe: str, steps: int) -> float:
     return time.perf_counter() - t0
 
 
+class PhysicsClock:
+    """The wall time a body spends in its steps during a run (``seconds``): the physics share of a tick."""
+
+    def __init__(self, body):
+        self.seconds, step = 0.0, body.step
+
+        def timed_step():
+            t0 = time.perf_counter()
+            step()
+            self.seconds += time.perf_counter() - t0
+
+        body.step = timed_step
+
+
+def timed_rig(rig):
+    """Run ``rig`` (:func:`~shintai.scenarios.experiment.run_rig`); (wall time, the run, its physics seconds)."""
+    clock = PhysicsClock(rig.body)
+    t0 = time.perf_counter()
+    run = run_rig(rig)
+    return time.perf_counter() - t0, run, clock.seconds
+
+
 def pedaling_run(seconds: float):
-    """The E2 controller for ``seconds`` of simulated time; returns (body, wall time)."""
+    """The E2 controller for ``seconds`` of simulated time; returns (body, wall time, run, physics seconds)."""
     dt = DELTA_T * 0.25
     schedule = crank_schedule(seconds / (2 * dt) * D_THETA_C / (2 * 3.141592653589793), dt)
     body = riding.build_riding(crank_error=(0.01, 0.0))
     feet = riding_limbs(body, "foot")
     legs, diag = legs_switcher(feet, schedule)
     rig = pedal_rig(body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag)
-    t0 = time.perf_counter()
-    run_rig(rig)
-    return body, time.perf_counter() - t0
+    return body, *timed_rig(rig)
 
 
 def driving_run(seconds: float):
-    """Arms and legs on the slalom script (Δt = 0.2 s) for about ``seconds``; (body, wall time)."""
+    """Arms and legs on the slalom script (Δt = 0.2 s) for about ``seconds``; (body, wall time, run,
+    physics seconds)."""
     schedule = OperationSchedule(0.0, 0.0, slalom_goals(30 * DEG, 10 * DEG, 60 * DEG), DELTA_T * 0.25, D_THETA_H, D_THETA_C)
     schedule.samples = schedule.samples[:max(1, int(seconds / (2 * schedule.phase)) - 1)]
     ride = Ride(schedule)
-    rig = ride.rig()
-    t0 = time.perf_counter()
-    run_rig(rig)
-    return ride.body, time.perf_counter() - t0
+    return ride.body, *timed_rig(ride.rig())
+
+
+def tick_shares(prefix: str, wall: float, physics: float, loop, bare: float) -> dict:
+    """Where a run's tick went (us per control tick): ``physics`` (the body's mj_step calls in the run; against
+    bare mj_step in ``physics_vs_bare``), ``control`` (the modules' updates, the Loop's timing) and ``rest``
+    (snapshot, combining, applying, recording, the loop itself)."""
+    ticks = loop.tick
+    control = sum(t.total_s for t in loop.timing.values())
+    return {f"{prefix}physics_us": 1e6 * physics / ticks, f"{prefix}control_us": 1e6 * control / ticks,
+            f"{prefix}rest_us": 1e6 * (wall - physics - control) / ticks, f"{prefix}physics_vs_bare": physics / bare}
 
 
 @benchmark("humanoid.tricycle-overhead",
@@ -73,12 +105,13 @@ def tricycle_overhead(seconds: float = 6.0) -> dict:
     out = {}
     for name, run in (("pedaling", pedaling_run), ("driving", driving_run)):
         # the faster of two runs, as for bare mj_step (the machine is shared; the runs are identical)
-        body, wall = min((run(seconds) for _ in range(2)), key=lambda r: r[1])
+        body, wall, done, physics = min((run(seconds) for _ in range(2)), key=lambda r: r[1])
         steps = int(round(body.t / body.model.opt.timestep))
         bare = min(bare_steps(body.model, "ride", steps) for _ in range(2))
         out.update({f"{name}_sim_time_s": body.t, f"{name}_physics_steps": steps, f"{name}_wall_s": wall,
                     f"{name}_bare_mj_step_s": bare, f"{name}_overhead_ratio": wall / bare,
-                    f"{name}_sim_per_wall": body.t / wall, f"{name}_bare_sim_per_wall": body.t / bare})
+                    f"{name}_sim_per_wall": body.t / wall, f"{name}_bare_sim_per_wall": body.t / bare,
+                    **tick_shares(f"{name}_", wall, physics, done.loop, bare)})
     return out
 
 
@@ -141,11 +174,12 @@ def standing_overhead(seconds: float = 4.0) -> dict:
 
     def run():
         st = Standing(hold=seconds + 1.0)
+        clock = PhysicsClock(st.body)
         t0 = time.perf_counter()
         st.run(seconds)
-        return st, time.perf_counter() - t0
+        return st, time.perf_counter() - t0, clock.seconds
 
-    st, wall = min((run() for _ in range(2)), key=lambda r: r[1])
+    st, wall, physics = min((run() for _ in range(2)), key=lambda r: r[1])
     ticks = st.loop.tick
     steps = ticks * st.body.substeps
     bare = min(bare_steps(st.body.model, "stand", steps) for _ in range(2))
@@ -153,4 +187,4 @@ def standing_overhead(seconds: float = 4.0) -> dict:
     rest = 1e6 * wall / ticks - sum(modules.values())
     return {"sim_time_s": st.body.t, "ticks": ticks, "physics_steps": steps, "wall_s": wall, "bare_mj_step_s": bare,
             "overhead_ratio": wall / bare, "tick_us": 1e6 * wall / ticks, "bare_tick_us": 1e6 * bare / ticks,
-            **modules, "physics_and_loop_us": rest}
+            **modules, "physics_and_loop_us": rest, **tick_shares("", wall, physics, st.loop, bare)}

@@ -32,6 +32,7 @@ Conventions
 
 from __future__ import annotations
 
+import operator
 import os
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -115,9 +116,15 @@ class MujocoBody(Body):
         self.before_physics: list[Callable[[], None]] = []
         self._contact_saved: dict[int, tuple[int, int]] = {}
         self._views, self._scalars = self._snapshot_layout()
+        # the layout as the key and index sequences snapshot() zips (built once)
+        self._view_keys, self._view_slices = [k for k, _ in self._views], [w for _, w in self._views]
+        self._scalar_keys = [k for k, _ in self._scalars]
+        self._scalar_items = operator.itemgetter(*[i for _, i in self._scalars], 0, 0)  # ≥ 2 indices: a tuple
+        self._nqv = self.model.nq + self.model.nv
         # live views into MjData, read after every step
         self._bad_counts = self.data.warning.number[_BAD_FIRST:_BAD_FIRST + len(_BAD_WARNINGS)]
         self._qpos, self._qvel = self.data.qpos, self.data.qvel
+        self._state = (self._qpos, self._qvel, self.data.ctrl, self.data.sensordata)
         self.reset(keyframe)
 
     # -- construction helpers -------------------------------------------------------------------
@@ -164,15 +171,11 @@ class MujocoBody(Body):
         return self.data.time
 
     def snapshot(self) -> Snapshot:
-        d = self.data
-        values = np.concatenate((d.qpos, d.qvel, d.ctrl, d.sensordata))  # the one copy
-        snap = {"t": d.time}
-        for key, where in self._views:
-            snap[key] = values[where]
+        values = np.concatenate(self._state)  # the one copy
+        snap = {"t": self.data.time}
+        snap.update(zip(self._view_keys, map(values.__getitem__, self._view_slices)))
         if self._scalars:
-            flat = values[:self.model.nq + self.model.nv].tolist()
-            for key, i in self._scalars:
-                snap[key] = flat[i]
+            snap.update(zip(self._scalar_keys, self._scalar_items(values[:self._nqv].tolist())))
         return snap
 
     def apply(self, command: Mapping[str, np.ndarray | float]) -> None:
@@ -190,7 +193,9 @@ class MujocoBody(Body):
             i = actuators.get(channel)
             if i is None:
                 raise KeyError(f"unknown command channel {channel!r}; valid: ctrl, {names_line(actuators)}")
-            ctrl[i] = ctrl[i] + scalar(channel, value) if whole else scalar(channel, value)
+            if type(value) is not float:
+                value = scalar(channel, value)
+            ctrl[i] = ctrl[i] + value if whole else value
 
     def step(self) -> None:
         t0 = self.data.time

@@ -210,8 +210,9 @@ def _site_errors(problem: _Problem, s: _Site):
     return errors, pos_err, rot_err
 
 
-def _jacobian_rows(problem: _Problem, site: int, target: Target) -> list:
-    """The Jacobian rows (moving dofs) matching :func:`_errors`' rows of one target."""
+def _jacobian_rows(problem: _Problem, site: int, target: Target, xmat33: np.ndarray | None = None) -> list:
+    """The Jacobian rows (moving dofs) matching :func:`_errors`' rows of one target (``xmat33``: the
+    site's orientation in the scratch data, if the caller holds the view)."""
     jacp, jacr = problem.jacobian(site)
     jacs = []
     if target.pos is not None:
@@ -219,7 +220,8 @@ def _jacobian_rows(problem: _Problem, site: int, target: Target) -> list:
     if target.rot is not None:
         jacs.append(jacr)
     if target.axis is not None:
-        a = problem.data.site_xmat[site].reshape(3, 3) @ target.axis[0]
+        rot = problem.data.site_xmat[site].reshape(3, 3) if xmat33 is None else xmat33
+        a = rot @ target.axis[0]
         jacs.append(jacr - np.outer(a, a @ jacr))  # (I − a aᵀ) J_r: the axis error's rows
     return jacs
 
@@ -298,7 +300,8 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
         jac = _stack_jacobian(problem, sites)  # only when a step follows (not on the final check)
         current = q[qadr]
         after = _limited_step(problem, current, jac, err, rest, damping, max_step, posture_gain, reg)
-        moved = float(np.abs(after - current).max())
+        if rest is not None:  # only a posture's search needs how far the joints moved
+            moved = float(np.abs(after - current).max())
         q[qadr] = after
     if converged is not None:
         return IKResult(converged[0], True, converged[1])
@@ -332,7 +335,7 @@ def _stack_jacobian(problem: _Problem, sites: list[_Site]) -> np.ndarray:
     mujoco.mj_comPos(problem.model, problem.data)  # cdof and subtree CoMs, which mj_jacSite needs
     jacs = []
     for s in sites:
-        jacs += _jacobian_rows(problem, s.site, s.target)
+        jacs += _jacobian_rows(problem, s.site, s.target, s.xmat33)
     return np.concatenate(jacs)  # = np.vstack of these 2-D blocks
 
 

@@ -76,7 +76,7 @@ class FootDamping:
     def step(self, tau_d, tau) -> np.ndarray:
         self.e_tau = np.asarray(tau_d, dtype=float) - np.asarray(tau, dtype=float)
         raw = damping_step(self.delta, self.e_tau, self.D, self.T, self.dt)
-        self.delta = np.clip(raw, -self.limit, self.limit)
+        self.delta = np.minimum(np.maximum(raw, -self.limit), self.limit)  # = np.clip, without its dispatch
         self.saturated = np.abs(raw) >= self.limit
         return self.delta.copy()
 
@@ -102,7 +102,8 @@ class ForceDifferenceControl:
 
     def step(self, f_d_diff: float, f_diff: float, double_support: bool) -> tuple[float, float]:
         e = (f_d_diff - f_diff) if double_support else 0.0
-        self.z_ctrl = float(np.clip(damping_step(self.z_ctrl, e, self.D, self.T, self.dt), -self.limit, self.limit))
+        z = float(damping_step(self.z_ctrl, e, self.D, self.T, self.dt))
+        self.z_ctrl = min(max(z, -self.limit), self.limit)  # = np.clip of a float, without its dispatch
         return -0.5 * self.z_ctrl, 0.5 * self.z_ctrl
 
 
@@ -133,7 +134,8 @@ class FootDampingModule(Module):
         if gain is not None:
             left.D[:], right.D[:] = gain[:2], gain[2:]
         deltas = {f: law.step(snapshot[f"tau_d_{f}"], snapshot[f"tau_{f}"]) for f, law in self.feet.items()}
-        self.log(snapshot["t"], **{f"{self.name}.delta_L": deltas["L"], f"{self.name}.delta_R": deltas["R"],
-                                   f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
+        if self.recorder is not None:  # the log's signals are formed only when something records them
+            self.log(snapshot["t"], **{f"{self.name}.delta_L": deltas["L"], f"{self.name}.delta_R": deltas["R"],
+                                           f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
         delta = np.concatenate([deltas["L"], deltas["R"]])
         return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.concatenate([left.e_tau, right.e_tau])}

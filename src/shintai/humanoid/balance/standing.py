@@ -60,9 +60,10 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.hrp2 import build_hrp2
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik_floats
 from shintai.sim.body import MujocoBody
 
+_EYE9 = tuple(np.eye(3).ravel().tolist())  # an upright waist / a level sole, row-major
 PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen there), what the boarding steps onto
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **DAMPING_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
@@ -212,19 +213,20 @@ class LegIKModule(Module):
         self._eye = np.eye(3)
 
     def update(self, snapshot):
-        waist = np.asarray(snapshot["com_ref"], float) - self.com_offset
-        soles = np.asarray(snapshot["sole_ref"], float)
+        # on Python floats (leg_ik_floats), the values leg_ik would convert to
+        waist = (np.asarray(snapshot["com_ref"], float) - self.com_offset).tolist()
+        soles = np.asarray(snapshot["sole_ref"], float).tolist()
         delta = snapshot.get("foot_damping")
         dz = snapshot.get("sole_dz")
         ctrl = self.ctrl0.copy()
         for i, s in enumerate(SIDES):
-            pos = soles[i].copy()
-            rot = self._eye
+            x, y, z = soles[i]
+            rot = _EYE9
             if delta is not None:
-                rot = rot_xy(float(delta[2 * i]), float(delta[2 * i + 1]))
+                rot = rot_xy(float(delta[2 * i]), float(delta[2 * i + 1])).ravel().tolist()
             if dz is not None:
-                pos[2] += float(dz[i])
-            res = leg_ik(s, waist, self._eye, pos, rot)
+                z += float(dz[i])
+            res = leg_ik_floats(s, waist, _EYE9, (x, y, z), rot)
             if not res.reachable:
                 self.unreachable += 1
             ctrl[self.index[s]] = res.q

@@ -33,7 +33,7 @@ with the sole's pitch free about the pedal axle: five constraints per foot, no u
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -46,8 +46,7 @@ LIMITS = {s: np.array([joint_range(j, s) for j in LEG_JOINTS]) for s in SIDES}  
 _LIMITS = {s: [tuple(row) for row in lim.tolist()] for s, lim in LIMITS.items()}
 
 
-@dataclass(frozen=True)
-class LegIKResult:
+class LegIKResult(NamedTuple):
     """``q``: the six joint angles (hip yaw, roll, pitch, knee, ankle pitch, roll), rad.
     ``reachable``: the ankle target is within the leg's length (else the knee is clamped straight and
     ``reach_error`` > 0 m is how far the ankle misses). ``within_limits``: every joint inside Table
@@ -91,10 +90,18 @@ def leg_ik(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2Links
     4 ms tick, both legs)."""
     if side not in SIDES:
         raise ValueError(f"leg_ik: side is 'l' or 'r', got {side!r}")
-    w0, w1, w2, w3, w4, w5, w6, w7, w8 = _mat(waist_rot, "waist_rot")
-    f0, f1, f2, f3, f4, f5, f6, f7, f8 = _mat(sole_rot, "sole_rot")
-    wx, wy, wz = np.asarray(waist_pos, float).tolist()
-    px, py, pz = np.asarray(sole_pos, float).tolist()
+    return leg_ik_floats(side, np.asarray(waist_pos, float).tolist(), _mat(waist_rot, "waist_rot"),
+                         np.asarray(sole_pos, float).tolist(), _mat(sole_rot, "sole_rot"), links, sole)
+
+
+def leg_ik_floats(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2Links = HRP2_LINKS,
+                  sole: bool = True) -> LegIKResult:
+    """:func:`leg_ik` on Python floats: the positions as 3 floats, the rotations as 9 (row-major), e.g.
+    tuples formed once (the tricycle's feet in the waist frame); nothing is converted."""
+    w0, w1, w2, w3, w4, w5, w6, w7, w8 = waist_rot
+    f0, f1, f2, f3, f4, f5, f6, f7, f8 = sole_rot
+    wx, wy, wz = waist_pos
+    px, py, pz = sole_pos
     if sole:  # ankle = sole + R_f (0, 0, ankle_height)
         h = links.ankle_height
         px, py, pz = px + f2 * h, py + f5 * h, pz + f8 * h
@@ -130,7 +137,10 @@ def leg_ik(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2Links
     m20 = cb * n[2][0] - sb * col2
     m22 = sb * n[2][0] + cb * col2
     q = [math.atan2(-m01, m11), math.atan2(m21, math.sqrt(m01 * m01 + m11 * m11)), math.atan2(-m20, m22), q4, q5, q6]
-    violated = tuple(f"{side}_{name}" for name, v, (lo, hi) in zip(JOINT_NAMES, q, _LIMITS[side]) if not lo <= v <= hi)
+    violated = ()
+    for name, v, (lo, hi) in zip(JOINT_NAMES, q, _LIMITS[side]):
+        if not lo <= v <= hi:
+            violated += (f"{side}_{name}",)
     return LegIKResult(np.array(q), reach_error == 0.0, reach_error, not violated, violated)
 
 

@@ -36,7 +36,7 @@ import numpy as np
 
 from shintai.humanoid.constants import PEDAL_SOLE_PITCH
 from shintai.humanoid.robots.hrp2 import SIDES
-from shintai.humanoid.robots.leg_ik import leg_ik
+from shintai.humanoid.robots.leg_ik import leg_ik_floats
 from shintai.humanoid.tricycle.active import R_y
 from shintai.humanoid.tricycle.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.tricycle.switching import estimate_handle_angle
@@ -128,6 +128,10 @@ class Hrp2Limb:
         self._ft_key = f"{self.sensor}_force"
         self._ft_weight = body.model.body_subtreemass[body.model.site_bodyid[self._ft_site]] * body.model.opt.gravity
         self._site_id = body.id("site", self.site)
+        # the contact site's and the F/T site's rows of the data, as views taken once (MujocoBody keeps its data)
+        self._site_xpos = body.data.site_xpos[self._site_id]
+        self.site_rot = body.data.site_xmat[self._site_id].reshape(3, 3)
+        self._ft_rot = body.data.site_xmat[self._ft_site].reshape(3, 3)
         # One FK / F/T reading per snapshot (the laws and the logging ask several times a tick); the
         # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
         self._point = self._force = (None, None)
@@ -136,7 +140,7 @@ class Hrp2Limb:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
         snap, value = self._point
         if snap is not snapshot:
-            value = self.frame.to_vehicle(self.body.data.site_xpos[self._site_id])
+            value = self.frame.to_vehicle(self._site_xpos)
             self._point = (snapshot, value)
         return value.copy()
 
@@ -144,8 +148,8 @@ class Hrp2Limb:
         """f^msr: the environment's force on the hand / foot, vehicle frame [N] (Eq. 3.13)."""
         snap, value = self._force
         if snap is not snapshot:
-            rot = self.body.data.site_xmat[self._ft_site].reshape(3, 3)  # = ft_reaction(...)[0], faster
-            value = self.frame.rotate_to_vehicle(-rot @ snapshot[self._ft_key] - self._ft_weight)
+            # = ft_reaction(...)[0], faster
+            value = self.frame.rotate_to_vehicle(-self._ft_rot @ snapshot[self._ft_key] - self._ft_weight)
             self._force = (snapshot, value)
         return value.copy()
 
@@ -171,17 +175,24 @@ class Hrp2Limb:
         Such solves are counted in ``fallbacks``.
 
         The DLS IK (a hand; a foot's fallback) starts from the limb's previous command."""
-        if self.kind == "foot":
-            x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
-            (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
-            pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
-            result = leg_ik(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
-            if result.ok:
-                q = self.body.data.qpos.copy()
-                q[self.qadr] = result.q
-                return ik.IKResult(q, True, (0.0, 0.0))
-            self.fallbacks += 1
-        return self.dls_solve(xi)
+        leg = self.closed_form(xi) if self.kind == "foot" else None
+        if leg is None:
+            return self.dls_solve(xi)
+        q = self.body.data.qpos.copy()
+        q[self.qadr] = leg
+        return ik.IKResult(q, True, (0.0, 0.0))
+
+    def closed_form(self, xi) -> np.ndarray | None:
+        """A foot's six leg angles for ξ by the closed-form leg IK in the waist frame (:meth:`solve`); None
+        where it gives no answer inside the limits (counted in ``fallbacks``)."""
+        x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
+        (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
+        pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
+        result = leg_ik_floats(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
+        if result.ok:
+            return result.q
+        self.fallbacks += 1
+        return None
 
     def dls_solve(self, xi) -> ik.IKResult:
         """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
@@ -195,13 +206,18 @@ class Hrp2Limb:
         return self.solve(xi).ok
 
     def command(self, xi, snapshot) -> dict:
-        """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable."""
-        result = self.solve(xi)
-        if result.ok:
-            self.q = result.q[self.qadr]
+        """Joint-servo targets putting the contact point at ξ; the previous ones if ξ is unreachable. A foot's
+        closed form gives its six angles directly (no whole qpos to fill); the targets are Python floats."""
+        leg = self.closed_form(xi) if self.kind == "foot" else None
+        if leg is not None:
+            self.q = leg
         else:
-            self.unreachable += 1
-        return dict(zip(self.joints, self.q))
+            result = self.dls_solve(xi)
+            if result.ok:
+                self.q = result.q[self.qadr]
+            else:
+                self.unreachable += 1
+        return dict(zip(self.joints, self.q.tolist()))
 
 
 def riding_limbs(body: MujocoBody, kind: str) -> dict[str, Hrp2Limb]:

@@ -88,7 +88,7 @@ class Ride:
                    "handle_est": self.arm_diag.angle if self.arm_diag.angle is not None else np.nan,
                    "crank_est": self.leg_diag.angle if self.leg_diag.angle is not None else np.nan,
                    "x": pos[0], "y": pos[1], "yaw": np.arctan2(rot[1, 0], rot[0, 0]),
-                   "tilt": np.arccos(np.clip(rot[2, 2], -1.0, 1.0)),
+                   "tilt": np.arccos(min(max(rot[2, 2], -1.0), 1.0)),  # = np.clip, without its dispatch
                    "wheel_x": wheel_pos[0], "wheel_y": wheel_pos[1],
                    "internal": hand_forces(self.hands, snap)["internal"]}
             for side in SIDES:

@@ -70,8 +70,9 @@ def pedal_axles(feet: dict, snapshot) -> dict:
     sole normal (vehicle frame), so that method (a) sees points on the crank circle."""
     axles = {}
     for leg, limb in feet.items():
-        site = getattr(limb, "_site_id", None)  # an Hrp2Limb's cached site id: read the data in place
-        xmat = limb.body.site_xmat(limb.site) if site is None else limb.body.data.site_xmat[site].reshape(3, 3)
+        xmat = getattr(limb, "site_rot", None)  # an Hrp2Limb's view of its site's orientation
+        if xmat is None:
+            xmat = limb.body.site_xmat(limb.site)
         normal = limb.frame.rotate_to_vehicle(xmat[:, 2])
         axles[leg] = limb.point(snapshot) - PEDAL_HALF_THICKNESS * normal
     return axles
