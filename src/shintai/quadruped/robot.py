@@ -140,13 +140,44 @@ def compose(pose: np.ndarray, command: np.ndarray) -> np.ndarray:
     return np.concatenate([pose[:, :2] + rotate(pose[:, 2], command[:, :2]), pose[:, 2:] + command[:, 2:]], axis=1)
 
 
-def legs_within_limits(pose: np.ndarray, zr: np.ndarray, feet: np.ndarray, legs: np.ndarray) -> np.ndarray:
-    """Whether feet ``(E, n, 3)`` (world) of legs ``legs (E, n)`` are reachable within the joint limits
-    from the body at ``pose (E, 3)``, height ``zr (E,)``; ``(E,)``."""
-    xy = to_body(pose, feet[..., :2])
-    foot = np.concatenate([xy, (feet[..., 2] - zr[:, None])[..., None]], axis=-1)
-    shoulder = np.concatenate([SHOULDER_XY[legs], np.full(legs.shape + (1,), C.SHOULDER_DZ)], axis=-1)
-    return np.all(leg_angles(foot, shoulder, legs)[1], axis=-1)
+def legs_within_limits(pose: np.ndarray, zr: np.ndarray, feet: np.ndarray, legs) -> np.ndarray:
+    """Whether feet ``(E, n, 3)`` (world) of legs ``legs`` (``(E, n)`` or broadcast to it, e.g. ``(4,)``)
+    are reachable within the joint limits from the body at ``pose (E, 3)``, height ``zr (E,)``; ``(E,)``.
+
+    :func:`leg_angles`' test (eq. 2's two knee branches, §1.3's ranges) reduced to its mask: the same
+    floating-point operations on the x, y, z components, without the angles' stacks (the hot loop of a
+    GA generation; bit-identical to ``np.all(leg_angles(...)[1], -1)``, tested)."""
+    legs = np.asarray(legs)
+    c, s = np.cos(-pose[:, 2:3]), np.sin(-pose[:, 2:3])  # to_body: R(-θ) (world - p)
+    vx, vy = feet[..., 0] - pose[:, 0:1], feet[..., 1] - pose[:, 1:2]
+    rx = (c * vx - s * vy) - SHOULDER_XY[legs, 0]
+    ry = (s * vx + c * vy) - SHOULDER_XY[legs, 1]
+    z = ((feet[..., 2] - zr[:, None]) - C.SHOULDER_DZ) + C.L3  # ik_both's z_i = z_fi - z_si + l3
+    rho = np.hypot(rx, ry) - C.L0
+    r = np.hypot(rho, z)
+    r2 = r**2
+    d1 = (r2 + C.L1**2 - C.L2**2) / (2 * C.L1)
+    d2 = (r2 - C.L1**2 + C.L2**2) / (2 * C.L2)
+    ok = (np.abs(d1) <= r) & (np.abs(d2) <= r) & (r > 0)
+    lo0 = THETA0_LIMITS[legs, 0]
+    ok &= lo0 + np.mod(np.arctan2(ry, rx) - lo0, 2 * np.pi) <= THETA0_LIMITS[legs, 1] + _EPS
+    with np.errstate(invalid="ignore", divide="ignore"):
+        alpha = np.arctan2(z, rho)
+        beta1, beta2 = np.arccos(d1 / r), np.arccos(d2 / r)
+    ok &= ((_in_theta1(alpha + beta1) & _in_theta2(alpha - beta2))  # knee up
+           | (_in_theta1(alpha - beta1) & _in_theta2(alpha + beta2)))  # knee down
+    return np.all(ok, axis=-1)
+
+
+_EPS = 1e-9  # within_limits' tolerance
+
+
+def _in_theta1(t: np.ndarray) -> np.ndarray:
+    return (t >= THETA1_LIMITS[0] - _EPS) & (t <= THETA1_LIMITS[1] + _EPS)
+
+
+def _in_theta2(t: np.ndarray) -> np.ndarray:
+    return (t >= THETA2_LIMITS[0] - _EPS) & (t <= THETA2_LIMITS[1] + _EPS)
 
 
 # --- Static stability (seed §2.2) ---------------------------------------------------------------
@@ -250,17 +281,24 @@ def trunk_polygon(pose: np.ndarray) -> np.ndarray:
     return pose[..., None, :2] + rotate(pose[..., None, 2], local * np.ones(pose.shape[:-1] + (4, 2)))
 
 
-def trunk_collides(start: np.ndarray, end: np.ndarray, zr: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
+def _reach_circles(envs: W.EnvBatch) -> tuple[np.ndarray, np.ndarray]:
+    """Bounding circles of the obstacles: centres ``(E, M, 2)`` (corner means) and radii ``(E, M)``."""
+    centre = envs.polygons.mean(axis=-2)
+    return centre, W.length(envs.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
+
+
+def trunk_collides(start: np.ndarray, end: np.ndarray, zr: np.ndarray, envs: W.EnvBatch,
+                   circles: tuple | None = None, samples: int = C.SHIFT_SAMPLES) -> np.ndarray:
     """Whether the trunk, moving from pose ``start`` to ``end`` (E, 3), overlaps an obstacle taller
-    than its underside, sampled at ``SHIFT_SAMPLES`` poses along the move. Only obstacles within
-    reach of the move (bounding circles) are tested exactly."""
-    centre = envs.polygons.mean(axis=-2)  # (E, M, 2)
-    radius = W.length(envs.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
+    than its underside, sampled at ``samples`` poses along the move (one for a body standing still).
+    Only obstacles within reach of the move (bounding circles, ``circles`` from :func:`_reach_circles`
+    when given) are tested exactly."""
+    centre, radius = _reach_circles(envs) if circles is None else circles
     mid = (start[:, :2] + end[:, :2]) / 2
     reach = np.hypot(C.TRUNK_WIDTH, C.BODY_LENGTH) / 2 + W.length(end[:, :2] - start[:, :2]) / 2
     near = W.length(centre - mid[:, None]) < radius + reach[:, None]
     e, m = np.nonzero(near & (envs.heights > zr[:, None] - C.TRUNK_THICKNESS / 2))
-    s = np.linspace(0.0, 1.0, C.SHIFT_SAMPLES)[None, :, None]
+    s = np.linspace(0.0, 1.0, samples)[None, :, None]
     poses = start[e, None] + s * (end[e] - start[e])[:, None]  # (P, S, 3)
     hit = np.any(W.polygons_overlap(trunk_polygon(poses), envs.polygons[e, m][:, None]), axis=1)
     collided = np.zeros(len(zr), dtype=bool)
@@ -326,7 +364,8 @@ class CycleOutcome:
     (E, 4, 3)`` and ``stands_on (E, 4)`` the landing points; the failure masks say why a cycle could
     not be executed. ``poses (E, 6, 3)``: the body at the start, after each of the four stability
     shifts (held while that swing leg is in the air), at the end. Per swing s (in order):
-    ``triangles (E, 4, 3, 2)`` the support triangle and ``margins (E, 4)`` the CoG's stability margin.
+    ``triangles (E, 4, 3, 2)`` the support triangle and :attr:`margins` ``(E, 4)`` the CoG's stability margin
+    (computed when asked for: the crawl itself does not need it).
     """
 
     state: CrawlState
@@ -337,8 +376,12 @@ class CycleOutcome:
     limit: np.ndarray
     unstable: np.ndarray
     triangles: np.ndarray
-    margins: np.ndarray
     poses: np.ndarray
+
+    @property
+    def margins(self) -> np.ndarray:
+        """The CoG's stability margin in each swing's support triangle ``(E, 4)``."""
+        return stability_margin(self.poses[:, 1:5, :2], self.triangles)
 
     @property
     def failed(self) -> np.ndarray:
@@ -348,7 +391,8 @@ class CycleOutcome:
         """The cycle of episode ``e`` as a :class:`CycleRecord`."""
         return CycleRecord(k, tuple(np.asarray(command, dtype=float)), float(self.state.zr[e]), tuple(order),
                            self.footholds[e].copy(), self.stands_on[e].copy(), self.poses[e].copy(),
-                           self.triangles[e].copy(), self.poses[e, 1:5, :2].copy(), self.margins[e].copy(),
+                           self.triangles[e].copy(), self.poses[e, 1:5, :2].copy(),
+                           stability_margin(self.poses[e, 1:5, :2], self.triangles[e]),
                            float(1000 * self.br[e]), bool(self.collided[e]), bool(self.limit[e]),
                            bool(self.unstable[e]))
 
@@ -401,39 +445,41 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
     footholds, stands_on, admissible = snap_footholds(to_world(target, NOMINAL_FEET[None].repeat(n, 0)), envs)
     feet = state.feet.copy()
     body = state.pose.copy()
-    all_legs = np.tile(np.arange(4), (n, 1))
-    limit = ~legs_within_limits(body, zr, feet, all_legs)
-    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs)
+    circles = _reach_circles(envs)
+    limit = ~legs_within_limits(body, zr, feet, ALL_LEGS)
+    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs, circles, samples=1)
     unstable = np.zeros(n, dtype=bool)
     br = np.zeros(n)
     poses = [body.copy()]
-    triangles, margins = [], []
+    triangles = []
     for s in range(4):
         leg = legs[:, s]
-        support = np.sort(np.where(all_legs != leg[:, None], all_legs, 99), axis=1)[:, :3]
-        triangle = feet[rows[:, None], support, :2]
+        triangle = feet[rows[:, None], SUPPORT[leg], :2]
         goal, feasible = _support_step(body[:, :2], triangle)
         moved = np.concatenate([goal, state.pose[:, 2:] + command[:, 2:] * (s + 1) / 5], axis=1)  # turn evenly
-        collided |= trunk_collides(body, moved, zr, envs)
+        collided |= trunk_collides(body, moved, zr, envs, circles)
         br += W.length(goal - body[:, :2])
         body = moved
         unstable |= ~feasible
-        limit |= ~legs_within_limits(body, zr, feet, all_legs)
+        limit |= ~legs_within_limits(body, zr, feet, ALL_LEGS)
         triangles.append(triangle)
-        margins.append(stability_margin(body[:, :2], triangle))
         poses.append(body.copy())
         a, b = feet[rows, leg], footholds[rows, leg]
         apex, crosses_wall = swing_height(a, b, envs)
         collided |= crosses_wall
-        limit |= ~legs_within_limits(body, zr, _swing_key_points(a, b, apex, body, leg), leg[:, None].repeat(4, 1))
+        limit |= ~legs_within_limits(body, zr, _swing_key_points(a, b, apex, body, leg), leg[:, None])
         feet[rows, leg] = b
-    collided |= trunk_collides(body, target, zr, envs)
+    collided |= trunk_collides(body, target, zr, envs, circles)
     br += W.length(target[:, :2] - body[:, :2])
-    limit |= ~legs_within_limits(target, zr, feet, all_legs)
+    limit |= ~legs_within_limits(target, zr, feet, ALL_LEGS)
     unstable |= stability_margin(target[:, :2], feet[..., :2]) <= 0.0
     poses.append(target.copy())
     return CycleOutcome(CrawlState(target, zr.copy(), feet), br, footholds, stands_on, collided, limit, unstable,
-                        np.stack(triangles, 1), np.stack(margins, 1), np.stack(poses, 1))
+                        np.stack(triangles, 1), np.stack(poses, 1))
+
+
+ALL_LEGS = np.arange(4)
+SUPPORT = np.array([[other for other in range(4) if other != leg] for leg in range(4)])  # (4, 3): the stance legs
 
 
 def _swing_key_points(a: np.ndarray, b: np.ndarray, apex: np.ndarray, body: np.ndarray, leg: np.ndarray) -> np.ndarray:

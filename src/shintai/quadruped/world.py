@@ -71,8 +71,18 @@ def closest_boundary(p: np.ndarray, poly: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def signed_distance(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Distance of points to convex polygons, negative inside."""
-    return closest_boundary(p, poly)[0]
+    """Distance of points to convex polygons, negative inside: :func:`closest_boundary`'s first value
+    from the same operations on the x and y components, without the nearest point and direction (the
+    foothold test of every crawl cycle; bit-identical, tested)."""
+    ax, ay = poly[..., 0], poly[..., 1]
+    nxt = np.roll(poly, -1, axis=-2)
+    abx, aby = nxt[..., 0] - ax, nxt[..., 1] - ay
+    n = edges(poly)[1]
+    apx, apy = p[..., 0, None] - ax, p[..., 1, None] - ay
+    t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+    d = np.hypot(p[..., 0, None] - (ax + t * abx), p[..., 1, None] - (ay + t * aby)).min(axis=-1)
+    inside = np.all(n[..., 0] * apx + n[..., 1] * apy <= 0.0, axis=-1)
+    return np.where(inside, -d, d)
 
 
 def inset(poly: np.ndarray, depth: float) -> np.ndarray:
@@ -87,9 +97,23 @@ def inset(poly: np.ndarray, depth: float) -> np.ndarray:
 
 
 def nearest_inside(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """The point of each convex polygon nearest to ``p`` (``p`` itself when inside)."""
-    sd, near, _ = closest_boundary(p, poly)
-    return np.where((sd <= 0.0)[..., None], p, near)
+    """The point of each convex polygon nearest to ``p`` (``p`` itself when inside): :func:`closest_boundary`
+    on the x and y components, without the direction (bit-identical, tested)."""
+    ax, ay = poly[..., 0], poly[..., 1]
+    nxt = np.roll(poly, -1, axis=-2)
+    abx, aby = nxt[..., 0] - ax, nxt[..., 1] - ay
+    n = edges(poly)[1]
+    px, py = p[..., 0, None], p[..., 1, None]
+    apx, apy = px - ax, py - ay
+    t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+    fx, fy = ax + t * abx, ay + t * aby
+    dist = np.hypot(px - fx, py - fy)
+    k = np.argmin(dist, axis=-1)[..., None]
+    d = np.take_along_axis(dist, k, axis=-1)[..., 0]
+    inside = np.all(n[..., 0] * apx + n[..., 1] * apy <= 0.0, axis=-1)
+    keep = (np.where(inside, -d, d) <= 0.0)[..., None]
+    near = np.stack([np.take_along_axis(fx, k, axis=-1)[..., 0], np.take_along_axis(fy, k, axis=-1)[..., 0]], -1)
+    return np.where(keep, p, near)
 
 
 def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray) -> np.ndarray:
