@@ -237,10 +237,11 @@ def _support_step(cog: np.ndarray, triangle: np.ndarray) -> tuple[np.ndarray, np
 
 # --- Environment interaction --------------------------------------------------------------------
 
-def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray,
+           normals: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Whether points ``(..., K, 2)`` are admissible footholds among obstacles ``poly (..., 1, M, 4, 2)``
     and the obstacle each stands on ``(..., K)`` (-1 = floor)."""
-    sd = W.signed_distance(points[..., None, :], poly)  # (..., K, M)
+    sd = W.signed_distance(points[..., None, :], poly, normals)  # (..., K, M)
     top = (sd <= -C.TOP_BAND + 1e-9) & surmountable
     admissible = np.all((sd >= C.GROUND_BAND - 1e-9) | top, axis=-1)
     return admissible, np.max(np.where(top, np.arange(top.shape[-1]), -1), axis=-1, initial=-1)
@@ -255,7 +256,7 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
     Candidates for a point in a band: per obstacle, the nearest point 50 mm outside it and the nearest
     point of its top 30 mm inside the edge; the nearest admissible candidate wins.
     """
-    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None])
+    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None], envs.normals[:, None])
     best = p.copy()
     e, f = np.nonzero(~ok)
     if len(e):
@@ -263,7 +264,7 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
         _, near, out = W.closest_boundary(q[:, None], poly)
         tops = W.nearest_inside(q[:, None], W.inset(poly, C.TOP_BAND))
         candidates = np.concatenate([near + C.GROUND_BAND * out, tops], axis=1)  # (B, 2M, 2)
-        admissible, on = _stand(candidates, poly[:, None], surm[:, None])
+        admissible, on = _stand(candidates, poly[:, None], surm[:, None], envs.normals[e][:, None])
         dist = np.where(admissible, W.length(candidates - q[:, None]), np.inf)
         k = np.argmin(dist, axis=1)
         best[e, f] = candidates[np.arange(len(e)), k]
@@ -310,7 +311,7 @@ def swing_height(a: np.ndarray, b: np.ndarray, envs: W.EnvBatch) -> tuple[np.nda
     """Apex height of a swing from foothold ``a`` to ``b`` (E, 3): ``SWING_CLEARANCE`` above the
     highest of both surfaces and every surmountable obstacle under the straight path; and whether the
     path crosses a wall (a collision)."""
-    crossed = W.segment_hits(a[:, None, :2], b[:, None, :2], envs.polygons)  # (E, M)
+    crossed = W.segment_hits(a[:, None, :2], b[:, None, :2], envs.polygons, envs.normals)  # (E, M)
     over = np.max(np.where(crossed & envs.surmountable, envs.heights, 0.0), axis=-1, initial=0.0)
     apex = np.maximum(np.maximum(a[:, 2], b[:, 2]), over) + C.SWING_CLEARANCE
     return apex, np.any(crossed & ~envs.surmountable, axis=-1)
@@ -328,7 +329,7 @@ def body_height(pose: np.ndarray, feet: np.ndarray, envs: W.EnvBatch) -> np.ndar
     """
     ahead = rotate(pose[:, None, 2], np.array([0.0, C.RAISE_LOOKAHEAD]) * np.ones((len(pose), 2, 2)))
     rear, front = feet[:, [2, 3], :2], feet[:, [0, 1], :2] + ahead
-    near = W.segment_hits(rear[:, :, None], front[:, :, None], envs.polygons[:, None])  # (E, 2, M)
+    near = W.segment_hits(rear[:, :, None], front[:, :, None], envs.polygons[:, None], envs.normals[:, None])
     relevant = np.any(near, axis=1) & envs.surmountable
     return C.ZR_NOMINAL + C.RAISE_GAIN * np.max(np.where(relevant, envs.heights, 0.0), axis=-1, initial=0.0)
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -70,14 +71,14 @@ def closest_boundary(p: np.ndarray, poly: np.ndarray) -> tuple[np.ndarray, np.nd
     return np.where(inside, -d, d), near, out
 
 
-def signed_distance(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
+def signed_distance(p: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
     """Distance of points to convex polygons, negative inside: :func:`closest_boundary`'s first value
     from the same operations on the x and y components, without the nearest point and direction (the
-    foothold test of every crawl cycle; bit-identical, tested)."""
+    foothold test of every crawl cycle; bit-identical, tested). ``normals``: :func:`edges`' when known."""
     ax, ay = poly[..., 0], poly[..., 1]
     nxt = np.roll(poly, -1, axis=-2)
     abx, aby = nxt[..., 0] - ax, nxt[..., 1] - ay
-    n = edges(poly)[1]
+    n = edges(poly)[1] if normals is None else normals
     apx, apy = p[..., 0, None] - ax, p[..., 1, None] - ay
     t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
     d = np.hypot(p[..., 0, None] - (ax + t * abx), p[..., 1, None] - (ay + t * aby)).min(axis=-1)
@@ -116,12 +117,14 @@ def nearest_inside(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
     return np.where(keep, p, near)
 
 
-def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts)."""
-    v, n = edges(poly)
-    d = (b - a)[..., None, :]
-    num = dot(n, v - a[..., None, :])  # inside half-plane: t * den <= num
-    den = dot(n, d)
+def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
+    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts); the
+    x and y components apart. ``normals``: :func:`edges`' normals of ``poly`` when known."""
+    n = edges(poly)[1] if normals is None else normals
+    nx, ny = n[..., 0], n[..., 1]
+    dx, dy = (b[..., 0] - a[..., 0])[..., None], (b[..., 1] - a[..., 1])[..., None]
+    num = nx * (poly[..., 0] - a[..., 0, None]) + ny * (poly[..., 1] - a[..., 1, None])  # inside: t * den <= num
+    den = nx * dx + ny * dy
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = num / den
     t_in = np.max(np.where(den < 0, ratio, -np.inf), axis=-1, initial=0.0)
@@ -221,6 +224,11 @@ class EnvBatch:
     @property
     def surmountable(self) -> np.ndarray:
         return self.heights < C.SURMOUNTABLE_BELOW
+
+    @cached_property
+    def normals(self) -> np.ndarray:
+        """The obstacles' outward unit edge normals ``(E, M, 4, 2)`` (:func:`edges`), computed once."""
+        return edges(self.polygons)[1]
 
     def take(self, idx) -> EnvBatch:
         return EnvBatch(self.polygons[idx], self.heights[idx], self.destination[idx])
