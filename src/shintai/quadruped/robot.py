@@ -191,15 +191,14 @@ def stability_margin(cog: np.ndarray, feet: np.ndarray) -> np.ndarray:
     """
     n = feet.shape[-2]
     i, j = np.triu_indices(n, 1)
-    a, b = feet[..., i, :], feet[..., j, :]  # (..., P, 2)
-    ab = b - a
-    others = feet[..., None, :, :] - a[..., :, None, :]  # (..., P, n, 2)
-    side = ab[..., None, 0] * others[..., 1] - ab[..., None, 1] * others[..., 0]  # (..., P, n)
-    scale = np.max(np.abs(side), axis=-1, keepdims=True) * 1e-9
+    fx, fy = feet[..., 0], feet[..., 1]  # the x and y components apart
+    ax, ay = fx[..., i], fy[..., i]  # (..., P)
+    abx, aby = fx[..., j] - ax, fy[..., j] - ay
+    side = abx[..., None] * (fy[..., None, :] - ay[..., None]) - aby[..., None] * (fx[..., None, :] - ax[..., None])
+    scale = np.max(np.abs(side), axis=-1, keepdims=True) * 1e-9  # side: (..., P, n)
     hull_edge = np.all(side >= -scale, axis=-1) | np.all(side <= scale, axis=-1)
     inward = np.sign(np.sum(side, axis=-1))
-    c = cog[..., None, :] - a
-    dist = inward * (ab[..., 0] * c[..., 1] - ab[..., 1] * c[..., 0]) / W.length(ab)
+    dist = inward * (abx * (cog[..., 1, None] - ay) - aby * (cog[..., 0, None] - ax)) / np.hypot(abx, aby)
     return np.min(np.where(hull_edge, dist, np.inf), axis=-1)
 
 
@@ -223,15 +222,17 @@ def _support_step(cog: np.ndarray, triangle: np.ndarray) -> tuple[np.ndarray, np
     """The shortest body translation target putting the CoG inside ``triangle`` with the margin,
     and whether such a target exists (the triangle's inradius exceeds the margin)."""
     tri = W.ccw(triangle)
-    a, b, c = tri[..., 0, :], tri[..., 1, :], tri[..., 2, :]
-    la, lb, lc = W.length(b - c), W.length(c - a), W.length(a - b)
+    x, y = tri[..., 0], tri[..., 1]  # the x and y components apart
+    ax, bx, cx, ay, by, cy = x[..., 0], x[..., 1], x[..., 2], y[..., 0], y[..., 1], y[..., 2]
+    la, lb, lc = np.hypot(bx - cx, by - cy), np.hypot(cx - ax, cy - ay), np.hypot(ax - bx, ay - by)
     perimeter = la + lb + lc
-    area = 0.5 * np.abs((b - a)[..., 0] * (c - a)[..., 1] - (b - a)[..., 1] * (c - a)[..., 0])
+    area = 0.5 * np.abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
     inradius = 2 * area / np.maximum(perimeter, 1e-12)
     feasible = inradius > C.STABILITY_MARGIN + 1e-9
-    incentre = (la[..., None] * a + lb[..., None] * b + lc[..., None] * c) / np.maximum(perimeter, 1e-12)[..., None]
-    scale = np.where(feasible, (inradius - C.STABILITY_MARGIN) / np.maximum(inradius, 1e-12), 1.0)
-    shrunk = incentre[..., None, :] + scale[..., None, None] * (tri - incentre[..., None, :])
+    p = np.maximum(perimeter, 1e-12)
+    ix, iy = (la * ax + lb * bx + lc * cx) / p, (la * ay + lb * by + lc * cy) / p  # the incentre
+    scale = np.where(feasible, (inradius - C.STABILITY_MARGIN) / np.maximum(inradius, 1e-12), 1.0)[..., None]
+    shrunk = np.stack([ix[..., None] + scale * (x - ix[..., None]), iy[..., None] + scale * (y - iy[..., None])], -1)
     return np.where(feasible[..., None], W.nearest_inside(cog, shrunk), cog), feasible
 
 
