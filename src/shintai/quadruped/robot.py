@@ -160,16 +160,26 @@ def legs_within_limits(pose: np.ndarray, zr: np.ndarray, feet: np.ndarray, legs)
     d2 = (r2 - C.L1**2 + C.L2**2) / (2 * C.L2)
     ok = (np.abs(d1) <= r) & (np.abs(d2) <= r) & (r > 0)
     lo0 = THETA0_LIMITS[legs, 0]
-    ok &= lo0 + np.mod(np.arctan2(ry, rx) - lo0, 2 * np.pi) <= THETA0_LIMITS[legs, 1] + _EPS
+    wrapped = np.arctan2(ry, rx) - lo0  # wrap_theta0's np.mod(., 2π) as it computes it for |.| < 2π: + 2π below 0
+    ok &= lo0 + (wrapped + (wrapped < 0) * (2 * np.pi)) <= THETA0_LIMITS[legs, 1] + _EPS
     with np.errstate(invalid="ignore", divide="ignore"):
         alpha = np.arctan2(z, rho)
         beta1, beta2 = np.arccos(d1 / r), np.arccos(d2 / r)
     ok &= ((_in_theta1(alpha + beta1) & _in_theta2(alpha - beta2))  # knee up
            | (_in_theta1(alpha - beta1) & _in_theta2(alpha + beta2)))  # knee down
-    return np.all(ok, axis=-1)
+    return _all_last(ok)
 
 
 _EPS = 1e-9  # within_limits' tolerance
+assert np.all(np.abs(THETA0_LIMITS[:, 0]) < np.pi)  # so that θ0 - lo is within (-2π, 2π) in legs_within_limits
+
+
+def _all_last(ok: np.ndarray) -> np.ndarray:
+    """``np.all(ok, axis=-1)`` as a chain of ``&`` over the (few) columns (faster on a short last axis)."""
+    out = ok[..., 0].copy()
+    for i in range(1, ok.shape[-1]):
+        out &= ok[..., i]
+    return out
 
 
 def _in_theta1(t: np.ndarray) -> np.ndarray:

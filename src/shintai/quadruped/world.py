@@ -73,16 +73,21 @@ def closest_boundary(p: np.ndarray, poly: np.ndarray) -> tuple[np.ndarray, np.nd
 
 def signed_distance(p: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
     """Distance of points to convex polygons, negative inside: :func:`closest_boundary`'s first value
-    from the same operations on the x and y components, without the nearest point and direction (the
-    foothold test of every crawl cycle; bit-identical, tested). ``normals``: :func:`edges`' when known."""
-    ax, ay = poly[..., 0], poly[..., 1]
-    nxt = np.roll(poly, -1, axis=-2)
-    abx, aby = nxt[..., 0] - ax, nxt[..., 1] - ay
+    from the same operations, edge by edge on the x and y components, without the nearest point and
+    direction (the foothold test of every crawl cycle; bit-identical, tested). ``normals``:
+    :func:`edges`' normals of ``poly`` when known."""
     n = edges(poly)[1] if normals is None else normals
-    apx, apy = p[..., 0, None] - ax, p[..., 1, None] - ay
-    t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
-    d = np.hypot(p[..., 0, None] - (ax + t * abx), p[..., 1, None] - (ay + t * aby)).min(axis=-1)
-    inside = np.all(n[..., 0] * apx + n[..., 1] * apy <= 0.0, axis=-1)
+    px, py = p[..., 0], p[..., 1]
+    d = inside = None
+    for v in range(poly.shape[-2]):
+        ax, ay = poly[..., v, 0], poly[..., v, 1]
+        w = (v + 1) % poly.shape[-2]
+        abx, aby = poly[..., w, 0] - ax, poly[..., w, 1] - ay
+        apx, apy = px - ax, py - ay
+        t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+        dist = np.hypot(px - (ax + t * abx), py - (ay + t * aby))
+        out = n[..., v, 0] * apx + n[..., v, 1] * apy <= 0.0
+        d, inside = (dist, out) if d is None else (np.minimum(d, dist), inside & out)
     return np.where(inside, -d, d)
 
 
@@ -118,18 +123,20 @@ def nearest_inside(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
 
 
 def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
-    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts); the
-    x and y components apart. ``normals``: :func:`edges`' normals of ``poly`` when known."""
+    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts), edge by
+    edge on the x and y components. ``normals``: :func:`edges`' normals of ``poly`` when known."""
     n = edges(poly)[1] if normals is None else normals
-    nx, ny = n[..., 0], n[..., 1]
-    dx, dy = (b[..., 0] - a[..., 0])[..., None], (b[..., 1] - a[..., 1])[..., None]
-    num = nx * (poly[..., 0] - a[..., 0, None]) + ny * (poly[..., 1] - a[..., 1, None])  # inside: t * den <= num
-    den = nx * dx + ny * dy
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = num / den
-    t_in = np.max(np.where(den < 0, ratio, -np.inf), axis=-1, initial=0.0)
-    t_out = np.min(np.where(den > 0, ratio, np.inf), axis=-1, initial=1.0)
-    parallel_out = np.any((den == 0) & (num < 0), axis=-1)
+    dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
+    t_in, t_out, parallel_out = 0.0, 1.0, False
+    for v in range(poly.shape[-2]):
+        nx, ny = n[..., v, 0], n[..., v, 1]
+        num = nx * (poly[..., v, 0] - a[..., 0]) + ny * (poly[..., v, 1] - a[..., 1])  # inside: t * den <= num
+        den = nx * dx + ny * dy
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = num / den
+        t_in = np.maximum(t_in, np.where(den < 0, ratio, -np.inf))
+        t_out = np.minimum(t_out, np.where(den > 0, ratio, np.inf))
+        parallel_out = parallel_out | ((den == 0) & (num < 0))
     return (t_in <= t_out) & ~parallel_out
 
 
