@@ -248,14 +248,44 @@ def _support_step(cog: np.ndarray, triangle: np.ndarray) -> tuple[np.ndarray, np
 
 # --- Environment interaction --------------------------------------------------------------------
 
-def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray,
-           normals: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def _near(points: np.ndarray, centre: np.ndarray, radius: np.ndarray, reach) -> np.ndarray:
+    """Whether points ``(..., 2)`` may be within ``reach`` of the obstacles in circles ``centre (..., 2)``,
+    ``radius``: false only when they are farther than ``reach`` + 1 µm from the circle (a margin far
+    above rounding), so a test skipped where it is false gives what it would have given."""
+    dx, dy = points[..., 0] - centre[..., 0], points[..., 1] - centre[..., 1]
+    return ~(dx * dx + dy * dy > (radius + reach + 1e-6) ** 2)
+
+
+def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray, normals: np.ndarray,
+           circles: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Whether points ``(..., K, 2)`` are admissible footholds among obstacles ``poly (..., 1, M, 4, 2)``
-    and the obstacle each stands on ``(..., K)`` (-1 = floor)."""
-    sd = W.signed_distance(points[..., None, :], poly, normals)  # (..., K, M)
+    (with their ``normals`` and bounding ``circles``, broadcast alike) and the obstacle each stands on
+    ``(..., K)`` (-1 = floor). The signed distance is computed for the point-obstacle pairs within
+    ``GROUND_BAND`` of the obstacle's circle only: farther, the point is off the obstacle and its band."""
+    near = _near(points[..., None, :], circles[0], circles[1], C.GROUND_BAND)  # (..., K, M)
+    sd = np.full(near.shape, np.inf)
+    idx = np.nonzero(near)
+    if len(idx[0]):
+        sd[idx] = W.signed_distance(np.broadcast_to(points[..., None, :], near.shape + (2,))[idx],
+                                    np.broadcast_to(poly, near.shape + poly.shape[-2:])[idx],
+                                    np.broadcast_to(normals, near.shape + normals.shape[-2:])[idx])
     top = (sd <= -C.TOP_BAND + 1e-9) & surmountable
     admissible = np.all((sd >= C.GROUND_BAND - 1e-9) | top, axis=-1)
     return admissible, np.max(np.where(top, np.arange(top.shape[-1]), -1), axis=-1, initial=-1)
+
+
+def crossings(a: np.ndarray, b: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
+    """Whether segments ``a -> b (E, S, 2)`` meet the obstacles of their environment ``(E, S, M)``
+    (``world.segment_hits``), tested exactly only where the segment reaches the obstacle's bounding circle."""
+    centre, radius = envs.circles
+    mid = (a + b) / 2
+    half = W.length(b - a) / 2
+    near = _near(mid[:, :, None], centre[:, None], radius[:, None] + half[..., None], 0.0)
+    hit = np.zeros(near.shape, dtype=bool)
+    e, k, m = np.nonzero(near)
+    if len(e):
+        hit[e, k, m] = W.segment_hits(a[e, k], b[e, k], envs.polygons[e, m], envs.normals[e, m])
+    return hit
 
 
 def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -267,7 +297,9 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
     Candidates for a point in a band: per obstacle, the nearest point 50 mm outside it and the nearest
     point of its top 30 mm inside the edge; the nearest admissible candidate wins.
     """
-    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None], envs.normals[:, None])
+    circles = envs.circles
+    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None], envs.normals[:, None],
+                       (circles[0][:, None], circles[1][:, None]))
     best = p.copy()
     e, f = np.nonzero(~ok)
     if len(e):
@@ -275,7 +307,8 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
         _, near, out = W.closest_boundary(q[:, None], poly)
         tops = W.nearest_inside(q[:, None], W.inset(poly, C.TOP_BAND))
         candidates = np.concatenate([near + C.GROUND_BAND * out, tops], axis=1)  # (B, 2M, 2)
-        admissible, on = _stand(candidates, poly[:, None], surm[:, None], envs.normals[e][:, None])
+        admissible, on = _stand(candidates, poly[:, None], surm[:, None], envs.normals[e][:, None],
+                                (circles[0][e][:, None], circles[1][e][:, None]))
         dist = np.where(admissible, W.length(candidates - q[:, None]), np.inf)
         k = np.argmin(dist, axis=1)
         best[e, f] = candidates[np.arange(len(e)), k]
@@ -293,19 +326,12 @@ def trunk_polygon(pose: np.ndarray) -> np.ndarray:
     return pose[..., None, :2] + rotate(pose[..., None, 2], local * np.ones(pose.shape[:-1] + (4, 2)))
 
 
-def _reach_circles(envs: W.EnvBatch) -> tuple[np.ndarray, np.ndarray]:
-    """Bounding circles of the obstacles: centres ``(E, M, 2)`` (corner means) and radii ``(E, M)``."""
-    centre = envs.polygons.mean(axis=-2)
-    return centre, W.length(envs.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
-
-
 def trunk_collides(start: np.ndarray, end: np.ndarray, zr: np.ndarray, envs: W.EnvBatch,
-                   circles: tuple | None = None, samples: int = C.SHIFT_SAMPLES) -> np.ndarray:
+                   samples: int = C.SHIFT_SAMPLES) -> np.ndarray:
     """Whether the trunk, moving from pose ``start`` to ``end`` (E, 3), overlaps an obstacle taller
     than its underside, sampled at ``samples`` poses along the move (one for a body standing still).
-    Only obstacles within reach of the move (bounding circles, ``circles`` from :func:`_reach_circles`
-    when given) are tested exactly."""
-    centre, radius = _reach_circles(envs) if circles is None else circles
+    Only obstacles within reach of the move (bounding circles) are tested exactly."""
+    centre, radius = envs.circles
     mid = (start[:, :2] + end[:, :2]) / 2
     reach = np.hypot(C.TRUNK_WIDTH, C.BODY_LENGTH) / 2 + W.length(end[:, :2] - start[:, :2]) / 2
     near = W.length(centre - mid[:, None]) < radius + reach[:, None]
@@ -322,7 +348,7 @@ def swing_height(a: np.ndarray, b: np.ndarray, envs: W.EnvBatch) -> tuple[np.nda
     """Apex height of a swing from foothold ``a`` to ``b`` (E, 3): ``SWING_CLEARANCE`` above the
     highest of both surfaces and every surmountable obstacle under the straight path; and whether the
     path crosses a wall (a collision)."""
-    crossed = W.segment_hits(a[:, None, :2], b[:, None, :2], envs.polygons, envs.normals)  # (E, M)
+    crossed = crossings(a[:, None, :2], b[:, None, :2], envs)[:, 0]  # (E, M)
     over = np.max(np.where(crossed & envs.surmountable, envs.heights, 0.0), axis=-1, initial=0.0)
     apex = np.maximum(np.maximum(a[:, 2], b[:, 2]), over) + C.SWING_CLEARANCE
     return apex, np.any(crossed & ~envs.surmountable, axis=-1)
@@ -340,7 +366,7 @@ def body_height(pose: np.ndarray, feet: np.ndarray, envs: W.EnvBatch) -> np.ndar
     """
     ahead = rotate(pose[:, None, 2], np.array([0.0, C.RAISE_LOOKAHEAD]) * np.ones((len(pose), 2, 2)))
     rear, front = feet[:, [2, 3], :2], feet[:, [0, 1], :2] + ahead
-    near = W.segment_hits(rear[:, :, None], front[:, :, None], envs.polygons[:, None], envs.normals[:, None])
+    near = crossings(rear, front, envs)  # (E, 2, M)
     relevant = np.any(near, axis=1) & envs.surmountable
     return C.ZR_NOMINAL + C.RAISE_GAIN * np.max(np.where(relevant, envs.heights, 0.0), axis=-1, initial=0.0)
 
@@ -457,9 +483,8 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
     footholds, stands_on, admissible = snap_footholds(to_world(target, NOMINAL_FEET[None].repeat(n, 0)), envs)
     feet = state.feet.copy()
     body = state.pose.copy()
-    circles = _reach_circles(envs)
     limit = ~legs_within_limits(body, zr, feet, ALL_LEGS)
-    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs, circles, samples=1)
+    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs, samples=1)
     unstable = np.zeros(n, dtype=bool)
     br = np.zeros(n)
     poses = [body.copy()]
@@ -469,7 +494,7 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
         triangle = feet[rows[:, None], SUPPORT[leg], :2]
         goal, feasible = _support_step(body[:, :2], triangle)
         moved = np.concatenate([goal, state.pose[:, 2:] + command[:, 2:] * (s + 1) / 5], axis=1)  # turn evenly
-        collided |= trunk_collides(body, moved, zr, envs, circles)
+        collided |= trunk_collides(body, moved, zr, envs)
         br += W.length(goal - body[:, :2])
         body = moved
         unstable |= ~feasible
@@ -481,7 +506,7 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
         collided |= crosses_wall
         limit |= ~legs_within_limits(body, zr, _swing_key_points(a, b, apex, body, leg), leg[:, None])
         feet[rows, leg] = b
-    collided |= trunk_collides(body, target, zr, envs, circles)
+    collided |= trunk_collides(body, target, zr, envs)
     br += W.length(target[:, :2] - body[:, :2])
     limit |= ~legs_within_limits(target, zr, feet, ALL_LEGS)
     unstable |= stability_margin(target[:, :2], feet[..., :2]) <= 0.0

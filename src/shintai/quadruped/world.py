@@ -233,6 +233,12 @@ class EnvBatch:
         return self.heights < C.SURMOUNTABLE_BELOW
 
     @cached_property
+    def circles(self) -> tuple[np.ndarray, np.ndarray]:
+        """Bounding circles of the obstacles, computed once: centres ``(E, M, 2)`` (corner means), radii ``(E, M)``."""
+        centre = self.polygons.mean(axis=-2)
+        return centre, length(self.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
+
+    @cached_property
     def normals(self) -> np.ndarray:
         """The obstacles' outward unit edge normals ``(E, M, 4, 2)`` (:func:`edges`), computed once."""
         return edges(self.polygons)[1]
