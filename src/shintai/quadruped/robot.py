@@ -205,11 +205,22 @@ def stability_margin(cog: np.ndarray, feet: np.ndarray) -> np.ndarray:
     ax, ay = fx[..., i], fy[..., i]  # (..., P)
     abx, aby = fx[..., j] - ax, fy[..., j] - ay
     side = abx[..., None] * (fy[..., None, :] - ay[..., None]) - aby[..., None] * (fx[..., None, :] - ax[..., None])
-    scale = np.max(np.abs(side), axis=-1, keepdims=True) * 1e-9  # side: (..., P, n)
-    hull_edge = np.all(side >= -scale, axis=-1) | np.all(side <= scale, axis=-1)
+    columns = [side[..., k] for k in range(n)]  # side: (..., P, n); short reductions as chains over its columns
+    scale = _chain(np.maximum, [np.abs(c) for c in columns]) * 1e-9
+    hull_edge = (_chain(np.logical_and, [c >= -scale for c in columns])
+                 | _chain(np.logical_and, [c <= scale for c in columns]))
     inward = np.sign(np.sum(side, axis=-1))
     dist = inward * (abx * (cog[..., 1, None] - ay) - aby * (cog[..., 0, None] - ax)) / np.hypot(abx, aby)
-    return np.min(np.where(hull_edge, dist, np.inf), axis=-1)
+    dist = np.where(hull_edge, dist, np.inf)
+    return _chain(np.minimum, [dist[..., k] for k in range(dist.shape[-1])])
+
+
+def _chain(op, arrays: list) -> np.ndarray:
+    """``op`` folded over ``arrays`` (a reduction over a short axis written out)."""
+    out = arrays[0]
+    for a in arrays[1:]:
+        out = op(out, a)
+    return out
 
 
 def longitudinal_margin(cog: np.ndarray, polygon: np.ndarray, heading: np.ndarray) -> np.ndarray:
