@@ -161,6 +161,7 @@ class CrawlBody(Body):
             perception.reset(envs)
         n = len(envs)
         self.envs, self.max_cycles, self.record, self.perception = envs, max_cycles, record, perception
+        envs.normals, envs.circles  # computed once here, taken along with the active rows every cycle
         self.state = R.CrawlState.initial(n)
         self.active = np.ones(n, dtype=bool)
         self.episodes = Episodes(np.zeros(n, int), np.zeros(n, bool), np.zeros(n, bool), np.zeros(n, bool),

@@ -104,22 +104,27 @@ def inset(poly: np.ndarray, depth: float) -> np.ndarray:
 
 def nearest_inside(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
     """The point of each convex polygon nearest to ``p`` (``p`` itself when inside): :func:`closest_boundary`
-    on the x and y components, without the direction (bit-identical, tested)."""
-    ax, ay = poly[..., 0], poly[..., 1]
-    nxt = np.roll(poly, -1, axis=-2)
-    abx, aby = nxt[..., 0] - ax, nxt[..., 1] - ay
+    edge by edge on the x and y components, without the direction (bit-identical for polygons with no
+    zero-length edge, tested)."""
     n = edges(poly)[1]
-    px, py = p[..., 0, None], p[..., 1, None]
-    apx, apy = px - ax, py - ay
-    t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
-    fx, fy = ax + t * abx, ay + t * aby
-    dist = np.hypot(px - fx, py - fy)
-    k = np.argmin(dist, axis=-1)[..., None]
-    d = np.take_along_axis(dist, k, axis=-1)[..., 0]
-    inside = np.all(n[..., 0] * apx + n[..., 1] * apy <= 0.0, axis=-1)
+    px, py = p[..., 0], p[..., 1]
+    for v in range(poly.shape[-2]):
+        ax, ay = poly[..., v, 0], poly[..., v, 1]
+        w = (v + 1) % poly.shape[-2]
+        abx, aby = poly[..., w, 0] - ax, poly[..., w, 1] - ay
+        apx, apy = px - ax, py - ay
+        t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+        fx, fy = ax + t * abx, ay + t * aby
+        dist = np.hypot(px - fx, py - fy)
+        out = n[..., v, 0] * apx + n[..., v, 1] * apy <= 0.0
+        if v == 0:
+            d, near_x, near_y, inside = dist, fx, fy, out
+        else:  # the first nearest edge, as np.argmin
+            closer = dist < d
+            d, near_x, near_y, inside = (np.where(closer, dist, d), np.where(closer, fx, near_x),
+                                         np.where(closer, fy, near_y), inside & out)
     keep = (np.where(inside, -d, d) <= 0.0)[..., None]
-    near = np.stack([np.take_along_axis(fx, k, axis=-1)[..., 0], np.take_along_axis(fy, k, axis=-1)[..., 0]], -1)
-    return np.where(keep, p, near)
+    return np.where(keep, p, np.stack([near_x, near_y], axis=-1))
 
 
 def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
@@ -254,7 +259,13 @@ class EnvBatch:
         return edges(self.polygons)[1]
 
     def take(self, idx) -> EnvBatch:
-        return EnvBatch(self.polygons[idx], self.heights[idx], self.destination[idx])
+        """The rows ``idx``, with the normals and circles taken along when they are computed already."""
+        batch = EnvBatch(self.polygons[idx], self.heights[idx], self.destination[idx])
+        for name in ("normals", "circles"):
+            if name in self.__dict__:  # functools.cached_property's store
+                value = self.__dict__[name]
+                batch.__dict__[name] = value[idx] if name == "normals" else (value[0][idx], value[1][idx])
+        return batch
 
     def tile(self, k: int) -> EnvBatch:
         """The batch repeated ``k`` times (row ``i * E + e`` is environment ``e``)."""
