@@ -110,6 +110,8 @@ def split_seconds(population: np.ndarray) -> tuple[float, float, float]:
         return call
 
     class TimedNet:
+        n_out = F.ACTION_NET.n_out
+
         def forward(self, genomes, x):
             return timed("network", F.ACTION_NET.forward)(genomes, x)
 

@@ -509,13 +509,15 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
         br += W.length(goal - body[:, :2])
         body = moved
         unstable |= ~feasible
-        limit |= ~legs_within_limits(body, zr, feet, ALL_LEGS)
         triangles.append(triangle)
         poses.append(body.copy())
         a, b = feet[rows, leg], footholds[rows, leg]
         apex, crosses_wall = swing_height(a, b, envs)
         collided |= crosses_wall
-        limit |= ~legs_within_limits(body, zr, _swing_key_points(a, b, apex, body, leg), leg[:, None])
+        # with the body held after the shift: the four feet, then the swing foot's key poses (one IK call)
+        points = np.concatenate([feet, _swing_key_points(a, b, apex, body, leg)], axis=1)
+        limit |= ~legs_within_limits(body, zr, points, np.concatenate([np.broadcast_to(ALL_LEGS, (n, 4)),
+                                                                     np.repeat(leg[:, None], 4, 1)], axis=1))
         feet[rows, leg] = b
     collided |= trunk_collides(body, target, zr, envs)
     br += W.length(target[:, :2] - body[:, :2])
