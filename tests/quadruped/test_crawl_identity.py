@@ -2,11 +2,14 @@
 
 The golden values below were recorded with the code at 0629247 (before the speed-up): eq. 9 values as
 ``float.hex`` and a digest of every per-cycle array of the episodes, for populations late in training
-(``benchmarks.late_population``) over several environment sets, the fixed order and the free gait; and a
-short GA run's curve. A changed bit anywhere in a walk changes the digest.
+(``benchmarks.late_population``) over several environment sets, the fixed order and the free gait; the
+cycle records of three scenario walks; and a short GA run's curve. A changed bit anywhere in a walk changes
+the digest. The networks are those shipped at 0629247, stored in ``data/networks_0629247.npz`` so that
+re-trained networks do not change these tests.
 """
 
 import hashlib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,6 +21,11 @@ from shintai.quadruped import robot as R
 from shintai.quadruped import training as T
 from shintai.quadruped import world as W
 from shintai.quadruped.episode import GenomePolicy, rollout
+from shintai.quadruped.networks import SwingOrderPolicy
+
+with np.load(Path(__file__).parent / "data" / "networks_0629247.npz") as _data:
+    ACTION, ACTION_FREE = _data["action"], _data["action_free"]  # the networks shipped at 0629247
+    ORDER = SwingOrderPolicy(_data["order_centres"], _data["order_sigmas"], _data["order_weights"])
 
 CASES = [  # (population seed, environments, free gait, eq. 9 values, digest of the episodes)
     (0, (0, 9, 17, 30, 41, 50, 66, 95), False,
@@ -44,13 +52,13 @@ def digest(*arrays) -> str:
 
 @pytest.mark.parametrize("seed, envs, free, values, episodes", CASES)
 def test_eq9_values_and_walks_are_those_of_the_code_before_the_speed_up(seed, envs, free, values, episodes):
-    population = B.late_population(size=6, seed=seed)
+    population = B.late_population(size=6, seed=seed, best=ACTION)
     batch = F.training_batch().take(list(envs))
-    ep = rollout(batch.tile(6), GenomePolicy(F.ACTION_NET, population, len(batch)), T.load_order() if free else None)
+    ep = rollout(batch.tile(6), GenomePolicy(F.ACTION_NET, population, len(batch)), ORDER if free else None)
     assert len(set(ep.cycles.tolist())) > 5 and (ep.collided | ep.limit | ep.unstable).any()  # varied walks
     fitness = F.episode_costs(ep).reshape(6, -1).sum(axis=1)
     assert np.array_equal(fitness, [float.fromhex(v) for v in values])
-    assert np.array_equal(fitness, F.action_fitness_batch(population, batch, T.load_order() if free else None))
+    assert np.array_equal(fitness, F.action_fitness_batch(population, batch, ORDER if free else None))
     assert digest(ep.poses, ep.commands, ep.zr, ep.orders, ep.br, ep.cycles, ep.collided, ep.limit, ep.unstable,
                   ep.final_error) == episodes
 
@@ -59,12 +67,24 @@ def test_ga_generations_give_the_curve_of_the_code_before_the_speed_up():
     """Five generations from a late population (the GA's selection, crossover and mutation on eq. 9 values)."""
     settings = T.TrainSettings(generations=5, population=10, environments=8, seed=3)
     r = T.run_stage("action", settings, SerialExecutor(), None, resume=False,
-                    initial=B.late_population(size=10, seed=3))
+                    initial=B.late_population(size=10, seed=3, best=ACTION))
     assert np.array_equal(r.best, [float.fromhex("0x1.a285c58204469p-6")] * 5)
     assert np.array_equal(r.mean, [float.fromhex(v) for v in (
         "0x1.7144e216c7f85p+6", "0x1.2bf7799b58f42p+6", "0x1.383d45edeae85p+6", "0x1.2997f754353e3p+6",
         "0x1.fd1d7d7cd9125p+5")])
     assert digest(r.genome) == "ac2401cc2d8a0eab"
+
+
+@pytest.mark.parametrize("free, records", [(False, "bcb9e475cd36d73a"), (True, "f4f37880c7e359d0")])
+def test_cycle_records_are_those_of_the_code_before_the_speed_up(free, records):
+    """Every recorded quantity of the walks in §4.2.1, §4.2.2 and §5.2 (footholds, body poses, support triangles,
+    stability margins, Br, Zr), which the replay and walking experiments report."""
+    envs = W.EnvBatch.of([W.scenario_421(), W.scenario_422(), W.scenario_52()])
+    ep = T.evaluate(ACTION_FREE if free else ACTION, envs, ORDER if free else None, record=True)
+    assert [len(r) for r in ep.records] == ([12, 11, 12] if free else [12, 12, 13])
+    assert digest(*(a for recs in ep.records for r in recs
+                    for a in (r.footholds, r.stands_on, r.body_poses, r.support_triangles, r.cog, r.margins,
+                              np.array([r.br_mm, r.zr])))) == records
 
 
 def random_states(n: int, seed: int):

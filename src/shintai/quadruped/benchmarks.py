@@ -84,11 +84,12 @@ def driver_seconds(population: np.ndarray, generations: int = 400) -> float:
         return time.perf_counter() - t0
 
 
-def late_population(size: int = POPULATION, seed: int = 0) -> np.ndarray:
-    """The shipped network and ``size - 1`` mutants of it (per-gene Gaussian mutation, clipped)."""
+def late_population(size: int = POPULATION, seed: int = 0, best: np.ndarray | None = None) -> np.ndarray:
+    """The network ``best`` (default: the shipped one) and ``size - 1`` mutants of it (per-gene Gaussian
+    mutation, clipped)."""
     rng = np.random.default_rng(seed)
     lo, hi = F.ACTION_NET.bounds()
-    best = T.load_action()
+    best = T.load_action() if best is None else best
     mutate = rng.random((size - 1, best.size)) < C.GA_MUTATION_RATE
     noise = rng.normal(size=mutate.shape) * C.GA_MUTATION_SIGMA * (hi - lo)
     return np.vstack([best, np.clip(best + mutate * noise, lo, hi)])
