@@ -36,10 +36,15 @@ from shintai.quadruped import swing_order as S
 def rbf_hidden(centres: np.ndarray, sigmas: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Eq. (7) for k networks: centres ``(k, m, n)``, widths ``(k, m)``, inputs ``(k, N, n)`` →
     ``(k, N, m)``. Widths are used as |σ| floored at ``SIGMA_FLOOR`` so any genome is finite."""
-    d2 = (np.sum(x * x, -1)[..., None] - 2 * np.einsum("kNn,kmn->kNm", x, centres)
-          + np.sum(centres * centres, -1)[:, None, :])
+    d2 = np.einsum("kNn,kmn->kNm", x, centres)  # then in place (the operations of the formula, in its order):
+    d2 *= 2  # ||x||² - 2 x.c + ||c||²
+    np.subtract(np.sum(x * x, -1)[..., None], d2, out=d2)
+    d2 += np.sum(centres * centres, -1)[:, None, :]
     s2 = np.maximum(np.abs(sigmas), C.SIGMA_FLOOR)[:, None, :] ** 2
-    return np.exp(-np.maximum(d2, 0.0) / s2)
+    np.maximum(d2, 0.0, out=d2)  # exp(-max(d2, 0) / s2)
+    np.negative(d2, out=d2)
+    np.divide(d2, s2, out=d2)
+    return np.exp(d2, out=d2)
 
 
 def as_genomes(genomes, size: int, name: str) -> np.ndarray:

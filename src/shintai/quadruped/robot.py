@@ -140,13 +140,54 @@ def compose(pose: np.ndarray, command: np.ndarray) -> np.ndarray:
     return np.concatenate([pose[:, :2] + rotate(pose[:, 2], command[:, :2]), pose[:, 2:] + command[:, 2:]], axis=1)
 
 
-def legs_within_limits(pose: np.ndarray, zr: np.ndarray, feet: np.ndarray, legs: np.ndarray) -> np.ndarray:
-    """Whether feet ``(E, n, 3)`` (world) of legs ``legs (E, n)`` are reachable within the joint limits
-    from the body at ``pose (E, 3)``, height ``zr (E,)``; ``(E,)``."""
-    xy = to_body(pose, feet[..., :2])
-    foot = np.concatenate([xy, (feet[..., 2] - zr[:, None])[..., None]], axis=-1)
-    shoulder = np.concatenate([SHOULDER_XY[legs], np.full(legs.shape + (1,), C.SHOULDER_DZ)], axis=-1)
-    return np.all(leg_angles(foot, shoulder, legs)[1], axis=-1)
+def legs_within_limits(pose: np.ndarray, zr: np.ndarray, feet: np.ndarray, legs) -> np.ndarray:
+    """Whether feet ``(E, n, 3)`` (world) of legs ``legs`` (``(E, n)`` or broadcast to it, e.g. ``(4,)``)
+    are reachable within the joint limits from the body at ``pose (E, 3)``, height ``zr (E,)``; ``(E,)``.
+
+    :func:`leg_angles`' test (eq. 2's two knee branches, §1.3's ranges) reduced to its mask: the same
+    floating-point operations on the x, y, z components, without the angles' stacks (the hot loop of a
+    GA generation; bit-identical to ``np.all(leg_angles(...)[1], -1)``, tested)."""
+    legs = np.asarray(legs)
+    c, s = np.cos(-pose[:, 2:3]), np.sin(-pose[:, 2:3])  # to_body: R(-θ) (world - p)
+    vx, vy = feet[..., 0] - pose[:, 0:1], feet[..., 1] - pose[:, 1:2]
+    rx = (c * vx - s * vy) - SHOULDER_XY[legs, 0]
+    ry = (s * vx + c * vy) - SHOULDER_XY[legs, 1]
+    z = ((feet[..., 2] - zr[:, None]) - C.SHOULDER_DZ) + C.L3  # ik_both's z_i = z_fi - z_si + l3
+    rho = np.hypot(rx, ry) - C.L0
+    r = np.hypot(rho, z)
+    r2 = r**2
+    d1 = (r2 + C.L1**2 - C.L2**2) / (2 * C.L1)
+    d2 = (r2 - C.L1**2 + C.L2**2) / (2 * C.L2)
+    ok = (np.abs(d1) <= r) & (np.abs(d2) <= r) & (r > 0)
+    lo0 = THETA0_LIMITS[legs, 0]
+    wrapped = np.arctan2(ry, rx) - lo0  # wrap_theta0's np.mod(., 2π) as it computes it for |.| < 2π: + 2π below 0
+    ok &= lo0 + (wrapped + (wrapped < 0) * (2 * np.pi)) <= THETA0_LIMITS[legs, 1] + _EPS
+    with np.errstate(invalid="ignore", divide="ignore"):
+        alpha = np.arctan2(z, rho)
+        beta1, beta2 = np.arccos(d1 / r), np.arccos(d2 / r)
+    ok &= ((_in_theta1(alpha + beta1) & _in_theta2(alpha - beta2))  # knee up
+           | (_in_theta1(alpha - beta1) & _in_theta2(alpha + beta2)))  # knee down
+    return _all_last(ok)
+
+
+_EPS = 1e-9  # within_limits' tolerance
+assert np.all(np.abs(THETA0_LIMITS[:, 0]) < np.pi)  # so that θ0 - lo is within (-2π, 2π) in legs_within_limits
+
+
+def _all_last(ok: np.ndarray) -> np.ndarray:
+    """``np.all(ok, axis=-1)`` as a chain of ``&`` over the (few) columns (faster on a short last axis)."""
+    out = ok[..., 0].copy()
+    for i in range(1, ok.shape[-1]):
+        out &= ok[..., i]
+    return out
+
+
+def _in_theta1(t: np.ndarray) -> np.ndarray:
+    return (t >= THETA1_LIMITS[0] - _EPS) & (t <= THETA1_LIMITS[1] + _EPS)
+
+
+def _in_theta2(t: np.ndarray) -> np.ndarray:
+    return (t >= THETA2_LIMITS[0] - _EPS) & (t <= THETA2_LIMITS[1] + _EPS)
 
 
 # --- Static stability (seed §2.2) ---------------------------------------------------------------
@@ -160,16 +201,26 @@ def stability_margin(cog: np.ndarray, feet: np.ndarray) -> np.ndarray:
     """
     n = feet.shape[-2]
     i, j = np.triu_indices(n, 1)
-    a, b = feet[..., i, :], feet[..., j, :]  # (..., P, 2)
-    ab = b - a
-    others = feet[..., None, :, :] - a[..., :, None, :]  # (..., P, n, 2)
-    side = ab[..., None, 0] * others[..., 1] - ab[..., None, 1] * others[..., 0]  # (..., P, n)
-    scale = np.max(np.abs(side), axis=-1, keepdims=True) * 1e-9
-    hull_edge = np.all(side >= -scale, axis=-1) | np.all(side <= scale, axis=-1)
+    fx, fy = feet[..., 0], feet[..., 1]  # the x and y components apart
+    ax, ay = fx[..., i], fy[..., i]  # (..., P)
+    abx, aby = fx[..., j] - ax, fy[..., j] - ay
+    side = abx[..., None] * (fy[..., None, :] - ay[..., None]) - aby[..., None] * (fx[..., None, :] - ax[..., None])
+    columns = [side[..., k] for k in range(n)]  # side: (..., P, n); short reductions as chains over its columns
+    scale = _chain(np.maximum, [np.abs(c) for c in columns]) * 1e-9
+    hull_edge = (_chain(np.logical_and, [c >= -scale for c in columns])
+                 | _chain(np.logical_and, [c <= scale for c in columns]))
     inward = np.sign(np.sum(side, axis=-1))
-    c = cog[..., None, :] - a
-    dist = inward * (ab[..., 0] * c[..., 1] - ab[..., 1] * c[..., 0]) / W.length(ab)
-    return np.min(np.where(hull_edge, dist, np.inf), axis=-1)
+    dist = inward * (abx * (cog[..., 1, None] - ay) - aby * (cog[..., 0, None] - ax)) / np.hypot(abx, aby)
+    dist = np.where(hull_edge, dist, np.inf)
+    return _chain(np.minimum, [dist[..., k] for k in range(dist.shape[-1])])
+
+
+def _chain(op, arrays: list) -> np.ndarray:
+    """``op`` folded over ``arrays`` (a reduction over a short axis written out)."""
+    out = arrays[0]
+    for a in arrays[1:]:
+        out = op(out, a)
+    return out
 
 
 def longitudinal_margin(cog: np.ndarray, polygon: np.ndarray, heading: np.ndarray) -> np.ndarray:
@@ -192,27 +243,60 @@ def _support_step(cog: np.ndarray, triangle: np.ndarray) -> tuple[np.ndarray, np
     """The shortest body translation target putting the CoG inside ``triangle`` with the margin,
     and whether such a target exists (the triangle's inradius exceeds the margin)."""
     tri = W.ccw(triangle)
-    a, b, c = tri[..., 0, :], tri[..., 1, :], tri[..., 2, :]
-    la, lb, lc = W.length(b - c), W.length(c - a), W.length(a - b)
+    x, y = tri[..., 0], tri[..., 1]  # the x and y components apart
+    ax, bx, cx, ay, by, cy = x[..., 0], x[..., 1], x[..., 2], y[..., 0], y[..., 1], y[..., 2]
+    la, lb, lc = np.hypot(bx - cx, by - cy), np.hypot(cx - ax, cy - ay), np.hypot(ax - bx, ay - by)
     perimeter = la + lb + lc
-    area = 0.5 * np.abs((b - a)[..., 0] * (c - a)[..., 1] - (b - a)[..., 1] * (c - a)[..., 0])
+    area = 0.5 * np.abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
     inradius = 2 * area / np.maximum(perimeter, 1e-12)
     feasible = inradius > C.STABILITY_MARGIN + 1e-9
-    incentre = (la[..., None] * a + lb[..., None] * b + lc[..., None] * c) / np.maximum(perimeter, 1e-12)[..., None]
-    scale = np.where(feasible, (inradius - C.STABILITY_MARGIN) / np.maximum(inradius, 1e-12), 1.0)
-    shrunk = incentre[..., None, :] + scale[..., None, None] * (tri - incentre[..., None, :])
+    p = np.maximum(perimeter, 1e-12)
+    ix, iy = (la * ax + lb * bx + lc * cx) / p, (la * ay + lb * by + lc * cy) / p  # the incentre
+    scale = np.where(feasible, (inradius - C.STABILITY_MARGIN) / np.maximum(inradius, 1e-12), 1.0)[..., None]
+    shrunk = np.stack([ix[..., None] + scale * (x - ix[..., None]), iy[..., None] + scale * (y - iy[..., None])], -1)
     return np.where(feasible[..., None], W.nearest_inside(cog, shrunk), cog), feasible
 
 
 # --- Environment interaction --------------------------------------------------------------------
 
-def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _near(points: np.ndarray, centre: np.ndarray, radius: np.ndarray, reach) -> np.ndarray:
+    """Whether points ``(..., 2)`` may be within ``reach`` of the obstacles in circles ``centre (..., 2)``,
+    ``radius``: false only when they are farther than ``reach`` + 1 µm from the circle (a margin far
+    above rounding), so a test skipped where it is false gives what it would have given."""
+    dx, dy = points[..., 0] - centre[..., 0], points[..., 1] - centre[..., 1]
+    return ~(dx * dx + dy * dy > (radius + reach + 1e-6) ** 2)
+
+
+def _stand(points: np.ndarray, poly: np.ndarray, surmountable: np.ndarray, normals: np.ndarray,
+           circles: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """Whether points ``(..., K, 2)`` are admissible footholds among obstacles ``poly (..., 1, M, 4, 2)``
-    and the obstacle each stands on ``(..., K)`` (-1 = floor)."""
-    sd = W.signed_distance(points[..., None, :], poly)  # (..., K, M)
+    (with their ``normals`` and bounding ``circles``, broadcast alike) and the obstacle each stands on
+    ``(..., K)`` (-1 = floor). The signed distance is computed for the point-obstacle pairs within
+    ``GROUND_BAND`` of the obstacle's circle only: farther, the point is off the obstacle and its band."""
+    near = _near(points[..., None, :], circles[0], circles[1], C.GROUND_BAND)  # (..., K, M)
+    sd = np.full(near.shape, np.inf)
+    idx = np.nonzero(near)
+    if len(idx[0]):
+        sd[idx] = W.signed_distance(np.broadcast_to(points[..., None, :], near.shape + (2,))[idx],
+                                    np.broadcast_to(poly, near.shape + poly.shape[-2:])[idx],
+                                    np.broadcast_to(normals, near.shape + normals.shape[-2:])[idx])
     top = (sd <= -C.TOP_BAND + 1e-9) & surmountable
     admissible = np.all((sd >= C.GROUND_BAND - 1e-9) | top, axis=-1)
     return admissible, np.max(np.where(top, np.arange(top.shape[-1]), -1), axis=-1, initial=-1)
+
+
+def crossings(a: np.ndarray, b: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
+    """Whether segments ``a -> b (E, S, 2)`` meet the obstacles of their environment ``(E, S, M)``
+    (``world.segment_hits``), tested exactly only where the segment reaches the obstacle's bounding circle."""
+    centre, radius = envs.circles
+    mid = (a + b) / 2
+    half = W.length(b - a) / 2
+    near = _near(mid[:, :, None], centre[:, None], radius[:, None] + half[..., None], 0.0)
+    hit = np.zeros(near.shape, dtype=bool)
+    e, k, m = np.nonzero(near)
+    if len(e):
+        hit[e, k, m] = W.segment_hits(a[e, k], b[e, k], envs.polygons[e, m], envs.normals[e, m])
+    return hit
 
 
 def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -224,7 +308,9 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
     Candidates for a point in a band: per obstacle, the nearest point 50 mm outside it and the nearest
     point of its top 30 mm inside the edge; the nearest admissible candidate wins.
     """
-    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None])
+    circles = envs.circles
+    ok, stand = _stand(p, envs.polygons[:, None], envs.surmountable[:, None], envs.normals[:, None],
+                       (circles[0][:, None], circles[1][:, None]))
     best = p.copy()
     e, f = np.nonzero(~ok)
     if len(e):
@@ -232,7 +318,8 @@ def snap_footholds(p: np.ndarray, envs: W.EnvBatch) -> tuple[np.ndarray, np.ndar
         _, near, out = W.closest_boundary(q[:, None], poly)
         tops = W.nearest_inside(q[:, None], W.inset(poly, C.TOP_BAND))
         candidates = np.concatenate([near + C.GROUND_BAND * out, tops], axis=1)  # (B, 2M, 2)
-        admissible, on = _stand(candidates, poly[:, None], surm[:, None])
+        admissible, on = _stand(candidates, poly[:, None], surm[:, None], envs.normals[e][:, None],
+                                (circles[0][e][:, None], circles[1][e][:, None]))
         dist = np.where(admissible, W.length(candidates - q[:, None]), np.inf)
         k = np.argmin(dist, axis=1)
         best[e, f] = candidates[np.arange(len(e)), k]
@@ -250,17 +337,17 @@ def trunk_polygon(pose: np.ndarray) -> np.ndarray:
     return pose[..., None, :2] + rotate(pose[..., None, 2], local * np.ones(pose.shape[:-1] + (4, 2)))
 
 
-def trunk_collides(start: np.ndarray, end: np.ndarray, zr: np.ndarray, envs: W.EnvBatch) -> np.ndarray:
+def trunk_collides(start: np.ndarray, end: np.ndarray, zr: np.ndarray, envs: W.EnvBatch,
+                   samples: int = C.SHIFT_SAMPLES) -> np.ndarray:
     """Whether the trunk, moving from pose ``start`` to ``end`` (E, 3), overlaps an obstacle taller
-    than its underside, sampled at ``SHIFT_SAMPLES`` poses along the move. Only obstacles within
-    reach of the move (bounding circles) are tested exactly."""
-    centre = envs.polygons.mean(axis=-2)  # (E, M, 2)
-    radius = W.length(envs.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
+    than its underside, sampled at ``samples`` poses along the move (one for a body standing still).
+    Only obstacles within reach of the move (bounding circles) are tested exactly."""
+    centre, radius = envs.circles
     mid = (start[:, :2] + end[:, :2]) / 2
     reach = np.hypot(C.TRUNK_WIDTH, C.BODY_LENGTH) / 2 + W.length(end[:, :2] - start[:, :2]) / 2
     near = W.length(centre - mid[:, None]) < radius + reach[:, None]
     e, m = np.nonzero(near & (envs.heights > zr[:, None] - C.TRUNK_THICKNESS / 2))
-    s = np.linspace(0.0, 1.0, C.SHIFT_SAMPLES)[None, :, None]
+    s = np.linspace(0.0, 1.0, samples)[None, :, None]
     poses = start[e, None] + s * (end[e] - start[e])[:, None]  # (P, S, 3)
     hit = np.any(W.polygons_overlap(trunk_polygon(poses), envs.polygons[e, m][:, None]), axis=1)
     collided = np.zeros(len(zr), dtype=bool)
@@ -272,7 +359,7 @@ def swing_height(a: np.ndarray, b: np.ndarray, envs: W.EnvBatch) -> tuple[np.nda
     """Apex height of a swing from foothold ``a`` to ``b`` (E, 3): ``SWING_CLEARANCE`` above the
     highest of both surfaces and every surmountable obstacle under the straight path; and whether the
     path crosses a wall (a collision)."""
-    crossed = W.segment_hits(a[:, None, :2], b[:, None, :2], envs.polygons)  # (E, M)
+    crossed = crossings(a[:, None, :2], b[:, None, :2], envs)[:, 0]  # (E, M)
     over = np.max(np.where(crossed & envs.surmountable, envs.heights, 0.0), axis=-1, initial=0.0)
     apex = np.maximum(np.maximum(a[:, 2], b[:, 2]), over) + C.SWING_CLEARANCE
     return apex, np.any(crossed & ~envs.surmountable, axis=-1)
@@ -290,7 +377,7 @@ def body_height(pose: np.ndarray, feet: np.ndarray, envs: W.EnvBatch) -> np.ndar
     """
     ahead = rotate(pose[:, None, 2], np.array([0.0, C.RAISE_LOOKAHEAD]) * np.ones((len(pose), 2, 2)))
     rear, front = feet[:, [2, 3], :2], feet[:, [0, 1], :2] + ahead
-    near = W.segment_hits(rear[:, :, None], front[:, :, None], envs.polygons[:, None])  # (E, 2, M)
+    near = crossings(rear, front, envs)  # (E, 2, M)
     relevant = np.any(near, axis=1) & envs.surmountable
     return C.ZR_NOMINAL + C.RAISE_GAIN * np.max(np.where(relevant, envs.heights, 0.0), axis=-1, initial=0.0)
 
@@ -326,7 +413,8 @@ class CycleOutcome:
     (E, 4, 3)`` and ``stands_on (E, 4)`` the landing points; the failure masks say why a cycle could
     not be executed. ``poses (E, 6, 3)``: the body at the start, after each of the four stability
     shifts (held while that swing leg is in the air), at the end. Per swing s (in order):
-    ``triangles (E, 4, 3, 2)`` the support triangle and ``margins (E, 4)`` the CoG's stability margin.
+    ``triangles (E, 4, 3, 2)`` the support triangle and :attr:`margins` ``(E, 4)`` the CoG's stability margin
+    (computed when asked for: the crawl itself does not need it).
     """
 
     state: CrawlState
@@ -337,8 +425,12 @@ class CycleOutcome:
     limit: np.ndarray
     unstable: np.ndarray
     triangles: np.ndarray
-    margins: np.ndarray
     poses: np.ndarray
+
+    @property
+    def margins(self) -> np.ndarray:
+        """The CoG's stability margin in each swing's support triangle ``(E, 4)``."""
+        return stability_margin(self.poses[:, 1:5, :2], self.triangles)
 
     @property
     def failed(self) -> np.ndarray:
@@ -348,7 +440,8 @@ class CycleOutcome:
         """The cycle of episode ``e`` as a :class:`CycleRecord`."""
         return CycleRecord(k, tuple(np.asarray(command, dtype=float)), float(self.state.zr[e]), tuple(order),
                            self.footholds[e].copy(), self.stands_on[e].copy(), self.poses[e].copy(),
-                           self.triangles[e].copy(), self.poses[e, 1:5, :2].copy(), self.margins[e].copy(),
+                           self.triangles[e].copy(), self.poses[e, 1:5, :2].copy(),
+                           stability_margin(self.poses[e, 1:5, :2], self.triangles[e]),
                            float(1000 * self.br[e]), bool(self.collided[e]), bool(self.limit[e]),
                            bool(self.unstable[e]))
 
@@ -401,39 +494,42 @@ def crawl_cycle(state: CrawlState, command: np.ndarray, order: np.ndarray, zr: n
     footholds, stands_on, admissible = snap_footholds(to_world(target, NOMINAL_FEET[None].repeat(n, 0)), envs)
     feet = state.feet.copy()
     body = state.pose.copy()
-    all_legs = np.tile(np.arange(4), (n, 1))
-    limit = ~legs_within_limits(body, zr, feet, all_legs)
-    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs)
+    limit = ~legs_within_limits(body, zr, feet, ALL_LEGS)
+    collided = ~np.all(admissible, axis=1) | trunk_collides(body, body, zr, envs, samples=1)
     unstable = np.zeros(n, dtype=bool)
     br = np.zeros(n)
     poses = [body.copy()]
-    triangles, margins = [], []
+    triangles = []
     for s in range(4):
         leg = legs[:, s]
-        support = np.sort(np.where(all_legs != leg[:, None], all_legs, 99), axis=1)[:, :3]
-        triangle = feet[rows[:, None], support, :2]
+        triangle = feet[rows[:, None], SUPPORT[leg], :2]
         goal, feasible = _support_step(body[:, :2], triangle)
         moved = np.concatenate([goal, state.pose[:, 2:] + command[:, 2:] * (s + 1) / 5], axis=1)  # turn evenly
         collided |= trunk_collides(body, moved, zr, envs)
         br += W.length(goal - body[:, :2])
         body = moved
         unstable |= ~feasible
-        limit |= ~legs_within_limits(body, zr, feet, all_legs)
         triangles.append(triangle)
-        margins.append(stability_margin(body[:, :2], triangle))
         poses.append(body.copy())
         a, b = feet[rows, leg], footholds[rows, leg]
         apex, crosses_wall = swing_height(a, b, envs)
         collided |= crosses_wall
-        limit |= ~legs_within_limits(body, zr, _swing_key_points(a, b, apex, body, leg), leg[:, None].repeat(4, 1))
+        # with the body held after the shift: the four feet, then the swing foot's key poses (one IK call)
+        points = np.concatenate([feet, _swing_key_points(a, b, apex, body, leg)], axis=1)
+        limit |= ~legs_within_limits(body, zr, points, np.concatenate([np.broadcast_to(ALL_LEGS, (n, 4)),
+                                                                     np.repeat(leg[:, None], 4, 1)], axis=1))
         feet[rows, leg] = b
     collided |= trunk_collides(body, target, zr, envs)
     br += W.length(target[:, :2] - body[:, :2])
-    limit |= ~legs_within_limits(target, zr, feet, all_legs)
+    limit |= ~legs_within_limits(target, zr, feet, ALL_LEGS)
     unstable |= stability_margin(target[:, :2], feet[..., :2]) <= 0.0
     poses.append(target.copy())
     return CycleOutcome(CrawlState(target, zr.copy(), feet), br, footholds, stands_on, collided, limit, unstable,
-                        np.stack(triangles, 1), np.stack(margins, 1), np.stack(poses, 1))
+                        np.stack(triangles, 1), np.stack(poses, 1))
+
+
+ALL_LEGS = np.arange(4)
+SUPPORT = np.array([[other for other in range(4) if other != leg] for leg in range(4)])  # (4, 3): the stance legs
 
 
 def _swing_key_points(a: np.ndarray, b: np.ndarray, apex: np.ndarray, body: np.ndarray, leg: np.ndarray) -> np.ndarray:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -70,9 +71,24 @@ def closest_boundary(p: np.ndarray, poly: np.ndarray) -> tuple[np.ndarray, np.nd
     return np.where(inside, -d, d), near, out
 
 
-def signed_distance(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Distance of points to convex polygons, negative inside."""
-    return closest_boundary(p, poly)[0]
+def signed_distance(p: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
+    """Distance of points to convex polygons, negative inside: :func:`closest_boundary`'s first value
+    from the same operations, edge by edge on the x and y components, without the nearest point and
+    direction (the foothold test of every crawl cycle; bit-identical, tested). ``normals``:
+    :func:`edges`' normals of ``poly`` when known."""
+    n = edges(poly)[1] if normals is None else normals
+    px, py = p[..., 0], p[..., 1]
+    d = inside = None
+    for v in range(poly.shape[-2]):
+        ax, ay = poly[..., v, 0], poly[..., v, 1]
+        w = (v + 1) % poly.shape[-2]
+        abx, aby = poly[..., w, 0] - ax, poly[..., w, 1] - ay
+        apx, apy = px - ax, py - ay
+        t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+        dist = np.hypot(px - (ax + t * abx), py - (ay + t * aby))
+        out = n[..., v, 0] * apx + n[..., v, 1] * apy <= 0.0
+        d, inside = (dist, out) if d is None else (np.minimum(d, dist), inside & out)
+    return np.where(inside, -d, d)
 
 
 def inset(poly: np.ndarray, depth: float) -> np.ndarray:
@@ -87,33 +103,66 @@ def inset(poly: np.ndarray, depth: float) -> np.ndarray:
 
 
 def nearest_inside(p: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """The point of each convex polygon nearest to ``p`` (``p`` itself when inside)."""
-    sd, near, _ = closest_boundary(p, poly)
-    return np.where((sd <= 0.0)[..., None], p, near)
+    """The point of each convex polygon nearest to ``p`` (``p`` itself when inside): :func:`closest_boundary`
+    edge by edge on the x and y components, without the direction (bit-identical for polygons with no
+    zero-length edge, tested)."""
+    n = edges(poly)[1]
+    px, py = p[..., 0], p[..., 1]
+    for v in range(poly.shape[-2]):
+        ax, ay = poly[..., v, 0], poly[..., v, 1]
+        w = (v + 1) % poly.shape[-2]
+        abx, aby = poly[..., w, 0] - ax, poly[..., w, 1] - ay
+        apx, apy = px - ax, py - ay
+        t = np.clip((apx * abx + apy * aby) / (abx * abx + aby * aby), 0.0, 1.0)
+        fx, fy = ax + t * abx, ay + t * aby
+        dist = np.hypot(px - fx, py - fy)
+        out = n[..., v, 0] * apx + n[..., v, 1] * apy <= 0.0
+        if v == 0:
+            d, near_x, near_y, inside = dist, fx, fy, out
+        else:  # the first nearest edge, as np.argmin
+            closer = dist < d
+            d, near_x, near_y, inside = (np.where(closer, dist, d), np.where(closer, fx, near_x),
+                                         np.where(closer, fy, near_y), inside & out)
+    keep = (np.where(inside, -d, d) <= 0.0)[..., None]
+    return np.where(keep, p, np.stack([near_x, near_y], axis=-1))
 
 
-def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts)."""
-    v, n = edges(poly)
-    d = (b - a)[..., None, :]
-    num = dot(n, v - a[..., None, :])  # inside half-plane: t * den <= num
-    den = dot(n, d)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = num / den
-    t_in = np.max(np.where(den < 0, ratio, -np.inf), axis=-1, initial=0.0)
-    t_out = np.min(np.where(den > 0, ratio, np.inf), axis=-1, initial=1.0)
-    parallel_out = np.any((den == 0) & (num < 0), axis=-1)
+def segment_hits(a: np.ndarray, b: np.ndarray, poly: np.ndarray, normals: np.ndarray | None = None) -> np.ndarray:
+    """Whether segments ``a -> b`` meet convex polygons (Cyrus-Beck clipping; touching counts), edge by
+    edge on the x and y components. ``normals``: :func:`edges`' normals of ``poly`` when known."""
+    n = edges(poly)[1] if normals is None else normals
+    dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
+    t_in, t_out, parallel_out = 0.0, 1.0, False
+    for v in range(poly.shape[-2]):
+        nx, ny = n[..., v, 0], n[..., v, 1]
+        num = nx * (poly[..., v, 0] - a[..., 0]) + ny * (poly[..., v, 1] - a[..., 1])  # inside: t * den <= num
+        den = nx * dx + ny * dy
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = num / den
+        t_in = np.maximum(t_in, np.where(den < 0, ratio, -np.inf))
+        t_out = np.minimum(t_out, np.where(den > 0, ratio, np.inf))
+        parallel_out = parallel_out | ((den == 0) & (num < 0))
     return (t_in <= t_out) & ~parallel_out
 
 
 def polygons_overlap(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Whether convex polygons ``p (..., V, 2)`` and ``q (..., W, 2)`` overlap (separating axes;
-    touching does not count). The leading axes broadcast."""
-    axes = np.concatenate(_broadcast_lead(edges(p)[1], edges(q)[1]), axis=-2)[..., None, :]  # (..., A, 1, 2)
-    pp = dot(axes, p[..., None, :, :])  # (..., A, V)
-    qq = dot(axes, q[..., None, :, :])
-    separated = (pp.max(-1) <= qq.min(-1)) | (qq.max(-1) <= pp.min(-1))
+    touching does not count). The leading axes broadcast. The projections' extremes are taken vertex
+    by vertex on the x and y components (short reductions are slow in NumPy)."""
+    axes = np.concatenate(_broadcast_lead(edges(p)[1], edges(q)[1]), axis=-2)  # (..., A, 2)
+    ax, ay = axes[..., 0], axes[..., 1]
+    (p_lo, p_hi), (q_lo, q_hi) = _extent(ax, ay, p), _extent(ax, ay, q)
+    separated = (p_hi <= q_lo) | (q_hi <= p_lo)
     return ~np.any(separated, axis=-1)
+
+
+def _extent(ax: np.ndarray, ay: np.ndarray, poly: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The least and greatest projection of the corners of ``poly (..., V, 2)`` on axes ``(ax, ay) (..., A)``."""
+    lo = hi = None
+    for v in range(poly.shape[-2]):
+        d = ax * poly[..., v, None, 0] + ay * poly[..., v, None, 1]
+        lo, hi = (d, d) if lo is None else (np.minimum(lo, d), np.maximum(hi, d))
+    return lo, hi
 
 
 def _broadcast_lead(p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -198,8 +247,25 @@ class EnvBatch:
     def surmountable(self) -> np.ndarray:
         return self.heights < C.SURMOUNTABLE_BELOW
 
+    @cached_property
+    def circles(self) -> tuple[np.ndarray, np.ndarray]:
+        """Bounding circles of the obstacles, computed once: centres ``(E, M, 2)`` (corner means), radii ``(E, M)``."""
+        centre = self.polygons.mean(axis=-2)
+        return centre, length(self.polygons - centre[..., None, :]).max(axis=-1, initial=0.0)
+
+    @cached_property
+    def normals(self) -> np.ndarray:
+        """The obstacles' outward unit edge normals ``(E, M, 4, 2)`` (:func:`edges`), computed once."""
+        return edges(self.polygons)[1]
+
     def take(self, idx) -> EnvBatch:
-        return EnvBatch(self.polygons[idx], self.heights[idx], self.destination[idx])
+        """The rows ``idx``, with the normals and circles taken along when they are computed already."""
+        batch = EnvBatch(self.polygons[idx], self.heights[idx], self.destination[idx])
+        for name in ("normals", "circles"):
+            if name in self.__dict__:  # functools.cached_property's store
+                value = self.__dict__[name]
+                batch.__dict__[name] = value[idx] if name == "normals" else (value[0][idx], value[1][idx])
+        return batch
 
     def tile(self, k: int) -> EnvBatch:
         """The batch repeated ``k`` times (row ``i * E + e`` is environment ``e``)."""
