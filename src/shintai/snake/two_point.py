@@ -28,6 +28,7 @@ import numpy as np
 
 from shintai.core.runtime import Module, whole_multiple
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, SnakeGeometry, TwoPointGains
+from shintai.snake.linalg import singular_values, thin_svd
 from shintai.snake.model import (
     Configuration,
     check_mode,
@@ -65,7 +66,7 @@ def two_point_rows(grounded: np.ndarray) -> np.ndarray:
     """Rows of the all-grounded stacks [A, O; J_{n,1}, −I_3], [B; −J_{n,2}] that form A_{c,σ}, B_{c,σ} (2.15):
     the grounded wheels (T_σ, (2.11)), then the three rows of (2.13)."""
     n = len(grounded)
-    return np.r_[np.flatnonzero(grounded), n, n + 1, n + 2]
+    return np.concatenate((np.flatnonzero(grounded), np.arange(n, n + 3)))
 
 
 def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.ndarray]:
@@ -80,7 +81,7 @@ def gram_det_gradient(X: np.ndarray) -> tuple[float, np.ndarray]:
     With X = U S V^T (thin SVD): det = Π s_i², ∂det/∂X = 2 U diag(s_i Π_{j≠i} s_j²) V^T. This is
     2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays finite at rank loss.
     """
-    U, s, Vt = np.linalg.svd(X, full_matrices=False)
+    U, s, Vt = thin_svd(X)
     s2 = s * s
     others = np.prod(np.where(np.eye(len(s), dtype=bool), 1.0, s2), axis=1)
     return float(np.prod(s2)), 2.0 * (U * (s * others)) @ Vt
@@ -145,9 +146,9 @@ class TwoPointLaw:
         V = np.zeros(len(self.candidates))
         for members, rows in self._groups:
             if k_m2:
-                V[members] += k_m2 * np.linalg.svd(B_full[rows], compute_uv=False)[:, -1]
+                V[members] += k_m2 * singular_values(B_full[rows])[:, -1]
             if k_m1:
-                V[members] += k_m1 * np.linalg.svd(A_full[rows], compute_uv=False)[:, -1]
+                V[members] += k_m1 * singular_values(A_full[rows])[:, -1]
         return V
 
     def select_mode(self, w_h, phi) -> tuple[int, np.ndarray]:
@@ -166,7 +167,7 @@ class TwoPointLaw:
         c_c = self.controlled(cfg)
         xi = np.asarray(c_d_dot, float) + g.k_p * (np.asarray(c_d, float) - c_c)
 
-        U, s, Vt = np.linalg.svd(B_c, full_matrices=False)
+        U, s, Vt = thin_svd(B_c)
         keep = s > max(B_c.shape) * np.finfo(float).eps * s[0]
         U, s_k, Vt_k = U[:, keep], s[keep], Vt[keep]
         u_c = Vt_k.T @ ((U.T @ (A_c @ xi)) / s_k)  # (3.4), B^† = V S^{-1} U^T
@@ -175,7 +176,7 @@ class TwoPointLaw:
         u = u_c + u_v
         u_norm = float(math.sqrt(u @ u))
         stopped = u_norm > g.u_lim  # (3.20)
-        sigma_a = float(np.linalg.svd(A_c, compute_uv=False)[-1])
+        sigma_a = float(singular_values(A_c)[-1])
         sigma_b = float(s[-1])
         V_m = g.k_m[0] * sigma_a + g.k_m[1] * sigma_b
         return Step(np.zeros_like(u) if stopped else u, u_norm, bool(stopped), c_c, sigma_a, sigma_b, V_m, V_u)
