@@ -374,6 +374,6 @@ class SpineBody(MujocoBody):
             duty = np.asarray(duty, dtype=float)
             if duty.shape != self._motor.shape:
                 raise ValueError(f"command 'duty' has shape {duty.shape}, the spine has {self._motor.size} muscles")
-            self.data.ctrl[self._motor] = np.clip(duty, -1.0, 1.0)
+            self.data.ctrl[self._motor] = np.minimum(np.maximum(duty, -1.0), 1.0)  # = np.clip, NaN included
         if len(command) > ("hand" in command) + ("duty" in command):
             super().apply({k: v for k, v in command.items() if k not in ("hand", "duty")})

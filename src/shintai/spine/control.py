@@ -256,7 +256,11 @@ class MuscleControl(Module):
     def set_targets(self, l_r=None, T_r=None, l_0=None) -> None:
         """Target length (L, LL), target tension (T) and spring natural length (S), per muscle."""
         for name, value in (("l_r", l_r), ("T_r", T_r), ("l_0", l_0)):
-            if value is not None:
+            if value is None:
+                continue
+            if isinstance(value, np.ndarray) and value.dtype == float and value.shape == (self.m,):
+                setattr(self, name, value.copy())  # the per-tick case: already one value per muscle
+            else:
                 setattr(self, name, np.broadcast_to(np.asarray(value, dtype=float), (self.m,)).copy())
 
     def set_gains(self, **changes) -> None:
