@@ -42,6 +42,10 @@ from shintai.snake.model import (
 )
 
 
+_EPS = np.finfo(float).eps
+_MINUS_I3 = -np.eye(3)
+
+
 def candidate_modes(n: int, n_g: int, n_l: int, n_c: int, head_end_lifted: bool = True) -> np.ndarray:
     """Grounded patterns (rows, shape (m, n), True = grounded) kept by the two-stage pruning of §3.2.4.
 
@@ -75,13 +79,14 @@ def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.nda
     return -float(excess @ excess), -2.0 * excess * np.sign(phi)
 
 
-def gram_det_gradient(X: np.ndarray) -> tuple[float, np.ndarray]:
+def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """det of the small Gram matrix of X (X^T X if tall, X X^T if wide) and its gradient w.r.t. X.
 
-    With X = U S V^T (thin SVD): det = Π s_i², ∂det/∂X = 2 U diag(s_i Π_{j≠i} s_j²) V^T. This is
-    2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays finite at rank loss.
+    With X = U S V^T (thin SVD, or ``svd`` if the caller has it): det = Π s_i², ∂det/∂X =
+    2 U diag(s_i Π_{j≠i} s_j²) V^T. This is 2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays
+    finite at rank loss.
     """
-    U, s, Vt = thin_svd(X)
+    U, s, Vt = thin_svd(X) if svd is None else svd
     s2 = s * s
     others = np.prod(np.where(np.eye(len(s), dtype=bool), 1.0, s2), axis=1)
     return float(np.prod(s2)), 2.0 * (U * (s * others)) @ Vt
@@ -114,6 +119,7 @@ class TwoPointLaw:
             raise ValueError("no candidate mode satisfies (i), (ii') and (iii) for these n, n_g, n_l, n_c")
         # The rows of every candidate, grouped by n_σ so that all candidates of one size are evaluated by
         # one batched SVD (built once; §3.2.4's point is the cost of this search).
+        self._rows: dict[bytes, np.ndarray] = {}  # two_point_rows per grounded pattern, built when first used
         sizes = self.candidates.sum(axis=1)
         self._groups = []
         for size in np.unique(sizes):
@@ -135,7 +141,7 @@ class TwoPointLaw:
         A_full = np.zeros((n + 3, 6))
         A_full[:n, :3] = A
         A_full[n:, :3] = J1
-        A_full[n:, 3:] = -np.eye(3)
+        A_full[n:, 3:] = _MINUS_I3
         return A, J2, A_full, np.vstack((B, -J2))
 
     def mode_objectives(self, w_h, phi) -> np.ndarray:
@@ -162,16 +168,19 @@ class TwoPointLaw:
         cfg = configuration(w_h, phi, self.geometry.l)
         grounded = check_mode(grounded, cfg.n)
         A, J2, A_full, B_full = self._stacks(cfg)
-        rows = two_point_rows(grounded)
+        key = grounded.tobytes()
+        rows = self._rows.get(key)
+        if rows is None:
+            rows = self._rows[key] = two_point_rows(grounded)
         A_c, B_c = A_full[rows], B_full[rows]
         c_c = self.controlled(cfg)
         xi = np.asarray(c_d_dot, float) + g.k_p * (np.asarray(c_d, float) - c_c)
 
-        U, s, Vt = thin_svd(B_c)
-        keep = s > max(B_c.shape) * np.finfo(float).eps * s[0]
+        svd_b = U, s, Vt = thin_svd(B_c)
+        keep = s > max(B_c.shape) * _EPS * s[0]
         U, s_k, Vt_k = U[:, keep], s[keep], Vt[keep]
         u_c = Vt_k.T @ ((U.T @ (A_c @ xi)) / s_k)  # (3.4), B^† = V S^{-1} U^T
-        V_u, eta = self._objective(cfg, grounded, A, B_c, J2)
+        V_u, eta = self._objective(cfg, grounded, A, B_c, J2, svd_b)
         u_v = g.k_v * (eta - Vt_k.T @ (Vt_k @ eta))  # (3.5), I − B^†B = I − V V^T
         u = u_c + u_v
         u_norm = float(math.sqrt(u @ u))
@@ -188,7 +197,7 @@ class TwoPointLaw:
         A, J2, _, B_full = self._stacks(cfg)
         return self._objective(cfg, grounded, A, B_full[two_point_rows(grounded)], J2)
 
-    def _objective(self, cfg, grounded, A, B_c, J2) -> tuple[float, np.ndarray]:
+    def _objective(self, cfg, grounded, A, B_c, J2, svd_b=None) -> tuple[float, np.ndarray]:
         k_u1, k_u2, k_u3 = self.gains.k_u
         V1, eta = joint_limit_objective(cfg.phi, self.gains.phi_th)
         V, eta = k_u1 * V1, k_u1 * eta
@@ -197,7 +206,7 @@ class TwoPointLaw:
             V += k_u2 * det_a
             eta = eta + k_u2 * np.einsum("mrc,rc->m", a_matrix_derivative(cfg)[:, grounded, :], grad_a)
         if k_u3:  # V_{u,3} = det(B_{c,σ} B_{c,σ}^T) (3.15), ∂B_{c,σ} = [∂B_σ; −∂J_{n,2}]
-            det_b, grad_b = gram_det_gradient(B_c)
+            det_b, grad_b = gram_det_gradient(B_c, svd_b)
             dB_c = np.concatenate((b_matrix_derivative(cfg)[:, grounded, :],
                                    -second_point_jacobian_derivative(cfg, cfg.n)), axis=1)
             V += k_u3 * det_b
