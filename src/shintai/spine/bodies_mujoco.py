@@ -278,7 +278,7 @@ class SpineBody(MujocoBody):
         """The true posture θ (3n,) [rad] (eq. 4.1)."""
         q = self.data.qpos
         if self.joint_type == "hinge":
-            return q[self.spine_qpos].copy()
+            return q[self.spine_qpos]  # fancy indexing copies
         mats = np.zeros((self.robot.n, 9))
         for i, adr in enumerate(self.spine_qpos):
             mujoco.mju_quat2Mat(mats[i], q[adr:adr + 4])
