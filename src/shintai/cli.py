@@ -214,6 +214,8 @@ def cmd_demo(args) -> int:
 
 
 def cmd_bench(args) -> int:
+    from shintai.scenarios.sampling import line, sampled
+
     ids = select(args.only, registry.BENCHMARKS)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -221,13 +223,16 @@ def cmd_bench(args) -> int:
     for bid in ids:
         print(f"bench: {bid} ...", file=sys.stderr)
         t0 = time.perf_counter()
-        try:
-            results[bid] = registry.BENCHMARKS[bid].run()
-        except Exception as exc:  # noqa: BLE001 - one benchmark failing keeps the others
-            results[bid] = {"error": f"{type(exc).__name__}: {exc}".splitlines()[0]}
+        with sampled() as samples:  # where the benchmark's CPU time went (scenarios/sampling.py)
+            try:
+                results[bid] = registry.BENCHMARKS[bid].run()
+            except Exception as exc:  # noqa: BLE001 - one benchmark failing keeps the others
+                results[bid] = {"error": f"{type(exc).__name__}: {exc}".splitlines()[0]}
         results[bid]["bench_wall_s"] = time.perf_counter() - t0
         print(f"  {bid}: " + ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
                                        for k, v in results[bid].items()))
+        results[bid]["profile"] = profile = samples.summary()
+        print(f"    profile: {line(profile)}")
         (out / "bench.json").write_text(json.dumps(results, indent=2) + "\n")
     print(f"-> {out}/bench.json")
     return 1 if any("error" in r for r in results.values()) else 0

@@ -141,6 +141,8 @@ def test_bench_writes_json(tmp_path):
     assert main(["bench", "--only", "core.loop-overhead", "--out", str(tmp_path)]) == 0
     bench = json.loads((tmp_path / "bench.json").read_text())
     assert bench["core.loop-overhead"]["ratio_loop_vs_direct"] > 0
+    profile = bench["core.loop-overhead"]["profile"]  # where its CPU time went, by layer
+    assert profile["samples"] > 0 and profile["layers"]["runtime"] > 0
 
 
 def test_demo_videos_only_where_default_parameters_render():

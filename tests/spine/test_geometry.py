@@ -223,3 +223,17 @@ def test_hanzous_cam_sets_the_leaf_length_and_so_its_stiffness():
     k = HANZOUS.bending_stiffness_n_m([0.0, 180.0])
     assert k[0] / k[1] == pytest.approx((hi / lo) ** 3)
     assert HANZOUS.servos == HANZOUS.joints + 1
+
+
+def test_one_posture_takes_the_same_products_as_a_batch():
+    """frames/lengths/uniform_posture of one posture (the 1 ms players' path) equal, bit for bit, the same
+    posture's row of a batch."""
+    rng = np.random.default_rng(3)
+    for model in (CLA.model, KENTA.model):
+        thetas = rng.normal(0.0, 0.1, (20, 3 * model.n))
+        wholes = rng.normal(0.0, 0.3, (20, 3))
+        batch = model.chain.frames(thetas)
+        for k in range(len(thetas)):
+            assert all(np.array_equal(one, many[k]) for one, many in zip(model.chain.frames(thetas[k]), batch))
+            assert np.array_equal(model.lengths(thetas[k]), model.lengths(thetas)[k])
+            assert np.array_equal(uniform_posture(wholes[k], model.n), uniform_posture(wholes, model.n)[k])

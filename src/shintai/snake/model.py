@@ -66,6 +66,32 @@ def _strictly_lower(n: int) -> np.ndarray:
     return m
 
 
+@lru_cache(maxsize=8)
+def _point_weights(n: int, k: int) -> np.ndarray:
+    """w_j of :func:`second_point_jacobians`: 2 (j < k), 1 (j = k), 0 (j > k), 1-based k (read-only, shared)."""
+    weight = np.where(np.arange(n) < k - 1, 2.0, 0.0)
+    weight[k - 1] = 1.0
+    weight.flags.writeable = False
+    return weight
+
+
+@lru_cache(maxsize=8)
+def _b_derivative_mask(n: int) -> np.ndarray:
+    """[k < m ≤ i] over (m, i, k), the support of ∂B_{i,k}/∂φ_m (read-only, shared)."""
+    m, i, k = np.ogrid[:n, :n, :n]
+    mask = (k < m) & (m <= i)
+    mask.flags.writeable = False
+    return mask
+
+
+@lru_cache(maxsize=8)
+def _max_index(n: int) -> np.ndarray:
+    """[q, m] → max(m, q) (read-only, shared)."""
+    start = np.maximum.outer(np.arange(n), np.arange(n))
+    start.flags.writeable = False
+    return start
+
+
 def configuration(w_h, phi, l: float) -> Configuration:
     """Build the :class:`Configuration` of head pose ``w_h`` = [x_h, y_h, θ_{y,h}] and yaw angles ``phi``."""
     w_h = np.asarray(w_h, dtype=float)
@@ -185,8 +211,7 @@ def second_point_jacobians(cfg: Configuration, k: int) -> tuple[np.ndarray, np.n
     n, l = cfg.n, cfg.l
     if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
         raise ValueError(f"second control point must be a wheel 1..{n}, got {k!r}")
-    weight = np.where(np.arange(n) < k - 1, 2.0, 0.0)
-    weight[k - 1] = 1.0
+    weight = _point_weights(n, k)
     gx, gy = -weight * l * cfg.sin, weight * l * cfg.cos
     J2 = np.vstack((np.cumsum(gx[::-1])[::-1], np.cumsum(gy[::-1])[::-1], np.arange(n) < k))
     th_h = cfg.w_h[2]
@@ -256,8 +281,7 @@ def b_matrix_derivative(cfg: Configuration) -> np.ndarray:
     """
     n, l = cfg.n, cfg.l
     E = _sin_prefix(cfg)
-    m, i, k = np.ogrid[:n, :n, :n]
-    return np.where((k < m) & (m <= i), -2.0 * l * (E.T[:, :, None] - E[None, :, :]), 0.0)
+    return np.where(_b_derivative_mask(n), -2.0 * l * (E.T[:, :, None] - E[None, :, :]), 0.0)
 
 
 def second_point_jacobian_derivative(cfg: Configuration, k: int) -> np.ndarray:
@@ -266,11 +290,10 @@ def second_point_jacobian_derivative(cfg: Configuration, k: int) -> np.ndarray:
     From :func:`second_point_jacobians`, ∂J_{k,2}[:, m]/∂φ_q = Σ_{j ≥ max(m, q)} w_j l [−cos θ_j, −sin θ_j, 0].
     """
     n, l = cfg.n, cfg.l
-    weight = np.where(np.arange(n) < k - 1, 2.0, 0.0)
-    weight[k - 1] = 1.0
+    weight = _point_weights(n, k)
     hx = np.append(np.cumsum((-weight * l * cfg.cos)[::-1])[::-1], 0.0)
     hy = np.append(np.cumsum((-weight * l * cfg.sin)[::-1])[::-1], 0.0)
-    start = np.maximum.outer(np.arange(n), np.arange(n))  # [q, m] → max(m, q)
+    start = _max_index(n)  # [q, m] → max(m, q)
     dJ2 = np.zeros((n, 3, n))
     dJ2[:, 0, :] = hx[start]
     dJ2[:, 1, :] = hy[start]

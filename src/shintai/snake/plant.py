@@ -21,6 +21,7 @@ import numpy as np
 from shintai.core.integrators import rk4_constant_rate
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
+from shintai.snake.linalg import lstsq
 from shintai.snake.model import check_mode, configuration, constraint_terms
 
 
@@ -63,16 +64,23 @@ class KinematicSnake(Body):
 
     def head_velocity(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
-        A, b_phi_dot = constraint_terms(w_h[2], phi, self.geometry.l, self.phi_dot)
-        A_s, rhs = A[self.grounded], b_phi_dot[self.grounded]
-        w_dot = np.linalg.lstsq(A_s, rhs, rcond=None)[0]
+        A_s, rhs = self._grounded_terms(w_h, phi)
+        w_dot = lstsq(A_s, rhs)
         return w_dot, A_s @ w_dot - rhs
+
+    def _grounded_terms(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        A, b_phi_dot = constraint_terms(w_h[2], phi, self.geometry.l, self.phi_dot)
+        return A[self.grounded], b_phi_dot[self.grounded]
+
+    def _head_rate(self, w_h: np.ndarray, phi: np.ndarray) -> np.ndarray:
+        """ẇ̃_h of :meth:`head_velocity` alone (RK4's later stages do not need the residual)."""
+        return lstsq(*self._grounded_terms(w_h, phi))
 
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
         k1, residual = self.head_velocity(self.w_h, self.phi)
         self.slip = float(np.max(np.abs(residual), initial=0.0))
-        w, phi = rk4_constant_rate(lambda w_, phi_: self.head_velocity(w_, phi_)[0], self.w_h, self.phi,
+        w, phi = rk4_constant_rate(self._head_rate, self.w_h, self.phi,
                                    self.phi_dot, self.dt / self.settings.rk4_steps, self.settings.rk4_steps, k1)
         if not (np.all(np.isfinite(w)) and np.all(np.isfinite(phi))):
             raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")

@@ -28,6 +28,7 @@ import numpy as np
 
 from shintai.core.runtime import Module, whole_multiple
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, SnakeGeometry, TwoPointGains
+from shintai.snake.linalg import singular_values, thin_svd
 from shintai.snake.model import (
     Configuration,
     check_mode,
@@ -39,6 +40,10 @@ from shintai.snake.model import (
     second_point_jacobians,
     wheel_poses,
 )
+
+
+_EPS = np.finfo(float).eps
+_MINUS_I3 = -np.eye(3)
 
 
 def candidate_modes(n: int, n_g: int, n_l: int, n_c: int, head_end_lifted: bool = True) -> np.ndarray:
@@ -65,7 +70,7 @@ def two_point_rows(grounded: np.ndarray) -> np.ndarray:
     """Rows of the all-grounded stacks [A, O; J_{n,1}, −I_3], [B; −J_{n,2}] that form A_{c,σ}, B_{c,σ} (2.15):
     the grounded wheels (T_σ, (2.11)), then the three rows of (2.13)."""
     n = len(grounded)
-    return np.r_[np.flatnonzero(grounded), n, n + 1, n + 2]
+    return np.concatenate((np.flatnonzero(grounded), np.arange(n, n + 3)))
 
 
 def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.ndarray]:
@@ -74,13 +79,14 @@ def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.nda
     return -float(excess @ excess), -2.0 * excess * np.sign(phi)
 
 
-def gram_det_gradient(X: np.ndarray) -> tuple[float, np.ndarray]:
+def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """det of the small Gram matrix of X (X^T X if tall, X X^T if wide) and its gradient w.r.t. X.
 
-    With X = U S V^T (thin SVD): det = Π s_i², ∂det/∂X = 2 U diag(s_i Π_{j≠i} s_j²) V^T. This is
-    2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays finite at rank loss.
+    With X = U S V^T (thin SVD, or ``svd`` if the caller has it): det = Π s_i², ∂det/∂X =
+    2 U diag(s_i Π_{j≠i} s_j²) V^T. This is 2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays
+    finite at rank loss.
     """
-    U, s, Vt = np.linalg.svd(X, full_matrices=False)
+    U, s, Vt = thin_svd(X) if svd is None else svd
     s2 = s * s
     others = np.prod(np.where(np.eye(len(s), dtype=bool), 1.0, s2), axis=1)
     return float(np.prod(s2)), 2.0 * (U * (s * others)) @ Vt
@@ -113,6 +119,7 @@ class TwoPointLaw:
             raise ValueError("no candidate mode satisfies (i), (ii') and (iii) for these n, n_g, n_l, n_c")
         # The rows of every candidate, grouped by n_σ so that all candidates of one size are evaluated by
         # one batched SVD (built once; §3.2.4's point is the cost of this search).
+        self._rows: dict[bytes, np.ndarray] = {}  # two_point_rows per grounded pattern, built when first used
         sizes = self.candidates.sum(axis=1)
         self._groups = []
         for size in np.unique(sizes):
@@ -134,7 +141,7 @@ class TwoPointLaw:
         A_full = np.zeros((n + 3, 6))
         A_full[:n, :3] = A
         A_full[n:, :3] = J1
-        A_full[n:, 3:] = -np.eye(3)
+        A_full[n:, 3:] = _MINUS_I3
         return A, J2, A_full, np.vstack((B, -J2))
 
     def mode_objectives(self, w_h, phi) -> np.ndarray:
@@ -145,9 +152,9 @@ class TwoPointLaw:
         V = np.zeros(len(self.candidates))
         for members, rows in self._groups:
             if k_m2:
-                V[members] += k_m2 * np.linalg.svd(B_full[rows], compute_uv=False)[:, -1]
+                V[members] += k_m2 * singular_values(B_full[rows])[:, -1]
             if k_m1:
-                V[members] += k_m1 * np.linalg.svd(A_full[rows], compute_uv=False)[:, -1]
+                V[members] += k_m1 * singular_values(A_full[rows])[:, -1]
         return V
 
     def select_mode(self, w_h, phi) -> tuple[int, np.ndarray]:
@@ -161,21 +168,24 @@ class TwoPointLaw:
         cfg = configuration(w_h, phi, self.geometry.l)
         grounded = check_mode(grounded, cfg.n)
         A, J2, A_full, B_full = self._stacks(cfg)
-        rows = two_point_rows(grounded)
+        key = grounded.tobytes()
+        rows = self._rows.get(key)
+        if rows is None:
+            rows = self._rows[key] = two_point_rows(grounded)
         A_c, B_c = A_full[rows], B_full[rows]
         c_c = self.controlled(cfg)
         xi = np.asarray(c_d_dot, float) + g.k_p * (np.asarray(c_d, float) - c_c)
 
-        U, s, Vt = np.linalg.svd(B_c, full_matrices=False)
-        keep = s > max(B_c.shape) * np.finfo(float).eps * s[0]
+        svd_b = U, s, Vt = thin_svd(B_c)
+        keep = s > max(B_c.shape) * _EPS * s[0]
         U, s_k, Vt_k = U[:, keep], s[keep], Vt[keep]
         u_c = Vt_k.T @ ((U.T @ (A_c @ xi)) / s_k)  # (3.4), B^† = V S^{-1} U^T
-        V_u, eta = self._objective(cfg, grounded, A, B_c, J2)
+        V_u, eta = self._objective(cfg, grounded, A, B_c, J2, svd_b)
         u_v = g.k_v * (eta - Vt_k.T @ (Vt_k @ eta))  # (3.5), I − B^†B = I − V V^T
         u = u_c + u_v
         u_norm = float(math.sqrt(u @ u))
         stopped = u_norm > g.u_lim  # (3.20)
-        sigma_a = float(np.linalg.svd(A_c, compute_uv=False)[-1])
+        sigma_a = float(singular_values(A_c)[-1])
         sigma_b = float(s[-1])
         V_m = g.k_m[0] * sigma_a + g.k_m[1] * sigma_b
         return Step(np.zeros_like(u) if stopped else u, u_norm, bool(stopped), c_c, sigma_a, sigma_b, V_m, V_u)
@@ -187,7 +197,7 @@ class TwoPointLaw:
         A, J2, _, B_full = self._stacks(cfg)
         return self._objective(cfg, grounded, A, B_full[two_point_rows(grounded)], J2)
 
-    def _objective(self, cfg, grounded, A, B_c, J2) -> tuple[float, np.ndarray]:
+    def _objective(self, cfg, grounded, A, B_c, J2, svd_b=None) -> tuple[float, np.ndarray]:
         k_u1, k_u2, k_u3 = self.gains.k_u
         V1, eta = joint_limit_objective(cfg.phi, self.gains.phi_th)
         V, eta = k_u1 * V1, k_u1 * eta
@@ -196,7 +206,7 @@ class TwoPointLaw:
             V += k_u2 * det_a
             eta = eta + k_u2 * np.einsum("mrc,rc->m", a_matrix_derivative(cfg)[:, grounded, :], grad_a)
         if k_u3:  # V_{u,3} = det(B_{c,σ} B_{c,σ}^T) (3.15), ∂B_{c,σ} = [∂B_σ; −∂J_{n,2}]
-            det_b, grad_b = gram_det_gradient(B_c)
+            det_b, grad_b = gram_det_gradient(B_c, svd_b)
             dB_c = np.concatenate((b_matrix_derivative(cfg)[:, grounded, :],
                                    -second_point_jacobian_derivative(cfg, cfg.n)), axis=1)
             V += k_u3 * det_b

@@ -20,6 +20,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -104,9 +105,9 @@ class TensionSensor:
         self.table_adc = self.full_scale * f / (f + spec.fsr_half_n)
         self.drift_counts = 0.0
 
-    @property
+    @functools.cached_property
     def zero_slope_counts_n(self) -> float:
-        """The calibration's slope at zero tension [counts/N] (its steepest)."""
+        """The calibration's slope at zero tension [counts/N] (its steepest; the table is fixed at construction)."""
         return float((self.table_adc[1] - self.table_adc[0]) / (self.table_tension[1] - self.table_tension[0]))
 
     def slope_counts_n(self, tension_n) -> np.ndarray:

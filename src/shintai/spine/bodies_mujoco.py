@@ -256,6 +256,7 @@ class SpineBody(MujocoBody):
         self._hand = self.id("equality", "hand")
         self._hand_mocap = m.body_mocapid[self.id("body", "hand")]
         self._pelvis = self.id("body", "link0")
+        self._spine_views = [(key, where) for key, where in self._views if not key.startswith(("q:", "dq:"))]
 
     # -- layout helpers ---------------------------------------------------------------------------
 
@@ -277,7 +278,7 @@ class SpineBody(MujocoBody):
         """The true posture θ (3n,) [rad] (eq. 4.1)."""
         q = self.data.qpos
         if self.joint_type == "hinge":
-            return q[self.spine_qpos].copy()
+            return q[self.spine_qpos]  # fancy indexing copies
         mats = np.zeros((self.robot.n, 9))
         for i, adr in enumerate(self.spine_qpos):
             mujoco.mju_quat2Mat(mats[i], q[adr:adr + 4])
@@ -349,9 +350,8 @@ class SpineBody(MujocoBody):
         d = self.data
         values = np.concatenate((d.qpos, d.qvel, d.ctrl, d.sensordata))
         snap = {"t": d.time}
-        for key, where in self._views:
-            if not key.startswith(("q:", "dq:")):
-                snap[key] = values[where]
+        for key, where in self._spine_views:
+            snap[key] = values[where]
         reel = d.qpos[self._reel_q]
         ten = d.ten_length[self.tendon_ids]
         tension = self._k_wire * np.maximum(ten - self._free_length, 0.0)  # = wire_tension()
@@ -366,13 +366,14 @@ class SpineBody(MujocoBody):
         return snap
 
     def apply(self, command) -> None:
-        command = dict(command)
-        self.hold(command.pop("hand", None))
-        duty = command.pop("duty", None)
+        hand = command.get("hand")
+        if hand is not None or self.data.eq_active[self._hand]:
+            self.hold(hand)
+        duty = command.get("duty")
         if duty is not None:
             duty = np.asarray(duty, dtype=float)
             if duty.shape != self._motor.shape:
                 raise ValueError(f"command 'duty' has shape {duty.shape}, the spine has {self._motor.size} muscles")
-            self.data.ctrl[self._motor] = np.clip(duty, -1.0, 1.0)
-        if command:
-            super().apply(command)
+            self.data.ctrl[self._motor] = np.minimum(np.maximum(duty, -1.0), 1.0)  # = np.clip, NaN included
+        if len(command) > ("hand" in command) + ("duty" in command):
+            super().apply({k: v for k, v in command.items() if k not in ("hand", "duty")})

@@ -256,7 +256,11 @@ class MuscleControl(Module):
     def set_targets(self, l_r=None, T_r=None, l_0=None) -> None:
         """Target length (L, LL), target tension (T) and spring natural length (S), per muscle."""
         for name, value in (("l_r", l_r), ("T_r", T_r), ("l_0", l_0)):
-            if value is not None:
+            if value is None:
+                continue
+            if isinstance(value, np.ndarray) and value.dtype == float and value.shape == (self.m,):
+                setattr(self, name, value.copy())  # the per-tick case: already one value per muscle
+            else:
                 setattr(self, name, np.broadcast_to(np.asarray(value, dtype=float), (self.m,)).copy())
 
     def set_gains(self, **changes) -> None:
@@ -279,22 +283,28 @@ class MuscleControl(Module):
         The same laws as :func:`law_L`, :func:`law_T`, :func:`law_S` and :func:`law_LL`
         (a test checks the two agree), written with masks cached per mode set for the 1 ms loop."""
         g, s = self.gains, self.state
-        if self._masks is None or self._masks[0] is not s.mode:
+        if self._masks is None or self._masks[0] is not s.mode or self._masks[1] is not g:
             mode = s.mode
-            self._masks = (mode, mode == _L, mode == _LL, (mode == _T) | (mode == _S), mode == _S)
-        _, is_l, is_ll, tension_mode, is_s = self._masks
-        length_mode = is_l | (is_ll & (T < g.T_l)) if is_ll.any() else is_l
+            is_l, is_ll, is_s = mode == _L, mode == _LL, mode == _S
+            tension_mode = (mode == _T) | is_s
+            # per mode set and gains: the masks, which of them are empty or full, the integral's clamp
+            self._masks = (mode, g, is_l, is_ll, bool(is_ll.any()), bool(is_l.all()), tension_mode,
+                           bool(tension_mode.any()), bool(tension_mode.all()), is_s, bool(is_s.any()),
+                           1.0 / np.maximum(g.K_Il, 1e-12))
+        _, _, is_l, is_ll, any_ll, all_l, tension_mode, any_tension, all_tension, is_s, any_s, limit = self._masks
+        length_mode = is_l | (is_ll & (T < g.T_l)) if any_ll else is_l
+        every = all_l or bool(length_mode.all())  # np.where over an all-true mask is its first operand
         o = np.zeros(self.m)
-        if length_mode.any():
+        if every or length_mode.any():
             err = l - self.l_r
-            limit = 1.0 / np.maximum(g.K_Il, 1e-12)
             integral = np.minimum(np.maximum(s.integral + err * dt, -limit), limit)
-            s.integral = np.where(length_mode, integral, s.integral)
-            o = np.where(length_mode, -g.K_Pl * err - g.K_Il * s.integral - g.K_Dl * ((l - s.l_prev) / dt), o)
-        if tension_mode.any():
-            e = T - (np.where(is_s, self.spring_reference(l), self.T_r) if is_s.any() else self.T_r)
+            s.integral = integral if every else np.where(length_mode, integral, s.integral)
+            law = -g.K_Pl * err - g.K_Il * s.integral - g.K_Dl * ((l - s.l_prev) / dt)
+            o = law if every else np.where(length_mode, law, o)
+        if any_tension:
+            e = T - (np.where(is_s, self.spring_reference(l), self.T_r) if any_s else self.T_r)
             tension_law = np.where(np.abs(e) >= g.T_t, -g.K_Pt * e - g.K_Dt * ((T - s.T_prev) / dt), 0.0)
-            o = np.where(tension_mode, tension_law, o)
+            o = tension_law if all_tension else np.where(tension_mode, tension_law, o)
         s.l_prev, s.T_prev = l, T
         self.last_duty = pwm_duty(o)
         return self.last_duty

@@ -84,6 +84,8 @@ def uniform_posture(whole, n: int) -> np.ndarray:
     """Uniform bending (eq. 4.29): the whole-spine angles Θ = (φ_s, θ_s, ψ_s) shared equally by the
     n joints (Appendix A.1.3: "pitch −30" on Cla's 5 joints is −6° each). (..., 3) → (..., 3n)."""
     whole = np.asarray(whole, dtype=float)
+    if whole.ndim == 1:  # one posture (the 1 ms players): the same values without np.tile's overhead
+        return np.concatenate((whole / n,) * n)
     return np.tile(whole / n, n)
 
 
@@ -130,6 +132,8 @@ class Chain:
         if theta.shape[-1] != 3 * n:
             raise ValueError(f"posture has {theta.shape[-1]} values, the chain has 3n = {3 * n}")
         batch = theta.shape[:-1]
+        if not batch and gap is None:
+            return self._frames_one(theta)
         joint_R = rpy_matrix(theta.reshape(batch + (n, 3)))
         offsets = np.broadcast_to(self.offsets, batch + (n, 3)).copy()
         if gap is not None:
@@ -143,6 +147,22 @@ class Chain:
             p[..., i + 1, :] = p[..., i, :] + np.einsum("...ab,...b->...a", R[..., i, :, :], offsets[..., i, :])
             Q[..., i, :, :] = R[..., i, :, :] @ self.rest[i]
             R[..., i + 1, :, :] = Q[..., i, :, :] @ joint_R[..., i, :, :]
+        return R, p, Q
+
+    def _frames_one(self, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`frames` of one posture without a gap change: the same products, on 2-D arrays (the
+        player's 1 ms path; the batched indexing costs more than the arithmetic there)."""
+        n = self.n
+        joint_R = rpy_matrix(theta.reshape(n, 3))
+        R = np.empty((n + 1, 3, 3))
+        p = np.empty((n + 1, 3))
+        Q = np.empty((n, 3, 3))
+        R[0] = E
+        p[0] = 0.0
+        for i in range(n):
+            np.add(p[i], np.einsum("ab,b->a", R[i], self.offsets[i]), out=p[i + 1])
+            np.matmul(R[i], self.rest[i], out=Q[i])
+            np.matmul(Q[i], joint_R[i], out=R[i + 1])
         return R, p, Q
 
     def joint_axes(self, theta, Q) -> np.ndarray:

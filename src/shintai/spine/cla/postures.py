@@ -128,26 +128,30 @@ class PostureObserver(Module):
             self.worst, self.current, self.acc, self.range_end, self.range_end_joint = 0.0, 0.0, 0.0, False, -1
             self.w_posture, self.w_tension, self.w_current, self.w_true, self.w_off = 0.0, 0.0, 0.0, [], []
         axis, snap = self.axis, snapshot
+        theta = snap["theta"]
         if self.stops is not None and not self.range_end:
-            at_stop = np.flatnonzero(np.abs(snap["theta"]) >= self.stops)
-            self.range_end, self.range_end_joint = bool(at_stop.size), int(at_stop[0]) if at_stop.size else -1
+            at_stop = np.abs(theta) >= self.stops
+            if at_stop.any():
+                self.range_end, self.range_end_joint = True, int(at_stop.argmax())
+        # means over the muscles as sum / count: np.mean's own arithmetic, without its overhead
+        current = float(np.abs(snap["current"]).sum()) / snap["current"].size
         if r < self.moving:
-            self.worst = max(self.worst, abs(math.degrees(float(snap["theta"][axis::3].sum())
-                                                          - snap["whole_ref"][axis])))
-            self.current += float(np.mean(np.abs(snap["current"])))
+            self.worst = max(self.worst, abs(math.degrees(float(theta[axis::3].sum()) - snap["whole_ref"][axis])))
+            self.current += current
             if self.log_every is not None:
                 self.acc += snap["posture"][axis]
                 if (r + 1) % self.log_every == 0:
                     self.log(snap["t"], measured_deg=np.degrees(self.acc / self.log_every),
                              reference_deg=np.degrees(snap["whole_ref"][axis]),
-                             tension_kgf=float(np.mean(snap["tension_true"])) / KGF_N)
+                             tension_kgf=float(snap["tension_true"].sum()) / snap["tension_true"].size / KGF_N)
                     self.acc = 0.0
             return None
         self.w_posture += snap["posture"][axis]
-        self.w_tension += float(np.mean(snap["tension_true"]))
-        self.w_current += float(np.mean(np.abs(snap["current"])))
-        self.w_true.append(float(np.degrees(whole_spine(snap["theta"])[axis])))
-        self.w_off.append(float(np.degrees(np.linalg.norm(whole_spine(snap["theta"]) - snap["whole_ref"]))))
+        self.w_tension += float(snap["tension_true"].sum()) / snap["tension_true"].size
+        self.w_current += current
+        whole = whole_spine(theta)
+        self.w_true.append(math.degrees(float(whole[axis])))
+        self.w_off.append(math.degrees(float(np.linalg.norm(whole - snap["whole_ref"]))))
         if r == self.moving + self.window - 1:
             self._row(self.targets[k // (self.moving + self.window)])
         return None

@@ -1,0 +1,57 @@
+"""The bench's sampling profiler: samples charged to the layer that spent the time."""
+
+import signal
+import time
+
+import numpy as np
+import pytest
+
+from shintai.core import Loop, Module, Recorder
+from shintai.core.benchmarks import NullBody
+from shintai.scenarios.sampling import LAYERS, line, sampled
+
+pytestmark = pytest.mark.skipif(not hasattr(signal, "SIGPROF"), reason="needs SIGPROF")
+
+
+def burn(seconds: float) -> None:
+    end = time.process_time() + seconds
+    while time.process_time() < end:
+        pass
+
+
+class HeavyBody(NullBody):
+    def step(self):
+        burn(3e-4)  # the "physics": a plain function called from the body's step
+        super().step()
+
+
+class HeavyModule(Module):
+    def update(self, snapshot):
+        burn(9e-4)
+        self.log(snapshot["t"], x=snapshot["x"])
+        return {"u": np.zeros(8)}
+
+
+def test_samples_go_to_the_layer_that_spent_the_time():
+    loop = Loop(HeavyBody(), [HeavyModule("heavy")], recorder=Recorder())
+    with sampled(0.001) as samples:
+        loop.run(0.4)
+    summary = samples.summary()
+    shares = summary["layers"]
+    assert list(shares) == list(LAYERS) and sum(shares.values()) == pytest.approx(1.0, abs=0.01)
+    assert summary["samples"] > 100
+    # three times the CPU in the module as in the body's step, little anywhere else
+    assert shares["control"] > shares["physics"] > 0.1
+    assert shares["control"] + shares["physics"] > 0.8
+    assert "core/runtime.py:step" in " ".join(summary["top"])  # the innermost frame in shintai's own source
+    assert line(summary).startswith(f"{summary['samples']} samples: physics")
+
+
+def test_sampling_stops_and_restores_the_handler():
+    before = signal.getsignal(signal.SIGPROF)
+    with sampled(0.001) as samples:
+        burn(0.05)
+    assert signal.getsignal(signal.SIGPROF) == before and signal.getitimer(signal.ITIMER_PROF) == (0.0, 0.0)
+    n = samples.count
+    burn(0.02)
+    assert samples.count == n and samples.layers["other"] == n
