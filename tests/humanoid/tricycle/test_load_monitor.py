@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from shintai.humanoid.tricycle.ch4_riding import Rider, build_ch4
-from shintai.humanoid.tricycle.load_monitor import LoadMonitor, recovery_windows, window_means
+from shintai.humanoid.tricycle.constants import BEFORE_S
+from shintai.humanoid.tricycle.load_monitor import LoadMonitor, fig4_3_metrics, recovery_windows, window_means
 
 
 @pytest.fixture(scope="module")
@@ -52,3 +53,26 @@ def test_sample_and_windows(seated):
     assert recovery_windows(t, np.zeros_like(t, bool)) is None
     means = window_means(t, {"x": t}, 2.0, 4.0)
     assert means["x"] == pytest.approx(2.95)
+
+
+def test_fig4_3_reads_the_most_loaded_servo_before_the_first_recovery():
+    """Fig. 4.3's metrics (load_monitor.fig4_3_metrics) on a made-up log: the window before the first recovery
+    picks the servo with the largest mean |τ|, ranks the wrist rolls, and signs the CoM's side."""
+    joints = ("l_knee_pitch", "l_wrist_roll", "r_wrist_roll")
+    t = np.arange(0.0, 10.0, 0.1)
+    recovering = (t >= 6.0) & (t < 7.0)
+    loads = np.where((t < 6.0)[:, None], [1.0, 5.0, 2.0], [9.0, 0.0, 0.0])  # the wrist leads before, the knee after
+
+    class Log:
+        def times(self, name):
+            return t
+
+        def values(self, name):
+            return {"load.joint_loads": loads, "load.joint_errors": np.tile([3.0, 1.0, 0.5], (len(t), 1)),
+                    "load.com_y": np.full(len(t), 0.03)}[name]
+
+    m = fig4_3_metrics(Log(), recovering, joints)
+    assert m["most_loaded_joint_before"] == "l_wrist_roll" and m["most_loaded_is_wrist_roll_before"] == 1
+    assert m["wrist_roll_rank_before"] == 1 and m["largest_error_joint_before"] == "l_knee_pitch"
+    assert m["wrist_roll_error_rank_before"] == 2
+    assert m["com_y_before_m"] == pytest.approx(0.03) and BEFORE_S < 6.0

@@ -31,7 +31,7 @@ from shintai.humanoid.tricycle.ch4_drive import (
     overturned,
 )
 from shintai.humanoid.tricycle.ch4_riding import REF_CHANNELS, Rider, build_ch4, vehicle_pose2d, vehicle_roll
-from shintai.humanoid.tricycle.load_monitor import LoadMonitor, recovery_windows, window_means
+from shintai.humanoid.tricycle.load_monitor import LoadMonitor, fig4_3_metrics, recovery_windows, window_means
 from shintai.humanoid.tricycle.navigation import crank_rate
 from shintai.humanoid.tricycle.rig import legs_pedalling, pedal_axles
 from shintai.humanoid.tricycle.switching import estimate_crank_angle
@@ -137,36 +137,6 @@ def metrics(runs, params):
     m.update(load_metrics(rec, rec_flag))
     m.update(fig4_3_metrics(rec, rec_flag, runs["with"].state.monitor.joints))
     return m
-
-
-def fig4_3_metrics(rec, rec_flag, joints) -> dict:
-    """Fig. 4.3 (§4.3.1) in the window before the first recovery — Fig. 7.16-(I)'s left, which §7.4.1 says shows
-    Fig. 4.3's problems ('図4.3と同様に図7.16-(I)の左図からは(問題1),(問題2)が観察される'): the most loaded joint
-    (largest mean |τ| of a servo), whether it is a wrist roll joint, the joint with the largest tracking error (what
-    the thesis estimated its loads from) and the wrist roll's rank by it, and the CoM's signed lateral offset."""
-    t = rec.times("load.joint_loads")
-    windows = recovery_windows(t, rec_flag)
-    if windows is None:
-        return {"most_loaded_joint_before": "", "most_loaded_is_wrist_roll_before": 0, "largest_error_joint_before": "",
-                "com_y_before_m": float("nan")}
-    keep = (t >= windows[0][0]) & (t < windows[0][1])
-    loads = rec.values("load.joint_loads").reshape(len(t), -1)[keep].mean(axis=0)
-    ranked = np.argsort(loads)[::-1]
-    top = joints[ranked[0]]
-    errors = rec.values("load.joint_errors").reshape(len(t), -1)[keep].mean(axis=0)
-    by_error = np.argsort(errors)[::-1]
-    return {"largest_error_joint_before": joints[by_error[0]],
-            "wrist_roll_error_rank_before": _wrist_roll_rank(by_error, joints),
-            "most_loaded_joint_before": top, "most_loaded_is_wrist_roll_before": int(top.endswith("wrist_roll")),
-            "most_loaded_joint_before_nm": float(loads[ranked[0]]),
-            "wrist_roll_load_before_nm": float(max(loads[joints.index(f"{s}_wrist_roll")] for s in ("l", "r"))),
-            "wrist_roll_rank_before": _wrist_roll_rank(ranked, joints),
-            "com_y_before_m": float(np.mean(rec.values("load.com_y")[keep]))}
-
-
-def _wrist_roll_rank(order, joints) -> int:
-    """The place (1 = first) of the first wrist roll servo in ``order`` (servo indices, most loaded first)."""
-    return int(min(np.flatnonzero([joints[i].endswith("wrist_roll") for i in order])) + 1)
 
 
 def load_metrics(rec, rec_flag) -> dict:
