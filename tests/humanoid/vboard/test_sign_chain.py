@@ -9,7 +9,7 @@ from shintai.humanoid.vboard.sign_chain import LINKS, probe
 # each link's sign at +0.2 s after a +1° toes-down step (notes/vboard-plant-id.md): the scooter answers forward at
 # first (+0.05 s) and then rolls back with the rider's CoM lag, p_d and τᵈ to the heel and δ toes-up
 SIGN_AT_200MS = {"cmd_pitch": 1, "sole_pitch": -1, "pad_pitch": -1, "wheel_speed": -1, "v": -1, "acc": -1,
-                 "com_rel": -1, "com_read": -1, "p_d": -1, "tau_d": -1, "delta": -1}
+                 "com_rel": -1, "p_d": -1, "tau_d": -1, "delta": -1}
 SIGN_AT_50MS = {"cmd_pitch": 1, "sole_pitch": 1, "pad_pitch": 1, "wheel_speed": 1, "v": 1, "com_rel": -1}
 
 

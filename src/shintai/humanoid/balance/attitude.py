@@ -25,7 +25,7 @@ import numpy as np
 from shintai.humanoid.balance.foot_attitude import quat_to_rot
 from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD
 
-_EZ = np.array([0.0, 0.0, 1.0])
+_EZ = np.eye(3)[2]  # the world's up
 
 
 def rotation_between(a, b) -> np.ndarray:

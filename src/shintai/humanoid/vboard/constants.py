@@ -45,3 +45,9 @@ TYRE = [0.15, 0.15, 0.16, 1]
 METAL = [0.6, 0.6, 0.62, 1]
 
 SWITCH_MARGIN = 0.02  # m, the contact switch's sensing region reaches this far beyond the pad
+
+# --- the numbers of vboard/sign_chain.py (issue 26's probe) -------------------------------------------------------
+PROBE_STEP_DEG = 1.0  # deg, chosen: the common-mode step of the commanded foot pitch (as the issue's probe)
+PROBE_T_STEP = 2.5  # s, chosen: after the lift has let go (≈1.0 s) and the stack has settled
+PROBE_AFTER = (0.05, 0.2, 0.5, 1.0)  # s after the step at which the links are read (issue 26)
+PROBE_WINDOW = 0.01  # s, chosen: each reading is the mean over ±this (the acceleration is a 4 ms difference)

@@ -14,7 +14,8 @@ from shintai.humanoid.vboard.governed_ride import governor_series, increase_tick
 from shintai.humanoid.vboard.governor import AXES
 from shintai.humanoid.vboard.plant_id import identification, series, window
 from shintai.humanoid.vboard.ride import theta_o, touchdown
-from shintai.humanoid.vboard.sign_chain import LINKS, PROBE_AFTER, chain_difference
+from shintai.humanoid.vboard.constants import PROBE_AFTER
+from shintai.humanoid.vboard.sign_chain import LINKS, chain_difference
 from shintai.humanoid.vboard.solc import switch_times
 
 

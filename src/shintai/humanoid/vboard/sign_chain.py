@@ -19,15 +19,12 @@ import numpy as np
 
 from shintai.humanoid.balance.foot_attitude import pitch as rot_pitch
 from shintai.humanoid.constants import CONTROL_PERIOD
-from shintai.humanoid.vboard.constants import D_VBOARD, THETA_O_ERROR_DEG, VIEW
+from shintai.humanoid.vboard.constants import (D_VBOARD, PROBE_AFTER, PROBE_STEP_DEG, PROBE_T_STEP, PROBE_WINDOW,
+                                             THETA_O_ERROR_DEG, VIEW)
 from shintai.humanoid.vboard.ride import VboardRide
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity, wheel_speeds
 from shintai.scenarios.experiment import Rig, run_rig
 
-PROBE_STEP_DEG = 1.0  # deg, chosen: the common-mode step of the commanded foot pitch (as the issue's probe)
-PROBE_T_STEP = 2.5  # s, chosen: after the lift has let go (≈1.0 s) and the stack has settled
-PROBE_AFTER = (0.05, 0.2, 0.5, 1.0)  # s after the step at which the links are read (issue 26)
-PROBE_WINDOW = 0.01  # s, chosen: each reading is the mean over ±this (the acceleration is a 4 ms difference)
 # (key, label, unit scale, unit): the links, in the chain's order
 LINKS = (("cmd_pitch", "commanded pitch", 180 / math.pi, "deg"),
          ("sole_pitch", "sole pitch", 180 / math.pi, "deg"),
@@ -36,7 +33,6 @@ LINKS = (("cmd_pitch", "commanded pitch", 180 / math.pi, "deg"),
          ("v", "scooter v", 1.0, "m/s"),
          ("acc", "scooter acceleration", 1.0, "m/s²"),
          ("com_rel", "CoM − scooter centre", 1e3, "mm"),
-         ("com_read", "CoM as the LIP reads it", 1e3, "mm"),
          ("p_d", "LIP's p_d", 1e3, "mm"),
          ("tau_d", "τᵈ pitch (L + R)", 1.0, "N·m"),
          ("delta", "δ pitch", 180 / math.pi, "deg"))
@@ -77,7 +73,6 @@ def chain_rig(step: bool, seed: int = 0, t_step: float = PROBE_T_STEP, step_deg:
                 "sole_pitch": float(np.mean([rot_pitch(d.site_xmat[sole[s]].reshape(3, 3)) for s in "lr"])),
                 "pad_pitch": (th["r"] + th["l"]) / 2, "wheel_speed": (w["r"] + w["l"]) / 2, "v": v,
                 "com_rel": float(rel[0] * h[0] + rel[1] * h[1]),
-                "com_read": float(getattr(stab, "read_com", (math.nan,))[0]),
                 "p_d": float(np.asarray(snapshot["zmp_d"])[0]),
                 "tau_d": float(np.asarray(snapshot["tau_d_L"])[1] + np.asarray(snapshot["tau_d_R"])[1]),
                 "delta": float((delta[1] + delta[3]) / 2)}

@@ -149,7 +149,7 @@ experiment(
         Param("T_r_kgf", 1.0, "T-mode target tension [kgf]", lo=0.05, hi=30.0),
     ],
     checks=E11_CHECKS,
-    thesis={f"{mode}.{column}": ThesisValue(value, f"Table 4.8 row {THESIS_ROW[mode]}", f"{mode}.{column}")
+    thesis={f"{mode}.{column}": ThesisValue(value, f"seed 003 Table 4.8 row {THESIS_ROW[mode]}", f"{mode}.{column}")
             for mode, row in TABLE_4_8.items() for column, value in zip(TABLE_COLUMNS, row) if value is not None},
     constraints=[
         (lambda p: all(m in MODE_CONFIGS for m in names(p)) and len(set(names(p))) == len(names(p)),
