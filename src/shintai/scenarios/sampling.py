@@ -30,6 +30,9 @@ ROOT = str(Path(shintai.__file__).parent) + "/"
 LAYERS = ("physics", "body_io", "control", "runtime", "recording", "other")
 
 
+_KINDS: dict = {}  # code object → kind, filled as samples meet them
+
+
 def _kind(code, module_globals) -> str | None:
     """``body``, ``control``, ``runtime`` or ``recording`` for a method (or a function nested in one) of a
     class of that kind, from its qualified name and its module's globals (the frame's locals are not read:
@@ -51,9 +54,6 @@ def _kind(code, module_globals) -> str | None:
     return kind
 
 
-_KINDS: dict = {}
-
-
 def layer_of(frame) -> str:
     """The layer a sampled stack belongs to (module docstring): the kind of the first method met walking
     out from the innermost frame; a body's method (or a function it called) counts as ``physics`` if its ``step``
@@ -61,11 +61,13 @@ def layer_of(frame) -> str:
     while frame is not None:
         kind = _kind(frame.f_code, frame.f_globals)
         if kind == "body":
-            while frame is not None and _kind(frame.f_code, frame.f_globals) in ("body", None):
+            while kind in ("body", None):
                 if kind == "body" and frame.f_code.co_name == "step":
                     return "physics"
                 frame = frame.f_back
-                kind = frame and _kind(frame.f_code, frame.f_globals)
+                if frame is None:
+                    break
+                kind = _kind(frame.f_code, frame.f_globals)
             return "body_io"
         if kind is not None:
             return kind
