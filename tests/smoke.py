@@ -69,3 +69,15 @@ def check_contract(scenario_id: str, run: SmokeRun) -> None:
         assert check["metric"] in written["metrics"], f"check {check['name']}: metric {check['metric']} not produced"
     for key, value in written["thesis"].items():
         assert "§" in value["where"] or "seed" in value["where"], f"thesis value {key} does not say where"
+
+
+def registry_test(runs: tuple[str, ...]):
+    """A body's registry test over ``runs`` (its ``test_smoke_runs.py``: ``test_runs_at_its_smoke_size =
+    registry_test(RUNS)``): each runs at its declared smoke sizes and writes what the contract says."""
+    import pytest
+
+    @pytest.mark.parametrize("scenario_id", runs)
+    def test_runs_at_its_smoke_size(scenario_id, smoke):
+        check_contract(scenario_id, smoke(scenario_id))
+
+    return test_runs_at_its_smoke_size

@@ -1,11 +1,8 @@
 """The registry test for core's experiments: each runs at its declared smoke sizes (tests/smoke.py)."""
 
-import pytest
-from smoke import check_contract
+from smoke import registry_test
 
 RUNS = ('core.minjerk', 'core.search-index',)
 
 
-@pytest.mark.parametrize("scenario_id", RUNS)
-def test_runs_at_its_smoke_size(scenario_id, smoke):
-    check_contract(scenario_id, smoke(scenario_id))
+test_runs_at_its_smoke_size = registry_test(RUNS)

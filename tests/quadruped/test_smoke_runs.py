@@ -1,7 +1,6 @@
 """The registry test for quadruped's experiments: each runs at its declared smoke sizes (tests/smoke.py)."""
 
-import pytest
-from smoke import check_contract
+from smoke import registry_test
 
 RUNS = (
     "quadruped.avoid-known",
@@ -17,6 +16,4 @@ RUNS = (
 )
 
 
-@pytest.mark.parametrize("scenario_id", RUNS)
-def test_runs_at_its_smoke_size(scenario_id, smoke):
-    check_contract(scenario_id, smoke(scenario_id))
+test_runs_at_its_smoke_size = registry_test(RUNS)

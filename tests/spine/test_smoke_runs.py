@@ -2,8 +2,7 @@
 and the shared layers): each runs at its declared smoke sizes (tests/smoke.py); Cla's are in cla/ (two files, so
 ``--dist loadfile`` spreads the spine's runs over two workers)."""
 
-import pytest
-from smoke import check_contract
+from smoke import registry_test
 
 RUNS = (
     "spine.bebe-tracking",
@@ -21,6 +20,4 @@ RUNS = (
 )
 
 
-@pytest.mark.parametrize("scenario_id", RUNS)
-def test_runs_at_its_smoke_size(scenario_id, smoke):
-    check_contract(scenario_id, smoke(scenario_id))
+test_runs_at_its_smoke_size = registry_test(RUNS)
