@@ -21,13 +21,14 @@ def burn(seconds: float) -> None:
 
 class HeavyBody(NullBody):
     def step(self):
-        burn(3e-4)  # the "physics": a plain function called from the body's step
+        burn(6e-3)  # the "physics": a plain function called from the body's step (burns longer than a 4 ms
+        # scheduler tick, at which a loaded kernel delivers SIGPROF: shorter ones alias with it)
         super().step()
 
 
 class HeavyModule(Module):
     def update(self, snapshot):
-        burn(9e-4)
+        burn(18e-3)
         self.log(snapshot["t"], x=snapshot["x"])
         return {"u": np.zeros(8)}
 
@@ -35,7 +36,7 @@ class HeavyModule(Module):
 def test_samples_go_to_the_layer_that_spent_the_time():
     loop = Loop(HeavyBody(), [HeavyModule("heavy")], recorder=Recorder())
     with sampled(0.001) as samples:
-        loop.run(0.4)
+        loop.run(0.02)  # 20 steps, ≈0.48 s of CPU
     summary = samples.summary()
     shares = summary["layers"]
     assert list(shares) == list(LAYERS) and sum(shares.values()) == pytest.approx(1.0, abs=0.01)
