@@ -116,3 +116,16 @@ def tracking(ctx, runs: dict) -> None:
             ax.grid(alpha=0.3)
         axes[-1, 0].set_xlabel("time [s]")
         axes[-1, 1].set_xlabel("time [s]")
+
+
+def tension_sensor(ctx, tension, counts, probes, steps) -> None:
+    """Fig. 3.34's analogue: the count against the tension, and the count step's width at the probe tensions."""
+    with ctx.figure("tension_sensor", nrows=1, ncols=2, figsize=(11, 4)) as (_fig, (ax_c, ax_s)):
+        ax_c.plot(tension, counts, lw=1.2)
+        ax_c.set_xlabel("applied tension [N]")
+        ax_c.set_ylabel("10-bit ADC count")
+        ax_c.set_title("calibration (cf. Fig. 3.34)", fontsize=9)
+        ax_s.loglog(probes, steps, "o-")
+        ax_s.set_xlabel("tension [N]")
+        ax_s.set_ylabel("one count's step [N]")
+        ax_s.set_title("resolution: fine at small tensions, coarse at large", fontsize=9)

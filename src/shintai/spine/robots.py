@@ -917,3 +917,12 @@ TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
 # chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
 CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
 TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
+
+# --- experiments.tension_sensor (Fig. 3.34) ---
+# The bench calibration (chosen; Fig. 3.34's axes are not in the text): known tensions from 0 to Table 3.2's maximum
+# muscle tension in SENSOR_SWEEP_STEP_N steps, each read as the 10-bit count; the resolution is reported at
+# SENSOR_PROBE_N (the width of the count step there [N]). "Coarse at large forces" declared before the first run
+# as the step at the largest probe at least SENSOR_COARSE_RATIO × the step at the smallest (an order of magnitude)
+SENSOR_SWEEP_STEP_N = 1e-3
+SENSOR_PROBE_N = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 300.0)
+SENSOR_COARSE_RATIO = 10.0

@@ -96,3 +96,32 @@ CLA_NECK_LIMIT_RAD = np.radians(60.0)  # chosen: within the neck servos' range
 
 # --- experiments.cla_cop_balance ---
 FALLEN_FORCE = 0.5  # fallen: the soles carry less than half the weight (chosen)
+
+# --- experiments.cla_poses (Figs. 3.38, 5.1) ---
+# The poses (whole-spine roll, pitch, yaw [deg]; + roll bends to Cla's right, + yaw turns its front to the left),
+# chosen, because the thesis shows photographs only: the side bends of pick_place's ROLL_DEG, a two-thirds twist,
+# and a twist with a side bend. Each pose's hand target is where the model puts the hand at that spine posture
+# with the arm of POSE_ARMS (right hand; the left for bend_left).
+POSES_DEG = {"bend_right": (ROLL_DEG, 0.0, 0.0), "bend_left": (-ROLL_DEG, 0.0, 0.0),
+             "twist_right": (0.0, 0.0, -60.0), "twist_bend": (45.0, 0.0, -45.0)}
+# The arms of each pose (shoulder roll, shoulder pitch, elbow [rad], chosen): in the side bends the hand reaches
+# straight down below the shoulder ("lowest", solved: POSE_LOW_TARGET), in the twists the arm is held out
+# sideways, level, so that the hand goes where the turned shoulders carry it
+POSE_ARM_OUT = (1.57, 0.0, 0.0)
+POSE_LOW_TARGET_XY_M = (0.04, 0.18)  # the side bends' hand target: ahead of the pelvis, 18 cm to the side, at the soles
+POSE_MOVE_S, POSE_HOLD_S, POSE_BACK_S = 2.0, 1.0, 1.5  # to the pose, held (measured at its end), back to rest
+# Declared before the first run: a pose is reached when the hand ends its hold within 5 cm of the target (about
+# three hand radii: the muscle spine under the arm's weight falls a few degrees short, 4° ≈ 3 cm at the hand)
+POSE_TOLERANCE_M = 0.05
+# Fig. 5.1: the hand "ほぼ足裏の高さと同程度" — read as the hand's lowest point within 5 cm of the soles' (a quarter
+# of the soles' 19 cm drop below the seat), declared before the first run
+SOLE_LEVEL_TOLERANCE_M = 0.05
+
+# --- experiments.cla_rpy (Fig. 4.42) ---
+# Combined roll–pitch–yaw commands (whole spine [deg], chosen: Fig. 4.42 prints none), each reached by minimum
+# jerk in RPY_MOVE_S and measured over the last RPY_WINDOW_S of RPY_HOLD_S
+RPY_POSTURES_DEG = ((20.0, 15.0, 30.0), (-20.0, 15.0, -30.0), (15.0, -10.0, 20.0))
+RPY_MOVE_S, RPY_HOLD_S, RPY_WINDOW_S = 2.0, 2.0, 0.5
+# The error bound, declared before the first run: the thesis's own largest mean model error in L mode, Table 4.8
+# all-L pitch 4.73° (§4.7.3, 'モデルとの誤差の平均'; roll 3.68°)
+RPY_BOUND_DEG = 4.73
