@@ -428,3 +428,37 @@ def software_spring(ctx, k_list, trials: dict) -> None:
         ax.set_xscale("log")
         ax.set_xlabel("k_s (thesis units)")
         ax.set_ylabel("posture error after release [deg]")
+
+
+def poses(ctx, runs, poses_deg) -> None:
+    """Figs. 3.38 and 5.1: the hands' height against the soles', the spine's roll and yaw, and each pose's hand
+    error, with the spine and locked."""
+    colours = {"spine": "tab:blue", "locked": "0.4"}
+    with ctx.figure("poses", nrows=1, ncols=3, figsize=(15, 4)) as (_fig, (ax_z, ax_a, ax_e)):
+        names = list(poses_deg)
+        for k, (v, run) in enumerate(runs.items()):
+            t, sole = run.log.times("hand_r"), run.state["sole_z"]
+            ax_z.plot(t, run.log.values("hand_r")[:, 2] - sole, color=colours[v], label=f"right hand, {v}")
+            ax_z.plot(t, run.log.values("hand_l")[:, 2] - sole, "--", color=colours[v], label=f"left hand, {v}")
+            whole = run.log.values("whole_deg")
+            ax_a.plot(t, whole[:, 0], color=colours[v], label=f"roll, {v}")
+            ax_a.plot(t, whole[:, 2], ":", color=colours[v], label=f"yaw, {v}")
+            key, labels = run.log.values("key").astype(int), np.array(run.state["labels"])
+            errors = []
+            for pose in names:
+                held = np.flatnonzero(labels[key] == f"{pose}_hold")[-1]
+                hand = run.log.values("hand_l" if pose.endswith("_left") else "hand_r")[held]
+                errors.append(100 * np.linalg.norm(hand - run.state["targets"][pose][0]))
+            ax_e.bar(np.arange(len(names)) + 0.4 * k, errors, 0.4, color=colours[v], label=v)
+        ax_z.axhline(0.0, color="k", lw=0.8)
+        ax_z.set_xlabel("t [s]")
+        ax_z.set_ylabel("hand centre above the soles [m]")
+        ax_z.set_title("hands against the soles' height (Fig. 5.1)", fontsize=9)
+        ax_a.set_xlabel("t [s]")
+        ax_a.set_ylabel("whole-spine angle [deg]")
+        ax_a.set_title("side bend (roll) and twist (yaw) reached", fontsize=9)
+        ax_e.set_xticks(np.arange(len(names)) + 0.2, names, fontsize=7)
+        ax_e.set_ylabel("hand from its target at the end of the hold [cm]")
+        ax_e.set_title("poses (Fig. 3.38)", fontsize=9)
+        for ax in (ax_z, ax_a, ax_e):
+            ax.legend(fontsize=7)
