@@ -462,3 +462,17 @@ def poses(ctx, runs, poses_deg) -> None:
         ax_e.set_title("poses (Fig. 3.38)", fontsize=9)
         for ax in (ax_z, ax_a, ax_e):
             ax.legend(fontsize=7)
+
+
+def rpy(ctx, log, postures_deg, each_s) -> None:
+    """Fig. 4.42: the whole-spine roll, pitch and yaw reached against the commanded combined postures."""
+    t, whole = log.times("whole_deg"), log.values("whole_deg")
+    with ctx.figure("rpy", nrows=1, ncols=1, figsize=(9, 4)) as (_fig, ax):
+        for i, (axis, colour) in enumerate(zip(AXES, ("tab:blue", "tab:orange", "tab:green"))):
+            ax.plot(t, whole[:, i], color=colour, label=f"{axis} reached")
+            for k, goal in enumerate(postures_deg):
+                ax.plot([t[0] + k * each_s, t[0] + (k + 1) * each_s], [goal[i]] * 2, ":", color=colour)
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("whole-spine angle [deg]")
+        ax.set_title("combined roll–pitch–yaw commands (dotted) and the spine (cf. Figs. 4.42–4.43)", fontsize=9)
+        ax.legend(fontsize=7)
