@@ -105,3 +105,17 @@ def test_sq43_design_short_run(smoke):
     assert m["best_start"] in (1, 2, 3, 4) and m["start4_joins_path"] in (0, 1, 2, 3)
     step = result["params"]["step_deg"]
     assert m["travel_deg_start1"] == step * m["steps_start1"] and m["travel_deg_start3"] == step * m["steps_start3"]
+
+
+def test_tension_sensor_resolution_follows_the_calibration_slope(smoke):
+    """Fig. 3.34's bench run: each count step's width is one count over the calibration's local slope (the sweep
+    measures what the model's derivative says), and it widens with the tension."""
+    from shintai.spine.actuators import TensionSensor
+    from shintai.spine.robots import CLA
+
+    m = smoke("spine.tension-sensor").result["metrics"]
+    sensor = TensionSensor(CLA.sensor)
+    for t in (10.0, 100.0, 300.0):
+        assert m[f"step_at_{t:g}n_n"] == pytest.approx(1.0 / float(sensor.slope_counts_n(t)), rel=0.25)
+    assert m["step_at_1n_n"] < m["step_at_10n_n"] < m["step_at_100n_n"] < m["step_at_300n_n"]
+    assert m["readback_error_large_n"] > 10 * m["readback_error_small_n"]

@@ -16,6 +16,7 @@ RUNS = (
     "spine.sq43-design",
     "spine.sq43-levelling",
     "spine.sq43-trot-ga",
+    "spine.tension-sensor",
     "spine.tracking-loops",
 )
 

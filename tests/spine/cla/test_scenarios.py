@@ -38,3 +38,24 @@ def test_pull_plan_reaches_behind_the_object_only_when_leaning():
     goals = [pattern.update({"t": t}).get("goal") for t in np.arange(0.0, TIMELINE[-1][0], 0.01)]
     leans = [g[1] for g in goals if g is not None]
     assert np.allclose(leans, [0.0, 0.0, lean, lean, 0.5 * lean, 0.0])  # fold, lift, over, down, half, pulled
+
+
+def test_poses_short(smoke):
+    """Figs. 3.38 and 5.1, short moves: the side bends bring the hands far lower with the spine than locked, the
+    model leaves the locked arm short of every pose's target, and the lock holds."""
+    run = smoke("spine.cla-poses")
+    m = run.result["metrics"]
+    assert m["hand_above_soles_spine_m"] < m["hand_above_soles_locked_m"] - 0.05
+    assert abs(m["roll_bend_right_spine_deg"]) > 45.0 and m["max_spine_change_locked_deg"] < 1.5
+    assert min(v for k, v in m.items() if k.startswith("model_gap_")) > 0.05
+    assert (run.out / "poses.png").exists()
+
+
+def test_rpy_short(smoke):
+    """Fig. 4.42, short moves: the spine follows every axis of the combined commands (errors a fraction of the
+    commanded angles), the joints near the model's uniform bend."""
+    run = smoke("spine.cla-rpy")
+    m = run.result["metrics"]
+    assert 0.0 < m["max_axis_error_deg"] < 10.0
+    assert all(m[f"joint_rms_{k}_deg"] < 4.0 for k in (1, 2, 3))
+    assert (run.out / "rpy.png").exists()
