@@ -30,10 +30,12 @@ ROWS = (
                "の最適化とほぼ同一の経路をたどっており，ほぼ等しい評価値で収束' (Fig. 3.4, no number); the chosen "
                "optimum is '一番目の経路で収束した際の設計変数' (ambiguous: the first path, or the best one) and is "
                "shown only as a model (Fig. 3.5)",
-        why_not="the thesis's outcome is not reproduced on our compliant-spine stand-in for its FEM model (no mesh, "
-                "material, L, l or evaluation time in the text): start 3 ends best (8.76 mm; thesis start 2), start "
-                "4 joins start 2 (thesis: start 1), starts 1 and 3 travel 14° and 25° before stopping (declared "
-                "'right after starting': ≤ 5°), every start stops on the a4 = ±30° bound",
+        not_comparable="the landscape its search crossed: the FEM model of each shape (§3.2.3 '設計変数から生成された形"
+                       "状の脊椎の有限要素モデルをロボットモデルに組み込む': no mesh, material, overall length L or part "
+                       "length l), the evaluation time ('ある時刻における左前脚の脚先端の z 軸方向の位置') and Fig. 3.4's "
+                       "values; on our compliant-spine stand-in start 3 ends best (8.76 mm; thesis start 2), start 4 joins "
+                       "start 2 (thesis: start 1), starts 1 and 3 travel 14° and 25° before stopping (declared 'right "
+                       "after starting': ≤ 5°), every start stops on the a4 = ±30° bound (consistency checks now)",
     ),
     Row(
         key="003:fig3.6",
@@ -121,8 +123,10 @@ ROWS = (
              "read 10 s after loading",
         result="§3.6.1: '小さい力の領域で分解能が高く大きい力の領域で分解能が粗い'; drift over time, so absolute "
                "accuracy is low but relative readings are usable. Plot only, no number",
-        not_built="no open issue: our TensionSensor curve is not compared with Fig. 3.34 (the plot would have to "
-                  "be digitised)",
+        not_comparable="Fig. 3.34's calibration points (counts against tension for the #400 and #402 sensors: a plot "
+                       "only) nor Fig. 3.33's l, b and k: spine.tension-sensor sweeps our one sensor (eq. 3.3, chosen "
+                       "constants, 10-bit ADC) — one count is 0.035 N at 1 N, 0.67 N at 100 N and 4.4 N at 300 N (×124), "
+                       "the property §3.6.1 states, which our constants were chosen to have (consistency checks)",
     ),
     Row(
         key="003:fig3.38",
@@ -130,8 +134,11 @@ ROWS = (
         what="Cla takes twist and lateral-bend postures",
         result="§3.6.3: 'ねじりや側屈の稼働範囲により，脊椎が無ければ不可能であるような姿勢を可能にしている'. "
                "Photographs only, no number",
-        not_built="no open issue: a posing scenario on the whole-body Cla (spine/cla/body.py, issue 17) would show it; "
-                  "issue 17 named its behaviours, not these photographs",
+        why_not="on the seated whole-body MuJoCo Cla (muscle spine, L mode) with four poses of ours, the hand targets "
+                "from the model: both 72° side bends (71.5° reached) and the 60° twist (54.6°) put the hand within "
+                "2.8–3.1 cm of its target, which the arm alone misses by 8.8–12.6 cm with the spine locked; but the "
+                "twist with a side bend (45°, −45°) reaches roll 52.5°, yaw −18.8°: five of the eight muscles go slack "
+                "and the hand ends 13.8 cm off (declared 5 cm), so 3 of 4 poses (notes/cla-poses.md)",
     ),
     Row(
         key="003:fig3.53",
@@ -169,9 +176,11 @@ ROWS = (
         result="§4.2.2: 'ログから 1 つおきにデータを取り出し再生すると倍の速さで動作した。2つおきにすると3倍になった"
                "。4倍・8倍も試行したところ、4倍は4倍の速さで動作したが、8倍はモータの最高速度を超えたようで、速い動"
                "作の部分は追従しきれなかった' — no error number, no demonstration speed",
-        why_not="nothing compared: the thesis prints no demonstration speed or error, and ours (15 mm/s peak muscle "
-                "speed) was chosen inside the band its outcome implies (10.4–20.7 mm/s, 1/8–1/4 of Table 3.2's "
-                "82.9 mm/s), so 2–4× tracking (0.9–2.9 % error) and 8× saturation (37 % of ticks) follow from it",
+        not_comparable="the taught motion's speed or its encoder log, or any replay error (§4.2.2: 'その時のエンコーダの"
+                       "ログを記録した' — the log is not shown; '8倍はモータの最高速度を超えたようで' rests on that speed): "
+                       "ours (15 mm/s peak muscle speed) was chosen inside the band the outcome implies (10.4–20.7 mm/s, "
+                       "1/8–1/4 of Table 3.2's 82.9 mm/s), so 2–4× tracking (0.9–2.9 % error) and 8× saturation (37 % "
+                       "of ticks) follow from it",
     ),
     Row(
         key="003:table4.2",
@@ -252,9 +261,11 @@ ROWS = (
                "−20 (returning) 3.82 A mean; per-muscle posture means reach 7.92 A (A.20, L + S mid), maxima "
                "10.08 A (A.27); blank where the spine collapsed and was held by hand; L + T "
                "'データを取ることができなかった'",
-        why_not="nothing compared: the tensions (A.1–A.14) were used to build the model (clavicle height, routing), "
-                "so a load-pattern check would be consistency; the currents have no read-out scale, and 221 of the "
-                "1,200 per-muscle posture means exceed the 1.1 A stall current derived from Table 3.2 (up to 7.92 A)",
+        not_comparable="the currents' read-out scale: §3.6.2 gives only I = V/R across the 0.1 Ω shunt (eq. 3.6), not "
+                       "how V was amplified and converted, and the printed 'A' cannot be amperes — 221 of the 1,200 "
+                       "per-muscle posture means exceed the 1.1 A stall current derived from Table 3.2 (up to 7.92 A); "
+                       "the tensions (A.1–A.14, kgf, through Fig. 3.34's unprinted calibration) were used to build the "
+                       "model (clavicle height, routing), so they cannot also test it",
     ),
     Row(
         key="003:fig4.42",
@@ -262,8 +273,10 @@ ROWS = (
         what="Cla's spine commanded in roll, pitch and yaw on the geometric model and controlled on the robot",
         result="§4.7.4: model posture (Fig. 4.42) and the controlled robot (Fig. 4.43) shown side by side. "
                "Photographs only, no number",
-        not_built="no open issue: a combined roll–pitch–yaw command on the MuJoCo Cla compared with its model "
-                  "posture (spine.control-modes runs single-axis sequences only)",
+        difference="on the seated whole-body MuJoCo Cla (arms resting, L mode), three combined postures of ours "
+                   "((20, 15, 30), (−20, 15, −30), (15, −10, 20)° roll, pitch, yaw; the thesis prints none): every axis "
+                   "within 4.72° of the command (bound declared: Table 4.8's all-L 4.73°), the shortfall all in yaw "
+                   "(−4.5°, +4.7° of ±30°) and pitch (+3.0°); joints 1.0–1.7° RMS from the model's uniform bend",
     ),
     Row(
         key="003:fig4.47",
@@ -271,7 +284,10 @@ ROWS = (
         what="contraction force against contraction ratio at constant pressure of the home-made McKibben muscle and "
              "the Shadow Air Muscle used in BeBe",
         result="Fig. 4.47: characteristic curves only, no number in the text",
-        not_built="no open issue: our BeBe plant's McKibben law is chosen, not fitted to or compared with Fig. 4.47",
+        not_comparable="the curves' values or the constant pressure they were taken at (§4.8.2 '各々の内圧一定での収縮"
+                       "力と収縮率の関係を Fig. 4.47 に示す' — a plot only): our BeBe plant's McKibben law is chosen "
+                       "(linear, 30 N at no contraction to 0 at the 30 % stroke; spine.bebe-tracking's mckibben_force_at_* "
+                       "metrics)",
     ),
     Row(
         key="003:fig4.53",
@@ -280,9 +296,10 @@ ROWS = (
              "and whether two muscles' shifts superpose",
         result="Fig. 4.53: the v_i field and the same/inverse-direction split (plot only); §4.8.3: '実験の結果、BeBe "
                "は単純な重ね合わせは適用できない構造であることがわかった [38]'; hysteresis present",
-        not_built="no open issue: spine.bebe-tracking measures our plant's v_i the same way as its method, but "
-                  "nothing compares them with Fig. 4.53; its non-superposition and hysteresis checks test "
-                  "properties built into our plant (consistency)",
+        not_comparable="the 36 measured shifts v_i (§4.8.3 'Fig. 4.53 は各筋に対応する v_i をプロットした図である' — a "
+                       "plot only), the muscle arrangement of Table 4.10 (not in the text) or [38]'s superposition "
+                       "numbers: spine.bebe-tracking measures our plant's v_i the same way, and its non-superposition and "
+                       "hysteresis checks test properties built into our plant (consistency)",
     ),
     Row(
         key="003:fig4.54",
@@ -321,8 +338,11 @@ ROWS = (
         what="Cla bends sideways, forwards/backwards and twists with the arms coordinated, seated",
         result="§5.2.1: seated on a chair too high for the feet to touch the floor, bending sideways brings the hand "
                "'ほぼ足裏の高さと同程度の高さまで到達'; arms coordinated so they do not hit the body. Photographs",
-        not_built="no open issue: issue 17 built the whole-body Cla and §5.2's named behaviours; this seated "
-                  "bending with coordinated arms (photographs) was not among its scenarios",
+        difference="on the seated whole-body MuJoCo Cla (muscle spine, L mode; soles 26.5 cm above the floor), side "
+                   "bends of 72° (ours; 71.5° reached) with the arm solved on the model to reach straight down: the "
+                   "hand's lowest point 0.3 cm below the soles' on both sides (declared: within 5 cm); spine locked, "
+                   "11.5 cm above. The front–back and twist bends and the arms' coordination against hitting the body "
+                   "(our arms do not collide with the trunk) are not tested",
     ),
     Row(
         key="003:fig5.2",

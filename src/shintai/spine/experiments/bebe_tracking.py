@@ -21,7 +21,7 @@ RUN_KEYS = ("dead_zone_px", "cos_threshold", "target_amplitude_m", "target_perio
 @scenario(
     "spine.bebe-tracking",
     source="seed 003 §4.8.3–4.8.4",
-    covers=("003:fig4.54", "003:fig4.55", "003:fig4.56"),
+    covers=("003:fig4.47", "003:fig4.53", "003:fig4.54", "003:fig4.55", "003:fig4.56"),
     summary="BeBe: 36 on/off muscles track a target by the cos > 0.2, off-before-on rule; pushes, forced-on muscles",
     params=(
         Param("dead_zone_px", 15.0, "dead-zone radius (not given; chosen below the median single-muscle shift)",
@@ -107,4 +107,14 @@ def bebe_tracking(ctx) -> dict:
         "disturbances_not_recovered": int(np.sum(~np.isfinite(recovery))),
         "disturbance_dead_zone_fraction": float(res.disturbed.in_dead_zone.mean()),
         **forced_metrics(res),
+        **mckibben_metrics(),
     }
+
+
+def mckibben_metrics() -> dict:
+    """Fig. 4.47's axes on our plant: the mean McKibben force at full pressure at 0, 15 and 30 % contraction (the
+    chosen linear law; Fig. 4.47's curves are not in the text, so nothing is compared)."""
+    plant = bebe.BeBePlant()
+    plant.pressure[:] = 1.0
+    return {f"mckibben_force_at_{pct}pct_n": float(plant.tension(plant.rest_length * (1 - pct / 100))[0].mean())
+            for pct in (0, 15, 30)}
