@@ -94,17 +94,19 @@ def test_bebe_tracking_short_run(smoke):
 
 def test_sq43_design_short_run(smoke):
     """§3.2.3: the four compass searches end at local optima within |a_i| ≤ 30° (consistency); the thesis's
-    outcome — which start wins, which stall at once, which path start 4 joins — is compared by reproduction
-    checks on values of ours that are well defined (whatever they are)."""
+    outcome — which start wins, which stall at once, which path start 4 joins — is reported beside ours, with no
+    reproduction check (Table 3.1's row is not comparable: its FEM landscape is not printed), on values of ours
+    that are well defined (whatever they are)."""
     result = smoke("spine.sq43-design").result
     checks = {c["name"]: c for c in result["checks"]}
     assert all(c["ok"] for c in checks.values() if c["kind"] == "consistency"), checks
-    outcome = {"best_start", "start4_joins_path", "travel_deg_start1", "travel_deg_start3"}
-    assert outcome <= {n for n, c in checks.items() if c["kind"] == "reproduction"}
+    assert not [n for n, c in checks.items() if c["kind"] == "reproduction"]
+    assert {"best_start", "stuck_immediately", "start4_joins"} <= set(result["thesis"])
     m = result["metrics"]
     assert m["best_start"] in (1, 2, 3, 4) and m["start4_joins_path"] in (0, 1, 2, 3)
     step = result["params"]["step_deg"]
     assert m["travel_deg_start1"] == step * m["steps_start1"] and m["travel_deg_start3"] == step * m["steps_start3"]
+    assert m["starts_1_3_stuck"] == sum(m[f"travel_deg_start{k}"] <= 5.0 for k in (1, 3))
 
 
 def test_tension_sensor_resolution_follows_the_calibration_slope(smoke):

@@ -15,10 +15,6 @@ from shintai.spine.sq43.constants import STUCK_TRAVEL_DEG
 from shintai.spine.sq43.plots import plot_sq43, plot_sq43_shapes
 
 
-NOT_FEM = (" — on our stand-in's landscape, not the thesis's FEM model (not printed: no mesh, material, L, l or "
-           "evaluation time), so not a reproduction")
-
-
 def joined_path(path: sq43.SearchPath, earlier: list) -> int:
     """1-based index of the first earlier path this one meets (a shared point), else 0."""
     visited = {tuple(np.round(a, 6)) for a in path.points}
@@ -74,20 +70,15 @@ def grid_optimum(f, step: float) -> tuple[np.ndarray, float]:
         # また開始点が設計変数1及び設計変数3の場合は，開始後すぐに極小値に陥っていることが分かる．また設計変数4を
         # 開始点とした場合は最適化の途中から，設計変数1の場合の最適化とほぼ同一の経路をたどっており，ほぼ等しい評価値で
         # 収束している"
-        # Consistency, not reproduction: the landscape these paths cross is our stand-in's, and the thesis's rests on
-        # its FEM model, which it does not print (row 003:table3.1 is "not comparable"); the outcome is still checked
-        Check("best_start", "==", 2, "§3.2.3 (Fig. 3.4): start 2's final evaluation is the highest" + NOT_FEM,
-              kind="consistency"),
-        Check("start4_joins_path", "==", 1, "§3.2.3 (Fig. 3.4): start 4 joins start 1's path part-way and converges "
-              "to nearly the same value" + NOT_FEM, kind="consistency"),
-        *[Check(f"travel_deg_start{k}", "<=", STUCK_TRAVEL_DEG, f"§3.2.3 (Fig. 3.4): start {k} falls into a local "
-                f"optimum right after starting ('開始後すぐに'; declared: within {STUCK_TRAVEL_DEG:g}° of travel, "
-                "10 of the thesis's 0.5° steps)" + NOT_FEM, kind="consistency") for k in (1, 3)],
+        # The thesis's outcome (§3.2.3, Fig. 3.4: start 2 ends best, starts 1 and 3 stuck right away, start 4 joins
+        # start 1) is reported beside ours in `thesis`, not checked: the landscape the paths cross is our stand-in's,
+        # the thesis's rests on its FEM model, which it does not print (row 003:table3.1 is "not comparable")
     ),
     thesis={
         "best_start": ThesisValue(2, "§3.2.3 Fig. 3.4 ('start 2 reached the highest evaluation')", "best_start"),
-        "stuck_immediately": ThesisValue("starts 1 and 3 fell into local optima right after starting",
-                                         "§3.2.3 Fig. 3.4", "travel_deg_start1"),
+        "stuck_immediately": ThesisValue(f"starts 1 and 3 fell into local optima right after starting (ours: stuck "
+                                         f"= within {STUCK_TRAVEL_DEG:g}° of travel)", "§3.2.3 Fig. 3.4",
+                                         "starts_1_3_stuck"),
         "start4_joins": ThesisValue(1, "§3.2.3 ('start 4 followed nearly the same path as start 1')",
                                     "start4_joins_path"),
         "optimum": ThesisValue("not in the text (Fig. 3.5 only)", "§3.2.3", "best_a1_deg"),
@@ -127,6 +118,7 @@ def sq43_design(ctx) -> dict:
         "torsional_stiffness_gain": sq43.torsional_stiffness(end, prm) / sq43.torsional_stiffness(
             sq43.TABLE_3_1[best], prm),
         "start4_joins_path": joined_path(paths[3], paths[:3]),
+        "starts_1_3_stuck": sum((len(paths[k].points) - 1) * p["step_deg"] <= STUCK_TRAVEL_DEG for k in (0, 2)),
         "evaluations": int(sum(pa.evaluations for pa in paths)),
         "local_max_violations": local_max_violations(f, paths, p["step_deg"]),
         "bound_violations": int(sum(not sq43.feasible(pa.end) for pa in paths)),
