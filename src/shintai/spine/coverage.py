@@ -35,7 +35,7 @@ ROWS = (
                        "length l), the evaluation time ('ある時刻における左前脚の脚先端の z 軸方向の位置') and Fig. 3.4's "
                        "values; on our compliant-spine stand-in start 3 ends best (8.76 mm; thesis start 2), start 4 joins "
                        "start 2 (thesis: start 1), starts 1 and 3 travel 14° and 25° before stopping (declared 'right "
-                       "after starting': ≤ 5°), every start stops on the a4 = ±30° bound (consistency checks now)",
+                       "after starting': ≤ 5°), every start stops on the a4 = ±30° bound (reported, not checked)",
     ),
     Row(
         key="003:fig3.6",
