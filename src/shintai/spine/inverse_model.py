@@ -216,11 +216,13 @@ def train(net: MLP, x: np.ndarray, t: np.ndarray, train_error: Callable[[MLP], f
 
 
 class NeuralInverse:
-    """q → θ by a sigmoid network trained on the 343 uniform-bend postures of ``model`` (§4.4.3)."""
+    """q → θ by a sigmoid network trained on the 343 uniform-bend postures of ``model`` (§4.4.3), per joint and
+    axis on ``grid_deg`` (the thesis's Cla grid by default; a spine of other joint ranges passes its own)."""
 
-    def __init__(self, model: SpineModel, hidden=(40,), rng: np.random.Generator | None = None, slope: float = 1.0):
+    def __init__(self, model: SpineModel, hidden=(40,), rng: np.random.Generator | None = None, slope: float = 1.0,
+                 grid_deg=GRID_DEG):
         self.model = model
-        self.theta = training_postures(model.n)
+        self.theta = training_postures(model.n, grid_deg)
         self.q = model.lengths(self.theta)
         self.x_scale = Normaliser.fit(self.q, INPUT_RANGE)
         self.y_scale = Normaliser.fit(self.theta, TARGET_RANGE)

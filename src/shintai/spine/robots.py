@@ -887,6 +887,8 @@ TEST_LIMIT_DEG = 15.0  # chosen: random test postures inside the teacher range (
 TARGET_RANGE = (0.1, 0.9)  # chosen: sigmoid targets kept off the flat ends 0 and 1
 INPUT_RANGE = (-1.0, 1.0)  # chosen: lengths mapped to ±1 for the sigmoid's linear region
 PINV_RCOND = 1e-6  # chosen: rank threshold of J_m⁺ relative to σ_max (module doc)
+NN_HIDDEN = 40  # §4.4.3: "(8-40-15) の層構成が適している" — the hidden layer chosen of the eight tried (Table 4.3)
+NN_ITERATIONS = 2000  # chosen: L-BFGS iterations of a spine loop's network (spine.inverse-model's default)
 
 # --- posture_person ---
 # -- chosen constants (the thesis gives none of these for §5.9)
