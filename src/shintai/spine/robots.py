@@ -919,3 +919,6 @@ TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
 # chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
 CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
 TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
+# chosen: a spine loop's estimate has diverged once its whole-spine error norm passes 10° (half the pitch range above),
+# and the NN's estimate is checked to stay within 5° (a quarter of it)
+ESTIMATE_DIVERGED_DEG, NN_ESTIMATE_LIMIT_DEG = 10.0, 5.0

@@ -38,6 +38,7 @@ from shintai.spine.inverse_model import NeuralInverse, jacobian_integration
 from shintai.spine.robots import (
     CONCURRENT_THRESHOLD_DEG,
     CONCURRENT_WINDOW_S,
+    ESTIMATE_DIVERGED_DEG,
     GRID_DEG,
     KENTA_CAMERA_FOVY_DEG,
     NN_HIDDEN,
@@ -243,11 +244,12 @@ def tracking_series(log, run: Tracking) -> dict:
 
 def estimate_errors(estimates, t_from: float) -> dict:
     """The spine loop's posture estimate against the true posture from body time ``t_from``: RMS and max of the
-    whole-spine (roll, pitch, yaw) error norm [deg], and the run's first time it exceeds 10° (NaN: never)."""
+    whole-spine (roll, pitch, yaw) error norm [deg], and the first time (from the loop's first run) it exceeds
+    ``ESTIMATE_DIVERGED_DEG`` (NaN: never)."""
     t = np.array([e[0] for e in estimates])
     err = np.degrees([np.linalg.norm(e[1] - e[2]) for e in estimates])
     late = err[t >= t_from] if np.any(t >= t_from) else err
-    over = t[err > 10.0]  # chosen: 10° of whole-spine angle, half the loop's commanded pitch range
+    over = t[err > ESTIMATE_DIVERGED_DEG]
     return {"estimate_rms_error_deg": float(np.sqrt(np.mean(late ** 2))), "estimate_max_error_deg": float(late.max()),
             "estimate_diverged_at_s": float(over[0] - estimates[0][0]) if len(over) else float("nan")}
 

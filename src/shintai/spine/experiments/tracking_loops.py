@@ -15,13 +15,13 @@ from shintai.spine.cla.tracking import cla_tracking
 from shintai.spine.control import SETPOINTS
 from shintai.spine.kenta.tracking import SWUNG, kenta_tracking
 from shintai.spine.plots import tracking
+from shintai.spine.robots import NN_ESTIMATE_LIMIT_DEG
 from shintai.spine.tracking_loops import ESTIMATORS, TRACKING_PERIODS_S, tracking_metrics, tracking_signals
 
 LOOPS = {"kenta": ("eyes", "neck", "spine"), "cla": ("neck", "spine")}
 ROWS = {"kenta": "003:fig5.14", "cla": "003:fig5.12"}
 VIEW = {"kenta": {"track": "link0", "distance": 2.2, "azimuth": 120.0, "elevation": -15},
         "cla": {"track": "link0", "distance": 1.2, "azimuth": 150.0, "elevation": -10}}
-NN_ESTIMATE_LIMIT_DEG = 5.0  # chosen: a quarter of the loop's ±20° pitch range (TRACKING_SPINE_RANGE_RAD)
 
 
 def _list(text: str) -> list[str]:
