@@ -16,8 +16,8 @@ different periods moving the eyes, the neck and the spine by visual feedback, ru
   previous estimate, the method §4.4.3 rejects; then the whole-spine yaw += g·h, pitch −= g·v as a uniform
   bend (eq. 4.29) turned into encoder targets ``l_r`` for the muscle controller (L mode) of the next stage.
 * :class:`TargetPath` — the experimenter moving the coloured ball (``target`` channel), a Lissajous path.
-* :class:`ArmSwing` — Kenta's two arms swung through a cycle while the loops track (§5.2.11, Fig. 5.13: "脊椎の
-  動きと首の動き・両腕の動きを同時に行っている"): the shoulder pitch ±a sin(2π t / T), left and right in
+* :class:`ArmSwing` — Kenta's two arms swung through a cycle (while the loops track, and in Fig. 5.13's run,
+  §5.2.11: "脊椎の動きと首の動き・両腕の動きを同時に行っている"): the shoulder pitch ±a sin(2π t / T), left and right in
   antiphase, the elbow bent a (1 − cos(2π t / T)) / 2 with it (the motion is not in the text: chosen).
 
 Periods and gains are not in the text ("周期の異なる3つの制御ループ", §5.2.12): chosen in ``TRACKING_*`` below.

@@ -111,8 +111,8 @@ def all_at_once_metrics(log, run: AllAtOnce) -> dict:
     keys_at = np.searchsorted(s["t"], run.key_s * np.arange(1, len(run.keys) + 1) - 1e-9)
     reached = s["spine"][np.minimum(keys_at, len(s["t"]) - 1)]
     out["spine_key_error_deg"] = float(np.linalg.norm(reached - np.degrees(run.keys), axis=1).mean())
-    out["spine_key_reach_fraction"] = float(np.linalg.norm(reached, axis=1).sum()
-                                            / np.linalg.norm(np.degrees(run.keys), axis=1).sum())
+    wanted = np.linalg.norm(np.degrees(run.keys), axis=1).sum()
+    out["spine_key_reach_fraction"] = float(np.linalg.norm(reached, axis=1).sum() / wanted) if wanted else float("nan")
     out["neck_following_error_deg"] = float(np.sqrt(np.mean((s["neck"] - s["neck_cmd"]) ** 2)))
     out["arm_following_error_deg"] = float(np.sqrt(np.mean((s["arms"] - s["arms_cmd"]) ** 2)))
     return out
