@@ -31,7 +31,8 @@ Back-propagation gives ∂E/∂W through the deltas of eq. (4.31). Two trainers 
   (default: it reaches the thesis's accuracy in seconds, where plain back-propagation needs
   ~10⁵ epochs).
 
-As in the thesis the network kept is the one with the smallest training error norm seen during
+A spine of other joint ranges is taught the same way on its own 7-point grid (``grid_deg``; Kenta's: ±9°,
+inside its ±10° stops, §3.7.1). As in the thesis the network kept is the one with the smallest training error norm seen during
 training (Table 4.3, "minimum of the error norm"). Errors are Euclidean norms over the 3n joint
 angles in degrees (§4.4.3 reasons for the norm).
 """
