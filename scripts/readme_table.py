@@ -6,7 +6,9 @@
 Replaces the block between ``<!-- reproduction:begin ... -->`` and ``<!-- reproduction:end -->``. Rows whose
 scenarios are not in the folder keep the status "not run here": reproduce everything before writing it.
 With ``--seed S`` only thesis S's rows and summary line are rewritten from the folder (a body re-run on its
-own); the other rows are kept as they are, and the commits of both runs are listed.
+own); the other rows are kept as they are, and the commits of both runs are listed. With ``--present`` only
+the rows all of whose scenarios are in the folder are rewritten (some scenarios re-run on their own); every
+thesis's summary line is recounted from the statuses of its rows.
 """
 
 from __future__ import annotations
@@ -66,10 +68,42 @@ def merge_seed(old: str, new: str, seed: str) -> str:
     return "\n".join(out[:first] + [li for li in new_lines if _row_seed(li) == seed] + out[first:])
 
 
+def _cells(line: str) -> list[str]:
+    return [c.strip() for c in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
+
+
+def merge_present(old: str, new: str, present: set[str]) -> str:
+    """``old``'s block with the rows whose scenarios are all in ``present`` taken from ``new``, the summary lines
+    recounted from the rows' statuses and the commits of both runs listed (module docstring)."""
+    old_lines, new_lines = old.splitlines(), new.splitlines()
+    fresh = {m.group(0): li for li in new_lines if (m := re.match(r"\| \d{3}:\S+ \|", li))}
+    commits = sorted(set(COMMITS.search(old_lines[0]).group(1).split(", ")) |
+                     set(COMMITS.search(new_lines[0]).group(1).split(", ")))
+    out = [COMMITS.sub(f"`shintai reproduce` at {', '.join(commits)}) -->", new_lines[0])]
+    for line in old_lines[1:]:
+        m = re.match(r"\| \d{3}:\S+ \|", line)
+        if m and m.group(0) in fresh:
+            scenarios = set(re.findall(r"`([^`]+)`", _cells(fresh[m.group(0)])[2]))
+            if scenarios and scenarios <= present:
+                line = fresh[m.group(0)]
+        out.append(line)
+    counts: dict[str, dict[str, int]] = {}
+    for line in out:
+        if _row_seed(line):
+            status = _cells(line)[3]
+            counts.setdefault(_row_seed(line), dict.fromkeys(STATUSES, 0))[status] += 1
+    for i, line in enumerate(out):
+        if _summary_seed(line):
+            name = _cells(line)[0]
+            out[i] = f"| {name} | " + " | ".join(str(counts[line[2:5]][s]) for s in STATUSES) + " |"
+    return "\n".join(out)
+
+
 def main(folder: str, readme: str = "README.md", *options: str) -> int:
     seed = options[1] if len(options) == 2 and options[0] == "--seed" else None
-    if options and seed is None:
-        print("usage: readme_table.py FOLDER [README.md] [--seed S]", file=sys.stderr)
+    present = options == ("--present",)
+    if options and seed is None and not present:
+        print("usage: readme_table.py FOLDER [README.md] [--seed S | --present]", file=sys.stderr)
         return 2
     load_all()
     out = Path(folder)
@@ -80,8 +114,10 @@ def main(folder: str, readme: str = "README.md", *options: str) -> int:
     section = readme_section(results, coverage(results))
     if seed is not None:
         section = merge_seed(text[begin:end], section, seed)
+    elif present:
+        section = merge_present(text[begin:end], section, set(ids))
     Path(readme).write_text(text[:begin] + section + text[end:])
-    print(f"{readme}: reproduction table from {len(ids)} scenarios in {out}" + (f" (thesis {seed} only)" if seed else ""))
+    print(f"{readme}: reproduction table from {len(ids)} scenarios in {out}" + (f" (thesis {seed} only)" if seed else " (their rows only)" if present else ""))
     return 0
 
 

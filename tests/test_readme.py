@@ -112,3 +112,35 @@ def test_readme_table_for_one_thesis_keeps_the_other_rows():
                             "| 004:a | §2 | `q.a` | reproduced | new | — |",
                             "| 004:b | §3 | `q.b` | not comparable | new | — |",
                             "| 005:c | §4 | `x.c` | reproduced | kept | — |"]
+
+
+def test_readme_table_for_some_scenarios_rewrites_their_rows_and_recounts():
+    """``--present``: only rows all of whose scenarios are in the folder are rewritten; a row one of whose
+    scenarios did not run keeps its line; the summary lines are recounted from the rows."""
+    import importlib.util
+
+    from shintai.scenarios.coverage import STATUSES
+
+    spec = importlib.util.spec_from_file_location("readme_table", README.parents[0] / "scripts" / "readme_table.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    head = ["| thesis | " + " | ".join(STATUSES) + " |", "|---|" + "---|" * len(STATUSES)]
+    rows_head = ["| row | where | scenarios | status | why | our reproduction checks |", "|---|---|---|---|---|---|"]
+    old = "\n".join([
+        "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at aaa) -->", "",
+        *head, "| 004 Yamaguchi — learning quadruped | 9 | 9 | 9 | 9 | 9 |", "", *rows_head,
+        "| 004:a | §2 | `q.a` | not reproduced | old | — |", "| 004:b | §3 | `q.a`, `q.b` | reproduced | kept | — |",
+        "| 004:c | §4 \\| Fig. 1 | — | not yet built | old | — |", "", "<!-- reproduction:end -->"])
+    new = "\n".join([
+        "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at bbb) -->", "",
+        *head, "| 004 Yamaguchi — learning quadruped | 0 | 0 | 0 | 0 | 0 |", "", *rows_head,
+        "| 004:a | §2 | `q.a` | reproduced | new | — |", "| 004:b | §3 | `q.a`, `q.b` | not reproduced | not run: q.b | — |",
+        "| 004:c | §4 \\| Fig. 1 | `q.c` | not comparable | new | — |", "", "<!-- reproduction:end -->"])
+    merged = script.merge_present(old, new, {"q.a", "q.c"}).splitlines()
+    assert "aaa, bbb" in merged[0]
+    assert merged[8:11] == ["| 004:a | §2 | `q.a` | reproduced | new | — |",
+                            "| 004:b | §3 | `q.a`, `q.b` | reproduced | kept | — |",
+                            "| 004:c | §4 \\| Fig. 1 | `q.c` | not comparable | new | — |"]
+    counts = {"reproduced": 2, "not comparable": 1}
+    assert merged[4] == "| 004 Yamaguchi — learning quadruped | " + " | ".join(
+        str(counts.get(s, 0)) for s in STATUSES) + " |"

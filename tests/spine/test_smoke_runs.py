@@ -10,6 +10,7 @@ RUNS = (
     "spine.hanzous-brachiation",
     "spine.hanzous-ga",
     "spine.inverse-model",
+    "spine.kenta-spine-neck-arms",
     "spine.kenta-taught-postures",
     "spine.rabbit-stiffening",
     "spine.sq43-crawl",

@@ -450,26 +450,22 @@ ROWS = (
              "routines run in parallel",
         result="§5.2.10: realised by tuning the two routines' gains. No number",
         difference="the whole-body Cla (spine/cla/body.py) seated; the colour-region detection replaced by the ball's "
-                   "centre projected into the head camera; the spine's posture from the muscle lengths by Jacobian "
-                   "integration (eqs. 4.26–4.28) instead of the NN; neck loop 66 ms, spine loop 198 ms, gains chosen: "
-                   "over an 8 s ±18° sweep the ball stays in view, RMS 4.0° off axis (max 5.9°), neck 71 % / spine "
-                   "29 % of the pan",
+                   "centre projected into the head camera; the spine's posture from the muscle lengths by Cla's "
+                   "8-40-15 NN (§4.4.3); neck loop 66 ms, spine loop 198 ms, gains chosen: over an 8 s ±18° sweep the "
+                   "ball stays in view, RMS 4.1° off axis (max 6.1°), neck 75 % / spine 25 % of the pan, the NN's "
+                   "estimate within 1.3° of the true whole-spine posture; by Jacobian integration instead (the "
+                   "'cla-jacobian' run) Cla tracks as well (RMS 4.0°, estimate within 0.9°)",
     ),
     Row(
         key="003:fig5.13",
         where="seed 003 §5.2.11, Fig. 5.13",
         what="Kenta moves spine, neck and both arms at once",
         result="§5.2.11: shown in photographs only, no number",
-        difference="spine.tracking-loops' Kenta run: both arms swing (shoulders ±30° in antiphase, elbows with "
-                   "them, 2 s; chosen) while the eye, neck and spine loops track the ball",
-        why_not="the arms move in every 0.5 s window but the spine in 8 % of them (concurrent fraction 0.08 < 0.9): "
-                "the spine loop's posture estimate from the encoder lengths runs away 0.4 s in and its command stays "
-                "on its clip: eq. 4.27's J_m⁺ on Kenta's J_m (rank 24 of 30 straight) keeps one of the six lost "
-                "directions once it returns off straight (σ 1.6e-6 of σ_max at a 0.19° estimate, above our rcond "
-                "1e-6), so 0.006 mm of length error becomes a 6.9 rad step (roll 30°) — the divergence §4.4.3 "
-                "reports for the method ('小さい誤差が生じると…発散していきやすい'); the thesis's NN is not built "
-                "for Kenta. A probe with rcond 1e-3 keeps the estimate within 0.7° but the well-tracking eyes then "
-                "leave the spine still (fraction 0.00) (notes/tracking-loops.md)",
+        difference="spine.kenta-spine-neck-arms: the spine through three whole-spine key postures (ours) by the "
+                   "forward model alone (eq. 4.25, L mode, linear player), the neck's pan/tilt and both arms swinging "
+                   "(ours); in every 0.5 s window each of spine, neck and each arm turns by more than 1° (fraction "
+                   "1.00); the spine sweeps 23°, reaching 86 % of each commanded bend (3.1° short on average: the "
+                   "muscles against the stiff discs)",
     ),
     Row(
         key="003:fig5.14",
@@ -478,9 +474,12 @@ ROWS = (
              "parallel",
         result="§5.2.12: realised ('実現している'); no period or error printed",
         difference="our whole-body Kenta; eye loop 33 ms, neck 66 ms, spine 198 ms (periods not in the text: chosen), "
-                   "each a Module of one Loop; the ball's centre projected into the left eye camera; in view 99.4 % "
-                   "of the time, but the spine loop's posture estimate runs away and the eyes and neck track alone",
-        why_not="the ball leaves the eyes' view (notes/tracking-loops.md)",
+                   "each a Module of one Loop; the ball's centre projected into the left eye camera; the spine's "
+                   "posture by Kenta's own NN (§4.4.3's method, 40-40-30 on 343 uniform bends of ±9°/joint: ours, the "
+                   "thesis prints none for Kenta): in view 100 %, RMS 1.0° (max 1.5°), the estimate within 0.7°, eyes "
+                   "78 % / neck 15 % / spine 6 % of the pan. With Jacobian integration (eqs. 4.26–4.28) on the same "
+                   "run the estimate diverges 0.40 s in (2402° whole-spine error), the spine sits on its clip and "
+                   "the eyes and neck track alone (in view 99.4 %, RMS 4.1°, max 34.5°)",
     ),
     Row(
         key="003:fig5.21",

@@ -31,7 +31,8 @@ Back-propagation gives ∂E/∂W through the deltas of eq. (4.31). Two trainers 
   (default: it reaches the thesis's accuracy in seconds, where plain back-propagation needs
   ~10⁵ epochs).
 
-As in the thesis the network kept is the one with the smallest training error norm seen during
+A spine of other joint ranges is taught the same way on its own 7-point grid (``grid_deg``; Kenta's: ±9°,
+inside its ±10° stops, §3.7.1). As in the thesis the network kept is the one with the smallest training error norm seen during
 training (Table 4.3, "minimum of the error norm"). Errors are Euclidean norms over the 3n joint
 angles in degrees (§4.4.3 reasons for the norm).
 """
@@ -216,11 +217,13 @@ def train(net: MLP, x: np.ndarray, t: np.ndarray, train_error: Callable[[MLP], f
 
 
 class NeuralInverse:
-    """q → θ by a sigmoid network trained on the 343 uniform-bend postures of ``model`` (§4.4.3)."""
+    """q → θ by a sigmoid network trained on the 343 uniform-bend postures of ``model`` (§4.4.3), per joint and
+    axis on ``grid_deg`` (the thesis's Cla grid by default; a spine of other joint ranges passes its own)."""
 
-    def __init__(self, model: SpineModel, hidden=(40,), rng: np.random.Generator | None = None, slope: float = 1.0):
+    def __init__(self, model: SpineModel, hidden=(40,), rng: np.random.Generator | None = None, slope: float = 1.0,
+                 grid_deg=GRID_DEG):
         self.model = model
-        self.theta = training_postures(model.n)
+        self.theta = training_postures(model.n, grid_deg)
         self.q = model.lengths(self.theta)
         self.x_scale = Normaliser.fit(self.q, INPUT_RANGE)
         self.y_scale = Normaliser.fit(self.theta, TARGET_RANGE)

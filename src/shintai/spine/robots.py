@@ -887,6 +887,8 @@ TEST_LIMIT_DEG = 15.0  # chosen: random test postures inside the teacher range (
 TARGET_RANGE = (0.1, 0.9)  # chosen: sigmoid targets kept off the flat ends 0 and 1
 INPUT_RANGE = (-1.0, 1.0)  # chosen: lengths mapped to ±1 for the sigmoid's linear region
 PINV_RCOND = 1e-6  # chosen: rank threshold of J_m⁺ relative to σ_max (module doc)
+NN_HIDDEN = 40  # §4.4.3: "(8-40-15) の層構成が適している" — the hidden layer chosen of the eight tried (Table 4.3)
+NN_ITERATIONS = 2000  # chosen: L-BFGS iterations of a spine loop's network (spine.inverse-model's default)
 
 # --- posture_person ---
 # -- chosen constants (the thesis gives none of these for §5.9)
@@ -917,6 +919,9 @@ TARGET_DISTANCE_M = 0.9  # chosen: the ball 0.9 m in front of the eyes
 # chosen: "moving at once" (Fig. 5.13) judged per 0.5 s window, a part moving when it turns by more than 1°
 CONCURRENT_WINDOW_S, CONCURRENT_THRESHOLD_DEG = 0.5, 1.0
 TRACKING_SPINE_RANGE_RAD = (math.radians(30.0), math.radians(20.0))  # chosen: whole-spine |yaw|, |pitch| commanded
+# chosen: a spine loop's estimate has diverged once its whole-spine error norm passes 10° (half the pitch range above),
+# and the NN's estimate is checked to stay within 5° (a quarter of it)
+ESTIMATE_DIVERGED_DEG, NN_ESTIMATE_LIMIT_DEG = 10.0, 5.0
 
 # --- experiments.tension_sensor (Fig. 3.34) ---
 # The bench calibration (chosen; Fig. 3.34's axes are not in the text): known tensions from 0 to Table 3.2's maximum

@@ -9,13 +9,15 @@ different periods moving the eyes, the neck and the spine by visual feedback, ru
 
 * :class:`GazeLoop` — a servoed part (eyes or neck): every period, pan += g·h and pitch ∓= g·v, with (h, v)
   the target's angles from the optical axis (left and up positive), clipped to the part's range.
-* :class:`SpineGazeLoop` — every period, the present whole-spine posture from the encoder lengths by Jacobian
-  integration (eqs. 4.26–4.28; §4.4.3's other method, the NN, needs a network trained per robot), then the
-  whole-spine yaw += g·h, pitch −= g·v as a uniform bend (eq. 4.29) turned into encoder targets ``l_r`` for
-  the muscle controller (L mode) of the next stage.
+* :class:`SpineGazeLoop` — every period, the present whole-spine posture from the encoder lengths by a
+  :func:`posture_estimator`: §4.4.3's adopted NN ("本研究では、筋長空間から関節変位空間への変換 … ニューラル
+  ネットワークによるものとする"; Kenta's spine too, §5.9.3 "脊椎部分は、現在の姿勢の推定は 4.4.3 節に述べたように
+  ニューラルネットワークを利用する"), trained per robot, or Jacobian integration (eqs. 4.26–4.28) from the
+  previous estimate, the method §4.4.3 rejects; then the whole-spine yaw += g·h, pitch −= g·v as a uniform
+  bend (eq. 4.29) turned into encoder targets ``l_r`` for the muscle controller (L mode) of the next stage.
 * :class:`TargetPath` — the experimenter moving the coloured ball (``target`` channel), a Lissajous path.
-* :class:`ArmSwing` — Kenta's two arms swung through a cycle while the loops track (§5.2.11, Fig. 5.13: "脊椎の
-  動きと首の動き・両腕の動きを同時に行っている"): the shoulder pitch ±a sin(2π t / T), left and right in
+* :class:`ArmSwing` — Kenta's two arms swung through a cycle (while the loops track, and in Fig. 5.13's run,
+  §5.2.11: "脊椎の動きと首の動き・両腕の動きを同時に行っている"): the shoulder pitch ±a sin(2π t / T), left and right in
   antiphase, the elbow bent a (1 − cos(2π t / T)) / 2 with it (the motion is not in the text: chosen).
 
 Periods and gains are not in the text ("周期の異なる3つの制御ループ", §5.2.12): chosen in ``TRACKING_*`` below.
@@ -32,11 +34,15 @@ import numpy as np
 from shintai.core.runtime import Module, Snapshot
 from shintai.spine.control import encoder_targets
 from shintai.spine.geometry import SpineModel, uniform_posture, whole_spine
-from shintai.spine.inverse_model import jacobian_integration
+from shintai.spine.inverse_model import NeuralInverse, jacobian_integration
 from shintai.spine.robots import (
     CONCURRENT_THRESHOLD_DEG,
     CONCURRENT_WINDOW_S,
+    ESTIMATE_DIVERGED_DEG,
+    GRID_DEG,
     KENTA_CAMERA_FOVY_DEG,
+    NN_HIDDEN,
+    NN_ITERATIONS,
     TARGET_DISTANCE_M,
     TRACKING_SPINE_RANGE_RAD,
 )
@@ -138,25 +144,45 @@ class GazeLoop(Module):
         return {self.channels[0]: self.angles[0], self.channels[1]: self.angles[1]}
 
 
-class SpineGazeLoop(Module):
-    """The spine's loop: posture from muscle lengths (eqs. 4.26–4.28), then a uniform bend toward the target."""
+ESTIMATORS = ("nn", "jacobian")
 
-    def __init__(self, model: SpineModel, zero_lengths, period: float, gain: float, name: str = "spine"):
+
+def posture_estimator(kind: str, model: SpineModel, rng: np.random.Generator, grid_deg=GRID_DEG):
+    """θ̂(lengths, previous θ̂) for a spine loop: ``"nn"`` — an ``m-NN_HIDDEN-3n`` network trained (L-BFGS,
+    ``NN_ITERATIONS``) on the 343 uniform bends of ``grid_deg`` by eq. 4.25 (:class:`NeuralInverse`), the lengths
+    alone its input; ``"jacobian"`` — eqs. 4.26–4.28 integrated from the previous estimate."""
+    if kind == "jacobian":
+        return lambda lengths, previous: jacobian_integration(model, lengths, theta0=previous).theta
+    if kind != "nn":
+        raise ValueError(f"posture_estimator: kind must be one of {ESTIMATORS}, got {kind!r}")
+    inverse = NeuralInverse(model, (NN_HIDDEN,), rng, grid_deg=grid_deg)
+    inverse.fit("lbfgs", NN_ITERATIONS)
+    return lambda lengths, previous: inverse.posture(lengths)
+
+
+class SpineGazeLoop(Module):
+    """The spine's loop: posture from muscle lengths by ``estimate`` (:func:`posture_estimator`), then a uniform
+    bend toward the target. Every run it records (t, whole-spine estimate, whole-spine truth) in ``estimates``."""
+
+    def __init__(self, model: SpineModel, zero_lengths, period: float, gain: float, estimate, name: str = "spine"):
         super().__init__(name, period)
         self.model, self.zero, self.gain = model, np.asarray(zero_lengths, dtype=float), gain
+        self.estimator = estimate
         self.estimate = np.zeros(3 * model.n)
         self.whole_cmd = np.zeros(3)
         self.times: list[float] = []
+        self.estimates: list[tuple] = []
 
     def reset(self, snapshot: Snapshot) -> None:
         self.estimate = np.zeros(3 * self.model.n)
-        self.times = []
+        self.times, self.estimates = [], []
 
     def update(self, snapshot: Snapshot):
         self.times.append(float(snapshot["t"]))
         lengths = self.zero - np.asarray(snapshot["encoder"], dtype=float)  # encoder l = λ(0) − λ (control.py)
-        self.estimate = jacobian_integration(self.model, lengths, theta0=self.estimate).theta
+        self.estimate = self.estimator(lengths, self.estimate)
         roll, pitch, yaw = whole_spine(self.estimate)
+        self.estimates.append((self.times[-1], np.array([roll, pitch, yaw]), whole_spine(snapshot["theta"])))
         h, v = snapshot["target_image"]
         ymax, pmax = TRACKING_SPINE_RANGE_RAD
         self.whole_cmd = np.array([0.0, np.clip(pitch - self.gain * v, -pmax, pmax),
@@ -216,6 +242,18 @@ def tracking_series(log, run: Tracking) -> dict:
     return s
 
 
+def estimate_errors(estimates, t_from: float) -> dict:
+    """The spine loop's posture estimate against the true posture from body time ``t_from``: RMS and max of the
+    whole-spine (roll, pitch, yaw) error norm [deg], and the first time (from the loop's first run) it exceeds
+    ``ESTIMATE_DIVERGED_DEG`` (NaN: never)."""
+    t = np.array([e[0] for e in estimates])
+    err = np.degrees([np.linalg.norm(e[1] - e[2]) for e in estimates])
+    late = err[t >= t_from] if np.any(t >= t_from) else err
+    over = t[err > ESTIMATE_DIVERGED_DEG]
+    return {"estimate_rms_error_deg": float(np.sqrt(np.mean(late ** 2))), "estimate_max_error_deg": float(late.max()),
+            "estimate_diverged_at_s": float(over[0] - estimates[0][0]) if len(over) else float("nan")}
+
+
 def tracking_metrics(log, run: Tracking, duration_s: float, amplitude_m: float, swung_names=()) -> dict:
     """The tracking error after the first second, the visible fraction, each part's share of the pan and each
     loop's measured period; with the arms swung, their swing, following error and the concurrent fraction."""
@@ -231,6 +269,8 @@ def tracking_metrics(log, run: Tracking, duration_s: float, amplitude_m: float, 
         out[f"{name}_share"] = float(value)
     for m in run.loops:
         out[f"{m.name}_period_s"] = measured_period(m.times)
+        if isinstance(m, SpineGazeLoop) and m.estimates:
+            out |= estimate_errors(m.estimates, run.t0 + min(1.0, 0.5 * duration_s))
     arms = run.arms
     if arms is not None:
         q = np.degrees(s["arms"][settled])

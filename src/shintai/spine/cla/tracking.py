@@ -1,5 +1,6 @@
 """Cla's visual tracking (seed 003 §5.2.10, Fig. 5.12): neck and spine loops of different periods
-(:mod:`shintai.spine.tracking_loops`) on the seated whole-body Cla, after its encoder zeroing.
+(:mod:`shintai.spine.tracking_loops`) on the seated whole-body Cla, after its encoder zeroing; the spine loop's
+posture from Cla's NN (§4.4.3: 8-40-15 on the 343 uniform bends) or by Jacobian integration.
 
 Cla's whole body (:mod:`shintai.spine.cla.body`) has a head camera but no ball: :class:`TrackedCla` adds the
 target as a point the ``target`` channel moves (not drawn), seen through ``head_cam``.
@@ -21,6 +22,7 @@ from shintai.spine.tracking_loops import (
     SpineGazeLoop,
     Tracking,
     image_offset,
+    posture_estimator,
     tracking_stages,
 )
 
@@ -54,14 +56,20 @@ class TrackedCla(ClaBody):
         super().apply(command)
 
 
-def cla_tracking(loops: tuple[str, ...], amplitude_m: float, path_period_s: float) -> tuple[TrackedCla, list, Tracking]:
+def cla_tracking(loops: tuple[str, ...], amplitude_m: float, path_period_s: float, estimator: str = "nn",
+                 rng: np.random.Generator | None = None) -> tuple[TrackedCla, list, Tracking]:
     """Cla zeroed (1 s, :func:`~shintai.spine.cla.control.spine_control`), then the stages of its tracking run
-    with the visual ``loops`` on: (body, stages, :class:`Tracking`)."""
+    with the visual ``loops`` on, the spine's posture by ``estimator`` (as :func:`posture_estimator`; the NN
+    trained from ``rng``): (body, stages, :class:`Tracking`)."""
+    estimate = None
+    if "spine" in loops:
+        estimate = posture_estimator(estimator, CLA.model, rng if rng is not None else np.random.default_rng(0))
     body = TrackedCla()
     control, zero = spine_control(body)
     parts = {"neck": lambda: GazeLoop("neck", TRACKING_PERIODS_S["neck"], TRACKING_GAINS["neck"],
                                       ("neck_yaw", "neck_pitch"), -1.0, CLA_NECK_LIMIT_RAD),
-             "spine": lambda: SpineGazeLoop(CLA.model, zero, TRACKING_PERIODS_S["spine"], TRACKING_GAINS["spine"])}
+             "spine": lambda: SpineGazeLoop(CLA.model, zero, TRACKING_PERIODS_S["spine"], TRACKING_GAINS["spine"],
+                                                 estimate)}
     modules = [parts[name]() for name in loops]
     eye = body.data.cam_xpos[body.id("camera", "head_cam")].copy()
     return (body, *tracking_stages(body, control, eye, modules, amplitude_m, path_period_s))

@@ -25,6 +25,12 @@ KENTA_TAUGHT_S = 1.5  # chosen: each posture is held by the teacher this long be
 # chosen: the probe of :func:`locked_hold`, posture 1's forward bend without its twist (whole-spine r, p, y [deg])
 KENTA_LOCK_PROBE_DEG = (0.0, 15.0, 0.0)
 
+# --- kenta.tracking (its NN inverse model, §4.4.3) ---
+# §3.7.1: "可動範囲は各節 roll,pitch,yaw の 3 軸とも ±10° 程度とした", "脊椎全体の可動範囲は，roll,pitch,yaw に各 ±90°
+# 程度": §4.4.3's 7-point teacher grid per joint and axis (Cla: ±15° in 5° steps) scaled inside Kenta's stops
+# (chosen: ±9° in 3° steps, ±90° for the whole spine); 7³ = 343 uniform bends as for Cla
+KENTA_NN_GRID_DEG = (-9.0, -6.0, -3.0, 0.0, 3.0, 6.0, 9.0)
+
 # --- kenta.statics ---
 LOCK_TOLERANCE_M = 1e-6  # the locked reel's play [m] (chosen: an encoder pulse is ≈ 17 µm)
 # chosen: the stops' time constant, 2 physics steps (MuJoCo's default 20 ms lets a 100 N wire slip 1.6 mm)
