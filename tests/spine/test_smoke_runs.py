@@ -12,6 +12,7 @@ RUNS = (
     "spine.inverse-model",
     "spine.kenta-taught-postures",
     "spine.rabbit-stiffening",
+    "spine.rabbit-yaw-turn",
     "spine.sq43-crawl",
     "spine.sq43-design",
     "spine.sq43-levelling",
