@@ -71,7 +71,7 @@ experiment(
               "left front leg shortened by at least half the block's height (half ours)", kind="reproduction"),
         Check("lf_extend_fraction", ">=", 0.5, "Fig. 3.8 (6): 'また高さが変わったら … 左前脚を伸ばし' — extended "
               "again by at least half the block's height after stepping down (half ours)", kind="reproduction"),
-        Check("forward_mm_levelling", ">", 0.0, "§3.2.4: '地面の形状がわからない不整地を歩行する'",
+        Check("forward_levelling_mm", ">", 0.0, "§3.2.4: '地面の形状がわからない不整地を歩行する'",
               name="walks_over", kind="reproduction"),
         Check("min_feet_in_contact_passive", "==", 4, "§3.2.4: the spine '地面になじむように … 変形し, 四脚全てを接地"
               "することができる' — passively, without the levelling", name="four_feet_passive", kind="reproduction"),
