@@ -142,22 +142,25 @@ def uneven_rig(ground: Ground, plan: CrawlPlan, cycles: int, levelling: Levellin
 
 
 def uneven_result(log, crawl: UnevenCrawl) -> dict:
-    """At the end of each pause (after its adjustments): the feet in contact and the shoulder and hip roll; over the
-    run: the trunk's forward travel, the left-front offset's extremes, the adjustments and the pauses that timed
+    """At the end of each pause (after its adjustments): the feet in contact (also at the step onto the block alone)
+    and the shoulder and hip roll; over the run: the trunk's forward travel, the left-front offset's extremes, the adjustments and the pauses that timed
     out."""
     t = log.values("t_s")
     ends = [int(np.searchsorted(t, p.end_s - 1e-9)) for p in crawl.pauses]
     ends = [min(i, len(t) - 1) for i in ends]
     contact = log.values("contact")[ends].sum(axis=1)
     shoulder, hip = log.values("shoulder_roll_deg")[ends], log.values("hip_roll_deg")[ends]
-    lf = log.values("lf_offset_mm")
+    lf_mm = log.values("lf_offset_mm")
     x = log.values("trunk_x_mm")
+    lf = [i for i, p in enumerate(crawl.pauses) if p.leg == "LF"]
+    step_up = int(contact[lf[1]]) if len(lf) > 1 else -1  # the left front's second touchdown: onto the block
     return {"min_feet_in_contact": int(contact.min()), "pauses_all_feet": int(np.sum(contact == 4)),
+            "step_up_feet_in_contact": step_up,
             "pauses": len(crawl.pauses), "max_shoulder_roll_after_deg": float(np.abs(shoulder).max()),
             "max_hip_roll_after_deg": float(np.abs(hip).max()), "adjustments": int(sum(p.adjustments for p in crawl.pauses)),
             "timeouts": int(sum(1 for p in crawl.pauses if crawl.levelling is not None and not p.level)),
-            "lf_shortest_mm": float(lf.min()), "lf_final_mm": float(lf[-1]), "forward_mm": float(x[-1] - x[0]),
+            "lf_shortest_mm": float(lf_mm.min()), "lf_final_mm": float(lf_mm[-1]), "forward_mm": float(x[-1] - x[0]),
             "max_shoulder_roll_deg": float(np.abs(log.values("shoulder_roll_deg")).max()),
             "series": {"t": t, "shoulder": log.values("shoulder_roll_deg"), "hip": log.values("hip_roll_deg"),
-                       "lf": lf, "contact": log.values("contact").sum(axis=1),
+                       "lf": lf_mm, "contact": log.values("contact").sum(axis=1),
                        "pauses": [(p.start_s, p.end_s, p.leg) for p in crawl.pauses]}}
