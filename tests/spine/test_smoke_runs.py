@@ -16,6 +16,7 @@ RUNS = (
     "spine.sq43-crawl",
     "spine.sq43-design",
     "spine.sq43-levelling",
+    "spine.sq43-standup",
     "spine.sq43-trot-ga",
     "spine.sq43-uneven",
     "spine.tracking-loops",

@@ -124,3 +124,21 @@ def uneven(ctx, runs: dict, height_mm: float) -> None:
         ax[1].set_xlabel("time [s]")
         ax[1].legend(fontsize=6)
         ax[0].set_title(f"SQ43 crawl over a {height_mm:g} mm block under the left feet (Fig. 3.8)", fontsize=9)
+
+
+def standup(ctx, runs: dict, torque_nm: float) -> None:
+    """Fig. 3.9: the shoulder and hip heights of each strategy, and the largest leg-servo torque against the limit."""
+    with ctx.figure("standup", 2, 1, figsize=(8.0, 6.4), sharex=True) as (fig, ax):
+        for i, (v, log) in enumerate(runs.items()):
+            t = log.values("t_s")
+            ax[0].plot(t, log.values("shoulder_z_mm"), color=f"C{i}", label=f"shoulder, {v}")
+            ax[0].plot(t, log.values("hip_z_mm"), "--", color=f"C{i}", lw=0.8, label=f"hip, {v}")
+            ax[1].plot(t, log.values("max_leg_torque_nm"), color=f"C{i}", lw=0.6, label=v)
+        ax[1].axhline(torque_nm, color="k", ls=":", lw=0.8, label="servo limit")
+        ax[0].set_ylabel("height above floor [mm]")
+        ax[0].legend(fontsize=6, ncol=3)
+        ax[1].set_ylabel("largest leg-servo torque [N·m]")
+        ax[1].set_xlabel("time [s]")
+        ax[1].legend(fontsize=6)
+        ax[0].set_title(f"SQ43 standing up from its belly (Fig. 3.9), leg servos limited to {torque_nm:.3g} N·m",
+                        fontsize=9)
