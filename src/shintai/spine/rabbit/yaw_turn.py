@@ -81,7 +81,8 @@ def yaw_turn_rig(turn: YawTurn, load: bool = True, robot: SpineRobot = RABBIT) -
     body = QuasiStaticSpine(robot, loads=carried(robot, 1e-3 * turn.forward_mm, load))
     sweep = YawSweep(robot, turn)
 
-    def after(snap):
+    def after(_):  # the loop hands the snapshot before the step: read the equilibrium this tick's command reached
+        snap = body.snapshot()
         yaw, tilt, top = top_pose(robot, snap)
         return {"command_deg": float(sweep.commands[min(sweep.k, len(sweep.commands)) - 1]), "yaw_deg": yaw,
                 "tilt_deg": tilt, "top_z_mm": 1e3 * float(top[2]), "max_tension_n": float(np.max(snap["tension"])),
