@@ -13,7 +13,7 @@ def test_the_alternating_schedule_moves_one_pair_at_a_time_and_bends_only_with_t
     feet, bend = S.schedule(plan, "alternating")
     dz_front, dz_hind = np.diff(feet["LF"][:, 2]), np.diff(feet["LH"][:, 2])
     assert not np.any((np.abs(dz_front) > 1e-9) & (np.abs(dz_hind) > 1e-9))  # never both pairs at once
-    assert np.all(np.abs(bend[np.abs(dz_hind) > 1e-9]) < np.abs(bend).max())  # the bend returns while the hind extend
+    assert np.all(np.abs(bend[1:][np.abs(dz_hind) > 1e-9]) < np.abs(bend).max())  # the bend returns while the hind extend
     assert bend.min() == -30.0 and bend[-1] == 0.0
     for leg in ("LF", "LH"):
         np.testing.assert_allclose(feet[leg][-1], [0.0, 0.0, -BODY.natural_length_m])

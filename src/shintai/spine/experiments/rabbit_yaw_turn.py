@@ -65,5 +65,5 @@ experiment(
     thesis={"turn": ThesisValue("the spine supports the upper body's weight and turns (photographs)",
                                 "§3.5.4, Fig. 3.27", "yaw_reach_carrying")},
     rig=rig, variants=VARIANTS, metrics=metrics, plots=plots,
-    smoke={"yaw_deg": 10.0, "step_deg": 10.0},
+    smoke={"yaw_deg": 5.0, "step_deg": 5.0},
 )
