@@ -13,10 +13,13 @@ RUNS = (
     "spine.kenta-spine-neck-arms",
     "spine.kenta-taught-postures",
     "spine.rabbit-stiffening",
+    "spine.rabbit-yaw-turn",
     "spine.sq43-crawl",
     "spine.sq43-design",
     "spine.sq43-levelling",
+    "spine.sq43-standup",
     "spine.sq43-trot-ga",
+    "spine.sq43-uneven",
     "spine.tension-sensor",
     "spine.tracking-loops",
 )

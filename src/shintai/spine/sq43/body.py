@@ -117,9 +117,10 @@ def knee_sign(leg: str) -> float:
     return -1.0 if leg[1] == "F" else 1.0
 
 
-def build_spec(spec: SQ43BodySpec = BODY, board: bool = False) -> mujoco.MjSpec:
+def build_spec(spec: SQ43BodySpec = BODY, board: bool = False, blocks=()) -> mujoco.MjSpec:
     """The MjSpec of SQ43 standing at ``spec.natural_length_m``. ``board``: a mocap board (the §3.2.4
-    levelling experiment) under the left-front foot."""
+    levelling experiment) under the left-front foot. ``blocks``: fixed boxes on the floor, each
+    (x0, x1, y0, y1, height) [m] (the uneven ground of Fig. 3.8)."""
     s = mujoco.MjSpec()
     s.modelname = "sq43"
     s.compiler.degree = False  # every angle here is in radians
@@ -134,6 +135,10 @@ def build_spec(spec: SQ43BodySpec = BODY, board: bool = False) -> mujoco.MjSpec:
         b = world.add_body(name="board", mocap=True, pos=[spec.leg_x, spec.body_width_m / 2, -0.01])
         b.add_geom(name="board", type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.06, 0.04, 0.01], rgba=[0.7, 0.55, 0.35, 1],
                    friction=[spec.friction, 0.005, 0.0001])
+    for x0, x1, y0, y1, h in blocks:
+        world.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[(x1 - x0) / 2, (y1 - y0) / 2, h / 2],
+                       pos=[(x0 + x1) / 2, (y0 + y1) / 2, h / 2], rgba=[0.7, 0.55, 0.35, 1],
+                       friction=[spec.friction, 0.005, 0.0001])
     height = spec.natural_length_m
     x = spec.block_x
     grey = [0.45, 0.47, 0.52, 1]
@@ -318,9 +323,9 @@ def accelerometer_roll(acc) -> np.ndarray:
 class SQ43Body(MujocoBody):
     """The MuJoCo SQ43 (module docstring) standing on its feet, reset to the ``stand`` keyframe."""
 
-    def __init__(self, spec: SQ43BodySpec = BODY, board: bool = False, substeps: int = 1):
+    def __init__(self, spec: SQ43BodySpec = BODY, board: bool = False, substeps: int = 1, blocks=()):
         self.spec_values = spec
-        super().__init__(build_spec(spec, board), substeps=substeps, keyframe="stand")
+        super().__init__(build_spec(spec, board, blocks), substeps=substeps, keyframe="stand")
         self.leg_ids, self.spine_ids = actuator_ids(self.model)
 
     def set_servos(self, legs: dict, spine_deg=(0.0, 0.0)) -> None:

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from shintai.core.constants import KGF_N
+from shintai.spine.robots import RABBIT_SERVO
+
 
 # --- experiments.sq43_design ---
 # "開始後すぐに極小値に陥っている" (§3.2.3) has no number and Fig. 3.4 is not in the text: "right after starting" is
@@ -28,3 +31,12 @@ TROT_DURATION_S = 6.0  # "1 個体の数秒間の運動" (§5.6.2): several seco
 
 # --- sq43.levelling ---
 LF_LENGTH_RANGE_M = (0.15, 0.245)  # chosen: the left front leg's commanded length stays within its reach
+
+# --- sq43.standup / experiments.sq43_standup ---
+# The leg servos' torque limit for the stand-up (§3.2.4: "各脚のアクチュエータのトルクがそれほど大きくない"). The
+# seed names no servo for SQ43 (§3.2.1–3.2.2 say only "サーボモジュール"); the only RC servo whose torque it prints
+# is the Futaba S9204 (gear-modified) of Rabbit's spine and limbs, "サーボモジュールの最大トルク (12.6[kgf·cm])"
+# (§3.5.1; the same type for the limbs, §3.5.2) — the lab's servo of the next robot, taken as SQ43's; not a
+# datasheet value (none is in the seed or the stored sources). Fixed before the first run; the other SQ43 scenarios
+# keep the body's chosen 1.0 N·m (SQ43BodySpec.servo_torque_nm).
+SERVO_TORQUE_NM = RABBIT_SERVO.torque_kgf_cm * KGF_N / 100

@@ -103,3 +103,42 @@ def trot(ctx, replay: dict) -> None:
         ax.set_xlabel("gait time [s]")
         ax.set_title("SQ43: the GA's best trot replayed on the body", fontsize=9)
         ax.legend(fontsize=7)
+
+
+def uneven(ctx, runs: dict, height_mm: float) -> None:
+    """Fig. 3.8: shoulder and hip roll, the left front leg's offset and the feet in contact; grey: levelling pauses."""
+    with ctx.figure("uneven", 2, 1, figsize=(8.0, 6.4), sharex=True) as (fig, ax):
+        for v, s in runs.items():
+            ax[0].plot(s["t"], s["shoulder"], lw=1, label=f"shoulder roll, {v}")
+            ax[1].plot(s["t"], s["contact"] + 0.05 * list(runs).index(v), lw=0.8, label=f"feet in contact, {v}")
+        ax[0].plot(runs["levelling"]["t"], runs["levelling"]["hip"], lw=0.8, label="hip roll, levelling")
+        for a, b, _ in runs["levelling"]["pauses"]:
+            for axis in ax:
+                axis.axvspan(a, b, color="0.9")
+        ax2 = ax[0].twinx()
+        ax2.plot(runs["levelling"]["t"], runs["levelling"]["lf"], "k--", lw=0.8, label="LF length offset")
+        ax2.set_ylabel("LF length offset [mm]")
+        ax[0].set_ylabel("roll [deg] (+: left side up)")
+        ax[0].legend(fontsize=6, loc="upper left")
+        ax[1].set_ylabel("feet in contact")
+        ax[1].set_xlabel("time [s]")
+        ax[1].legend(fontsize=6)
+        ax[0].set_title(f"SQ43 crawl over a {height_mm:g} mm block under the left feet (Fig. 3.8)", fontsize=9)
+
+
+def standup(ctx, runs: dict, torque_nm: float) -> None:
+    """Fig. 3.9: the shoulder and hip heights of each strategy, and the largest leg-servo torque against the limit."""
+    with ctx.figure("standup", 2, 1, figsize=(8.0, 6.4), sharex=True) as (fig, ax):
+        for i, (v, log) in enumerate(runs.items()):
+            t = log.values("t_s")
+            ax[0].plot(t, log.values("shoulder_z_mm"), color=f"C{i}", label=f"shoulder, {v}")
+            ax[0].plot(t, log.values("hip_z_mm"), "--", color=f"C{i}", lw=0.8, label=f"hip, {v}")
+            ax[1].plot(t, log.values("max_leg_torque_nm"), color=f"C{i}", lw=0.6, label=v)
+        ax[1].axhline(torque_nm, color="k", ls=":", lw=0.8, label="servo limit")
+        ax[0].set_ylabel("height above floor [mm]")
+        ax[0].legend(fontsize=6, ncol=3)
+        ax[1].set_ylabel("largest leg-servo torque [N·m]")
+        ax[1].set_xlabel("time [s]")
+        ax[1].legend(fontsize=6)
+        ax[0].set_title(f"SQ43 standing up from its belly (Fig. 3.9), leg servos limited to {torque_nm:.3g} N·m",
+                        fontsize=9)
