@@ -55,7 +55,10 @@ from shintai.sim import ik
 from shintai.sim.spec import set_joints
 
 SOLE = {s: f"{s}_sole" for s in SIDES}  # sole sites
-CHANNELS = {**STANDING_CHANNELS, **declare("v", "omega", kind=SET), **declare("foot_pitch", "ref:chest_pitch")}
+CHANNELS = {**STANDING_CHANNELS, **declare("v", "omega", kind=SET), **declare("foot_pitch", "ref:chest_pitch"),
+            # the commanded soles' pitch (R, L) without δ, one tick late: the reference feet of a foot-origin frame
+            # at the ankles (balance.stabilizer's foot_origin="ankle")
+            **declare("foot_pitch_ref", kind=SET, delay=1)}
 
 
 class Lift:
@@ -149,11 +152,12 @@ class ScooterSensors(Module):
 class FootPitch(Module):
     """Integrates the ``foot_pitch`` increments [Δθ_R, Δθ_L] (Eq. 6.7: θ̇ ≈ Δθ/Δt) and adds the sums to the
     soles' pitch on ``foot_damping`` ([L roll, L pitch, R roll, R pitch]); positive tips the toes down and
-    drives the scooter forward (Eq. A.1). ``excite(t)`` → (u_v, u_ω) adds a known input through Eq. 6.5."""
+    drives the scooter forward (Eq. A.1). ``excite(t)`` → (u_v, u_ω) adds a known input through Eq. 6.5;
+    ``theta0`` (R, L) the soles' reference pitch it starts from (the boarding posture's). Writes also ``foot_pitch_ref``."""
 
-    def __init__(self, excite=None, name: str = "foot_pitch"):
+    def __init__(self, excite=None, name: str = "foot_pitch", theta0=(0.0, 0.0)):
         super().__init__(name, CONTROL_PERIOD)
-        self.theta = np.zeros(2)  # accumulated (R, L)
+        self.theta = np.asarray(theta0, float).copy()  # accumulated (R, L), from the reference soles' pitch theta0
         self.excite = excite
         self.u = np.zeros(2)
 
@@ -168,7 +172,7 @@ class FootPitch(Module):
         n = self.name
         self.log(float(snapshot["t"]), **{f"{n}.u_v": self.u[0], f"{n}.u_omega": self.u[1],
                                           f"{n}.theta_R": self.theta[0], f"{n}.theta_L": self.theta[1]})
-        return {"foot_damping": np.array([0.0, self.theta[1], 0.0, self.theta[0]])}
+        return {"foot_damping": np.array([0.0, self.theta[1], 0.0, self.theta[0]]), "foot_pitch_ref": self.theta.copy()}
 
 
 def chest_pitch(snapshot) -> float:

@@ -283,14 +283,24 @@ class StabilizerModule(Module):
     (:class:`~shintai.humanoid.balance.attitude.TiltEstimate`, time constant ``attitude_tau``), as hrpsys's
     ``act_cog`` is (forward kinematics from the KalmanFilter's attitude, in the foot-origin frame), and its velocity
     the difference of that offset (hrpsys's ``act_cogvel``); under a sustained acceleration it balances about the
-    apparent vertical (issue 26). ``read_com`` keeps the (x, ẋ) the LIP tracking last used, in its frame."""
+    apparent vertical (issue 26); ``"feet"`` the same offset against the true vertical and its difference (hrpsys's
+    act_cogvel in the foot-origin frame without the attitude filter: the Σ_vehicle-relative CoM of §6.2.2's level 2).
+    ``read_com`` keeps the (x, ẋ) the LIP tracking last used, in its frame.
+
+    ``foot_origin``: ``"sole"`` (default) the frame's origin at the stance sole points; ``"ankle"`` at the ankle
+    links' origins, as hrpsys's ``calcFootOriginCoords`` (the force sensor's link, ``foot_origin_offset`` 0), the
+    reference ankles above the reference soles at the commanded pitch ``foot_pitch_ref``, and the distributor over the
+    actual soles in that frame (issue 26: measured, it changes level 2 and the probe by < 25 %)."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
                  name: str = "stabilizer", period: float = CONTROL_PERIOD, truncate: bool = False,
-                 com_reading: str = "world", attitude_tau: float = ATTITUDE_TAU):
+                 com_reading: str = "world", attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole"):
         super().__init__(name, period)
-        if com_reading not in ("world", "imu"):
-            raise ValueError(f"stabilizer: com_reading is 'world' or 'imu', got {com_reading!r}")
+        if com_reading not in ("world", "imu", "feet"):
+            raise ValueError(f"stabilizer: com_reading is 'world', 'imu' or 'feet', got {com_reading!r}")
+        if foot_origin not in ("sole", "ankle"):
+            raise ValueError(f"stabilizer: foot_origin is 'sole' or 'ankle', got {foot_origin!r}")
+        self.foot_origin = foot_origin
         self.com_reading = com_reading
         self.tilt = TiltEstimate(attitude_tau, period) if com_reading == "imu" else None
         self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
@@ -317,6 +327,16 @@ class StabilizerModule(Module):
             self.tilt.reset(snapshot)
         self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
 
+    def _ref_ankle_dx(self, snapshot, stance) -> float:
+        """The reference ankles' mean x offset from the reference sole points: h_a sin φ_ref, φ_ref the soles' pitch
+        the leg IK is commanded without the damping's δ (``foot_pitch_ref``: R, L; 0 without it)."""
+        ref = snapshot.get("foot_pitch_ref")
+        if ref is None:
+            return 0.0
+        pitch = {"r": float(ref[0]), "l": float(ref[1])}
+        h = HRP2_LINKS.ankle_height
+        return sum(h * math.sin(pitch[SIDES[i]]) for i in stance) / len(stance)
+
     def update(self, snapshot):
         dt = self.period
         com = self.body.data.subtree_com[self._root].tolist()
@@ -342,6 +362,11 @@ class StabilizerModule(Module):
         ay = sum(w[SIDES[i]].point[1] for i in stance) / n
         rx = sum(soles[i][0] for i in stance) / n
         ry = sum(soles[i][1] for i in stance) / n
+        if self.foot_origin == "ankle":  # hrpsys's foot origin: the ankle links' origins (module docstring)
+            d = self.body.data
+            ax = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][0]) for i in stance) / n
+            ay = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][1]) for i in stance) / n
+            rx += self._ref_ankle_dx(snapshot, stance)
 
         def to_ref(x, y):  # a world point into the reference stance frame: Rz(−ψ)(p − a) + r
             x, y = into_yawed(x - ax, y - ay, psi)
@@ -361,9 +386,11 @@ class StabilizerModule(Module):
         if self.lip and total > 0:
             cx, cy = to_ref(com[0], com[1])
             vx, vy = into_yawed(self.com_vel[0], self.com_vel[1], psi)
-            if self.tilt is not None:  # the offset from the stance feet through the estimated attitude
-                az = sum(w[SIDES[i]].point[2] for i in stance) / n
-                ex, ey, _ = (err @ np.array([com[0] - ax, com[1] - ay, com[2] - az])).tolist()
+            if self.com_reading != "world":  # the offset from the stance feet ("imu": through the estimated attitude)
+                ex, ey = com[0] - ax, com[1] - ay
+                if self.tilt is not None:
+                    az = sum(w[SIDES[i]].point[2] for i in stance) / n
+                    ex, ey, _ = (err @ np.array([ex, ey, com[2] - az])).tolist()
                 cx, cy = into_yawed(ex, ey, psi)
                 cx, cy = cx + rx, cy + ry
                 if self._read_prev is not None and self._read_support == support:
@@ -379,7 +406,10 @@ class StabilizerModule(Module):
             zmp_d = np.array(zr[:2])
         if self.truncate:
             zmp_d = truncate_zmp(zmp_d, support_polygon(soles, support))
-        dist = distribute(zmp_d, {"l": soles[0], "r": soles[1]}, support, self.weight)
+        points = {"l": soles[0], "r": soles[1]}
+        if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
+            points = {s: to_ref(*w[s].point[:2].tolist()) for s in SIDES}
+        dist = distribute(zmp_d, points, support, self.weight)
         out = {"zmp_d": zmp_d, "zmp_act": act}
         for s in SIDES:
             on = s in support

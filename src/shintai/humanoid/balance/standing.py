@@ -188,6 +188,7 @@ class StepPreview(PreviewModule):
     def __init__(self, plan, heights, zc: float | None = None, base: float = 0.0, name: str = "preview"):
         super().__init__(plan, zc=zc, name=name)
         self.heights = np.asarray(heights, float) + base  # z_c is above the start's sole plane z = base
+        self.offset = np.zeros(2)  # (x, y) added to both com_ref and zmp_ref (a rig's reference point, e.g. a scooter's centre)
         if len(self.heights) != len(plan.zmp) or not np.all(np.isfinite(self.heights)):
             raise ValueError(f"preview: heights must be {len(plan.zmp)} finite values, one per plan tick")
 
@@ -195,6 +196,8 @@ class StepPreview(PreviewModule):
         k = min(self.k, len(self.heights) - 1)
         out = super().update(snapshot)
         out["com_ref"][2] += self.heights[k]
+        out["com_ref"][:2] += self.offset
+        out["zmp_ref"] = out["zmp_ref"] + self.offset
         return out
 
 

@@ -10,6 +10,17 @@ LEVELS = (1, 2, 3)
 # the stabilizer's CoM reading on the lift-placed V-BOARD rigs (balance.stabilizer.StabilizerModule's com_reading):
 # "world" = MuJoCo's CoM against the true vertical (issue 26 tests "imu", hrpsys's act_cog through the IMU's attitude)
 COM_READING = "world"
+# The lift-placed rigs' references (issue 26, VboardRide's placement): "soles" (default, as before) the LIP's ZMP and CoM
+# references at the soles' midpoint as the stack starts, the soles commanded flat; "fig6.1" as §6.2.1 places the robot:
+# '図 6.1 において平行二輪電動スクーターの中心を座標系の原点とする.この点を目標 ZMP の位置 (0,0)' (the references moved
+# onto the scooter's centre once, at the lift's hand-over), the boarding posture's soles ('ボード上面にロボット足裏が乗るように
+# … 搭乗姿勢の全身の関節角度をロボット実機へ指令する': the pads' pitch θ_O) as the soles' reference pitch, and the soles
+# not creeping on the pads (NOSLIP_ITERATIONS). Measured with com_reading="feet": level 2 then neither accelerates
+# nor creeps (notes/vboard-plant-id.md); not the default until the ch. 6 rows are re-run with it.
+PLACEMENT = "soles"
+PLACEMENTS = ("soles", "fig6.1")
+NOSLIP_ITERATIONS = 10  # chosen: MuJoCo's no-slip passes for "fig6.1"; without them a standing rider's soles creep back on
+# the pads ≈0.4 mm/s (measured: −5.1 → −7.7 mm in 4.5 s), which rubber under 58 kg does not; with 10, < 0.1 mm in 7 s
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
 PLANTS = ("board", "table6.2")
 MODES = ("corrected", "saturated", "plain")

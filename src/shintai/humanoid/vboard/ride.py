@@ -22,9 +22,10 @@ from shintai.humanoid.balance.foot_attitude import measured_zmp
 from shintai.humanoid.balance.scooter import CHANNELS, ChestPitchControl, ChestPitchIK, FootPitch, Lift, ScooterSensors
 from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Standing
-from shintai.humanoid.constants import ATTITUDE_TAU, LIFT_GAP, LIFT_SPEED, VBOARD
+from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD, LIFT_GAP, LIFT_SPEED, VBOARD
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.vboard.constants import COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS
+from shintai.humanoid.vboard.constants import (COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS,
+                                             NOSLIP_ITERATIONS, PLACEMENT, PLACEMENTS)
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
@@ -52,7 +53,9 @@ class VboardRide:
     controllers keep the nominal values (§6.2.1); ``D`` the damping gain (levels 2–3); ``excite`` → (u_v, u_ω) a
     known input added at levels 2–3; ``lift=False`` starts standing on the pads (no lowering); ``seed`` the
     sensors' noise; ``com_reading``, ``attitude_tau`` the stabilizer's CoM reading (lift-placed start; default
-    :data:`~shintai.humanoid.vboard.constants.COM_READING`); ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
+    :data:`~shintai.humanoid.vboard.constants.COM_READING`), ``foot_origin`` its frame's origin (``"sole"``, ``"ankle"``);
+    ``placement`` the references of the lift-placed start (:data:`~shintai.humanoid.vboard.constants.PLACEMENT`:
+    ``"fig6.1"`` puts them on the scooter's centre at the hand-over, :class:`CentreReference`); ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
     ``governor(lift)`` → the module (the lift, or None, for its start gate), default a
     :class:`~shintai.humanoid.vboard.governor.SpeedGovernor` on ``gains`` ((K_P, K_I, K_D) for v, for ω) with MLC
     if ``learn``. ``standing``: instead of the lift-placed start, a
@@ -66,15 +69,21 @@ class VboardRide:
                  learn: bool = False, governor=None, excite=None, lift: bool = True, gap: float = LIFT_GAP,
                  speed: float = LIFT_SPEED, seed: int = 0, noise: bool = True, posture: bool = False,
                  standing: Standing | None = None, supervisor: Module | None = None,
-                 com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU):
+                 com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole",
+                 placement: str = PLACEMENT):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
+        if placement not in PLACEMENTS:
+            raise ValueError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+        fig61 = placement == "fig6.1" and standing is None and lift
         check_real("D", D, 0.0, low_open=True)
         self.level = level
         self.scooter = scooter_spec(theta_o_error_deg)
         self.lift = None
         if standing is None:
             body = build_vboard_stand(self.scooter)
+            if fig61:
+                body.model.opt.noslip_iterations = NOSLIP_ITERATIONS
             if lift:
                 root = body.model.joint("root").qposadr[0]
                 body.model.key("stand").qpos[root + 2] += check_real("lift gap", gap, 0.0, 0.2)
@@ -85,7 +94,8 @@ class VboardRide:
             stack = {"D": D} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
             # §4.3.3, Fig. 4.10 (B): with chest posture control the IK turns the upper body about the feet
             ik = ChestPitchIK if posture else None
-            stab = functools.partial(StabilizerModule, com_reading=com_reading, attitude_tau=attitude_tau)
+            stab = functools.partial(StabilizerModule, com_reading=com_reading, attitude_tau=attitude_tau,
+                                     foot_origin=foot_origin)
             self.standing = Standing(body=body, ik=ik, stabilizer=stab, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
             if self.lift is not None:
                 self.lift.lowering = True
@@ -101,9 +111,11 @@ class VboardRide:
         self.governor = None
         if level == 3:
             self.governor = (governor or (lambda lift: SpeedGovernor(gains0=gains, learn=learn)))(self.lift)
-        self.foot_pitch = FootPitch(excite) if level >= 2 else None
+        theta0 = (VBOARD.theta_o("r"), VBOARD.theta_o("l")) if fig61 else (0.0, 0.0)
+        self.foot_pitch = FootPitch(excite, theta0=theta0) if level >= 2 else None
+        self.centre = CentreReference(self) if fig61 else None
         self.stages = self.standing.stages(
-            references=[self.sensors, *([self.posture] if self.posture else [])],
+            references=[self.sensors, *([self.posture] if self.posture else []), *([self.centre] if self.centre else [])],
             governor=[self.governor] if self.governor else (),
             supervisor=[supervisor] if supervisor else (),
             beside_damping=[self.foot_pitch] if self.foot_pitch else ())
@@ -127,6 +139,25 @@ class VboardRide:
         return {"zmp_x": z[0], "zmp_y": z[1], "theta_R": th["r"], "theta_L": th["l"],
                 "x": float(self.body.site_pos("vboard_centre")[0]), "true_v": v, "true_omega": w,
                 "lift_fz": float(self.lift.force[2]) if self.lift is not None else 0.0}
+
+
+class CentreReference(Module):
+    """§6.2.1's target ZMP (0, 0) at the scooter's centre (Fig. 6.1): once, at the lift's hand-over, the preview's
+    CoM and ZMP references are moved by the scooter centre's offset from the soles' midpoint (world x, y; the
+    stabilizer then holds them there relative to the feet). Writes nothing; ``offset`` keeps the move (m)."""
+
+    def __init__(self, ride: "VboardRide", name: str = "centre_reference"):
+        super().__init__(name, CONTROL_PERIOD)
+        self.ride, self.offset = ride, None
+
+    def update(self, snapshot):
+        lift = self.ride.lift
+        if self.offset is None and lift is not None and lift.released:
+            b = self.ride.body
+            mid = np.mean([b.site_pos(f"{s}_sole") for s in ("l", "r")], axis=0)
+            self.offset = (b.site_pos("vboard_centre") - mid)[:2].copy()
+            self.ride.standing.preview.offset = self.offset
+        return {}
 
 
 def theta_o(side: str) -> float:
