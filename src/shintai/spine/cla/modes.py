@@ -13,6 +13,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import Rig
 from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.cla.constants import CLA_DISC_K_STAR_NM_RAD, CLA_RING_DISC
 from shintai.spine.cla.postures import (
     GOAL,
     HOLD_TESTS,
@@ -24,6 +25,7 @@ from shintai.spine.cla.postures import (
 )
 from shintai.spine.cla.setup import CLA_VIEW, calibrated, cla_gains, cla_spring, k_s_gain
 from shintai.spine.control import SETPOINTS, Mode, MuscleControl, interference_modes
+from shintai.spine.discs import HardeningDiscs
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.plots import spine_state
 from shintai.spine.robots import CLA, E11_LOG_S, E11_SETTLE_S
@@ -89,13 +91,17 @@ SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_d
 
 def mode_rig(config: str, axis_name: str, *, max_angle_deg: float, hold_s: float, move_s: float, window_s: float,
              interference: bool, k_s: dict[str, float], spring_law: str, T_l_kgf: float, T_r_kgf: float,
-             log: bool = True, picture: bool = False) -> Rig:
+             disc: str = "linear", log: bool = True, picture: bool = False) -> Rig:
     """One axis of §4.7.2 for one mode configuration (module doc): postures up to ``max_angle_deg``, each moved to
     in ``move_s``, held ``hold_s`` and measured over its last ``window_s``; ``k_s`` the software springs by level
-    (``mid``, ``high``, thesis units of ``spring_law``). ``picture``: keep
+    (``mid``, ``high``, thesis units of ``spring_law``); ``disc`` one of ``cla.constants.DISC_LAWS``. ``picture``: keep
     :func:`~shintai.spine.plots.spine_state` at the largest angle."""
     shortening, lengthening, spring = MODE_CONFIGS[config]
     body = SpineBody(CLA, interference=interference)
+    if disc == "hardening":
+        HardeningDiscs(body, CLA_RING_DISC)
+    elif disc == "linear_upright":
+        body.set_disc(2 * CLA_DISC_K_STAR_NM_RAD)
     control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf), spring=cla_spring(spring_law))
     if spring:
         control.set_gains(k_s=k_s_gain(k_s[spring], spring_law))

@@ -7,7 +7,7 @@ from __future__ import annotations
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine import plots as shared
 from shintai.spine.cla import plots as pictures
-from shintai.spine.cla.constants import TABLE_4_7_TOLERANCE_DEG
+from shintai.spine.cla.constants import DISC_LAWS, TABLE_4_7_TOLERANCE_DEG
 from shintai.spine.cla.modes import (
     ABLATION,
     AXES,
@@ -43,7 +43,7 @@ def filmed(params) -> list[str]:
 def rig(params, variant, seed):
     mode, axis = variant.rsplit(".", 1)
     kw = {k: params[k] for k in ("max_angle_deg", "hold_s", "move_s", "window_s", "interference", "spring_law",
-                                 "T_l_kgf", "T_r_kgf")}
+                                 "T_l_kgf", "T_r_kgf", "disc")}
     kw["k_s"] = {"mid": params["k_s_mid"], "high": params["k_s_high"]}
     if mode == ABLATION:
         return mode_rig("all_l", axis, **(kw | {"interference": False}), log=False)
@@ -145,6 +145,8 @@ experiment(
         Param("k_s_high", 400.0, "'high' software spring, thesis units", lo=1.0, hi=2000.0),
         Param("spring_law", "counts", "S mode's spring: on the ADC count (§4.5.2) or linear in newtons",
               choices=SPRING_LAWS),
+        Param("disc", "hardening", "the discs: pre-compressed hardening silicone at 2 × the upright criterion's k* "
+              "(§3.6.1, §3.5.3, §7.1.1), linear at 2 k*, or linear 4 N m/rad (chosen, before)", choices=DISC_LAWS),
         Param("T_l_kgf", 1.0, "LL limit tension [kgf]", lo=0.05, hi=30.0),
         Param("T_r_kgf", 1.0, "T-mode target tension [kgf]", lo=0.05, hi=30.0),
     ],
