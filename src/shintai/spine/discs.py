@@ -43,20 +43,21 @@ def ring_forces(disc: RingDiscSpec, q) -> np.ndarray:
     cr, sr = np.cos(q[:, 0]), np.sin(q[:, 0])
     cp, sp = np.cos(q[:, 1]), np.sin(q[:, 1])
     cy, sy = np.cos(q[:, 2]), np.sin(q[:, 2])
-    zero, one = np.zeros_like(cr), np.ones_like(cr)
-    Rz = np.stack([np.stack([cy, -sy, zero], -1), np.stack([sy, cy, zero], -1), np.stack([zero, zero, one], -1)], -2)
-    Ry = np.stack([np.stack([cp, zero, sp], -1), np.stack([zero, one, zero], -1), np.stack([-sp, zero, cp], -1)], -2)
-    Rx = np.stack([np.stack([one, zero, zero], -1), np.stack([zero, cr, -sr], -1), np.stack([zero, sr, cr], -1)], -2)
-    R = Rz @ Ry @ Rx  # (n, 3, 3)
-    x = np.einsum("nab,kb->nka", R, up)  # upper points about the centre, parent frame
-    diff = x - low
-    d = np.linalg.norm(diff, axis=-1)  # (n, k)
-    u = diff / d[..., None]
+    R = np.empty((len(q), 3, 3))  # Rz(ψ) Ry(θ) Rx(φ)
+    R[:, 0, 0], R[:, 0, 1], R[:, 0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
+    R[:, 1, 0], R[:, 1, 1], R[:, 1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+    R[:, 2, 0], R[:, 2, 1], R[:, 2, 2] = -sp, cp * sr, cp * cr
+    x = R @ up.T  # (n, 3, k): the upper points about the centre, parent frame
+    diff = x - low.T
+    d = np.sqrt(np.einsum("nak,nak->nk", diff, diff))
     f = disc.force(disc.compression(d))
-    # the hinge axes in the parent frame: roll Rz Ry e_x, pitch Rz e_y, yaw e_z
-    axes = np.stack([(Rz @ Ry)[:, :, 0], Rz[:, :, 1], np.broadcast_to([0.0, 0.0, 1.0], cr.shape + (3,))], axis=1)
-    dd = np.einsum("nka,nkja->nkj", u, np.cross(axes[:, None, :, :], x[:, :, None, :]))  # ∂d_k/∂q_j
-    return np.einsum("nk,nkj->nj", f, dd)
+    # ∂d/∂q_j = u · (a_j × x) = a_j · (x × u), the hinge axes a in the parent frame: roll Rz Ry e_x, pitch Rz e_y, yaw e_z
+    xu = np.cross(x, diff, axis=1) / d[:, None, :]  # (n, 3, k)
+    axes = np.empty((len(q), 3, 3))
+    axes[:, 0] = np.stack([cy * cp, sy * cp, -sp], axis=1)
+    axes[:, 1] = np.stack([-sy, cy, np.zeros_like(cy)], axis=1)
+    axes[:, 2] = [0.0, 0.0, 1.0]
+    return np.einsum("nk,nja,nak->nj", f, axes, xu)
 
 
 def rest_tangent(disc: RingDiscSpec, step_rad: float = 1e-6) -> np.ndarray:

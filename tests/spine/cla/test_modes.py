@@ -46,6 +46,19 @@ def test_table_4_7_gap_compares_the_postures_both_hold():
     assert math.isnan(table_4_7_gap("l_t", "pitch", rows))
 
 
+def test_error_tension_correlation_ranks_every_held_posture():
+    """§4.7.2's prediction as a metric: the rank correlation of tension with error over the postures held (before
+    the first lost), pooled over modes and axes; a posture after the first lost does not count."""
+    def rows(pairs):
+        return [PostureRow(10.0 * i, 10.0 * i, e, 0.0, 0.0, True, t, 0.1) for i, (t, e) in enumerate(pairs)]
+
+    rising = {"all_l": {"pitch": rows([(0.1, 1.0), (0.3, 2.0)]), "roll": rows([(0.2, 1.5), (0.4, 3.0)])}}
+    assert mode_metrics(rising, ["all_l"], 10)[0]["error_tension_rank_correlation"] == pytest.approx(1.0)
+    falling = {"all_l": {"pitch": rows([(0.1, 3.0), (0.3, 2.0), (0.4, 1.0), (0.9, 9.0)]), "roll": []}}
+    falling["all_l"]["pitch"][3].held = False
+    assert mode_metrics(falling, ["all_l"], 10)[0]["error_tension_rank_correlation"] == pytest.approx(-1.0)
+
+
 def test_held_cells_count_changes_between_the_hold_tests():
     """mode_metrics counts the held-angle cells that change from the thesis's criterion to the 30° rule and
     to the window-only test, and (over the thesis's ±30°) those that agree with Table 4.8."""
@@ -89,7 +102,7 @@ def short_e11():
     at their defaults): the rows by mode and axis, and E11's metrics."""
     p = get("spine.control-modes").resolve(SHORT_E11)
     kw = {k: p[k] for k in ("max_angle_deg", "hold_s", "move_s", "window_s", "interference", "spring_law", "T_l_kgf",
-                            "T_r_kgf")} | {"k_s": {"mid": p["k_s_mid"], "high": p["k_s_high"]}}
+                            "T_r_kgf", "disc", "wrap")} | {"k_s": {"mid": p["k_s_mid"], "high": p["k_s_high"]}}
     rows = {mode: {axis: run_rig(mode_rig(mode, axis, **kw)).state.rows for axis in AXES} for mode in ("all_l", "l_t")}
     return rows, mode_metrics(rows, ["all_l", "l_t"], p["max_angle_deg"])[0]
 
