@@ -250,9 +250,10 @@ def mode_metrics(rows_all: dict[str, dict[str, list[PostureRow]]], names, max_de
     # axis, the rank correlation of the mean muscle tension with the posture error
     held = [r for mode, by_axis in rows_all.items() if mode != ABLATION for rows in by_axis.values()
             for r in rows_until_lost(rows)]
-    if len(held) >= 3:
-        metrics["error_tension_rank_correlation"] = float(spearmanr([r.tension_kgf for r in held],
-                                                                    [r.error_deg for r in held])[0])
+    tension, error = np.array([r.tension_kgf for r in held]), np.array([r.error_deg for r in held])
+    if len(held) >= 3:  # undefined (NaN) when either is constant
+        metrics["error_tension_rank_correlation"] = (float(spearmanr(tension, error)[0]) if np.ptp(tension) > 0
+                                                     and np.ptp(error) > 0 else float("nan"))
     if ABLATION in rows_all and "all_l" in rows_all:
         pairs = [(a.error_deg, b.error_deg) for a, b in zip(rows_until_lost(rows_all["all_l"]["pitch"]),
                                                              rows_until_lost(rows_all[ABLATION]["pitch"]))]
