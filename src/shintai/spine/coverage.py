@@ -222,7 +222,7 @@ ROWS = (
                "'7種類' for the 8 listed modes)",
         why_not="with the pre-compressed hardening discs (2 × the upright criterion's k*, §7.1.1) and the muscles "
                 "bearing on the column, Table 4.7's '—' (the spine caught by hand) starts where ours is lost in 11 of 14 "
-                "sequences (5 before), but our errors are still 4–15× smaller (all-L 0.95° / 0.24° against the table's "
+                "sequences (5 before), but all-L's errors are still 6× and 15× smaller (0.95° / 0.24° pitch / roll against the table's "
                 "5.40° / 3.68°; 4 of 14 mode–axis means within the declared 2°): the wrapped muscles are the lengthening "
                 "ones, slack by more than the 0.29 mm the column adds, so all-L's error is the same without it; "
                 "muscle–muscle contact is not representable. The thesis's own tables disagree: Table 4.7's column means "
