@@ -40,6 +40,29 @@ def test_interference_only_lengthens_the_convex_side():
     assert np.allclose(np.delete(extra, back), 0.0, atol=1e-12)
 
 
+def test_the_column_lengthens_the_muscles_that_bear_on_it():
+    """wrap="column" (§4.7.2 "構造材と干渉すると…長くなる"): at rest no muscle touches the column, so every length is
+    eq. 4.25's; bent forward, the back muscles bear on it and are longer than eq. 4.25 by more than on the sphere;
+    twisted, Fig. 3.31's diagonal front and back muscles wind round it; no muscle is ever shorter."""
+    column, sphere = SpineBody(CLA, wrap="column"), SpineBody(CLA, wrap="sphere")
+
+    def extra(body, whole_deg):
+        theta = uniform_posture(np.radians(whole_deg), CLA.n)
+        body.set_theta(theta)
+        return body.path_lengths() - CLA.model.lengths(theta)
+
+    assert np.allclose(extra(column, [0.0, 0.0, 0.0]), 0.0, atol=1e-12)
+    back = [CLA.muscle_names.index(n) for n in ("CLA-RB", "CLA-LB")]
+    forward_c, forward_s = extra(column, [0.0, 30.0, 0.0]), extra(sphere, [0.0, 30.0, 0.0])
+    assert np.all(forward_c[back] > 2e-4) and np.all(forward_c[back] > 2 * forward_s[back])
+    assert np.allclose(np.delete(forward_c, back), 0.0, atol=1e-12)
+    twist = extra(column, [0.0, 0.0, 60.0])
+    wound = [CLA.muscle_names.index(n) for n in ("CLA-LF", "CLA-RB")]
+    assert np.all(twist[wound] > 2e-3) and np.all(twist >= -1e-12)
+    with pytest.raises(ValueError, match="wrap"):
+        SpineBody(CLA, wrap="torus")
+
+
 def test_the_wire_only_pulls_and_its_joint_torque_is_minus_J_transpose_T(plain):
     """Sign convention: winding a reel in tensions its wire, whose generalised force on the spine
     is τ = −J_mᵀT (eq. 4.22); paying it out leaves it slack: no force at all (it cannot push)."""

@@ -7,6 +7,7 @@ bodies — the quasi-static spine body: muscles, discs, gravity and loads in equ
 bodies_mujoco — a muscle-driven spine as a MuJoCo body generated with MjSpec (§3.6, §4.4, §4.6–4.7)
 control — the L/T/S/LL muscle laws (eqs. 4.36–4.42, Table 4.6) and the interference policy (§4.7) as a Module
 coverage — the coverage rows of seed 003, chapters 3–5 and Appendix A
+discs — hardening ring discs on a MuJoCo spine and the upright criterion that sizes them (§3.5.3, §3.6.1, §7.1.1)
 ga_run — chapter 5's GA inside a scenario: shared parameters, the checkpointed run, the curve
 geometry — the geometric model (§4.3–4.5): rpy vertebra chain, eq. 4.25 muscle lengths, J_m, statics
 inverse_model — muscle length → posture, f of eq. 4.3, by NN or Jacobian integration (§4.4.3)

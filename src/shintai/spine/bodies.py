@@ -176,9 +176,9 @@ class QuasiStaticSpine(Body):
             return 0.5 * float(np.sum(k * theta**2)), k * theta, None
         ring = self.ring
         d, J, J_gap = self.rings.derivatives(theta, gap)
-        c = np.maximum(ring.t_free_m - d, 0.0)  # compression of each ring spring
-        force = ring.k1_n_m * c + ring.k3_n_m3 * c**3
-        energy = float(np.sum(0.5 * ring.k1_n_m * c**2 + 0.25 * ring.k3_n_m3 * c**4))
+        c = ring.compression(d)
+        force = ring.force(c)
+        energy = float(np.sum(ring.energy(c)))
         g_theta = -J.T @ force
         g_gap = -J_gap.T @ force
         twist = ring.k_twist_nm_rad * theta[2::3]

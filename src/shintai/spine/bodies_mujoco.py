@@ -22,11 +22,14 @@ Model (spec 003 §5.2):
 * **The wire can only pull.** The tendon is a spring with a dead band, ``springlength = (0, L)``:
   stiffness k_w (wire + tension sensor, :class:`~shintai.spine.robots.TensionSensorSpec`) beyond
   its free length L, no force when slack. No tendon damping (MuJoCo's is bilateral).
-* **Interference** (§4.7.1), optional: a sphere of radius ``wrap_radius_m`` (vertebral body +
+* **Interference** (§4.7.1), optional: a wrap geom of radius ``WRAP_RADIUS_M`` (vertebral body +
   wire) on the middle vertebra that every straight muscle must wrap around, on the side the muscle
-  passes at rest. When the spine bends, the muscles on its convex side are pushed out and become
-  longer than eq. 4.25 predicts — the thesis's hypothesis (§4.7.2). Muscle–muscle interference
-  (twist) is not representable: MuJoCo tendons pass through each other.
+  passes at rest: ``wrap="sphere"``, or ``wrap="column"``, a cylinder along the middle vertebra's axis —
+  MuJoCo wraps a cylinder as infinite, so a muscle bears on the column at whatever height it meets it (Fig.
+  3.31's diagonal muscles meet it off the middle, and in twist wind round it). When the spine bends, the
+  muscles on its convex side are pushed out and become longer than eq. 4.25 predicts — the thesis's hypothesis
+  (§4.7.2: "筋が物理的に他の筋や構造材と干渉すると、その筋は式 (4.25) で求めた長さより長くなると思われる"). Muscle–muscle
+  interference is not representable: MuJoCo tendons pass through each other.
 * **Sensors.** Accelerometers on the pelvis and the clavicle (eq. 3.4); encoders, tension sensors
   and motor currents are computed from the reel and tendon state in :meth:`SpineBody.snapshot`.
 * **Ligaments** (Kenta, §3.7.1), optional: extension springs between neighbouring vertebrae as
@@ -58,10 +61,12 @@ def _quat(R: np.ndarray) -> np.ndarray:
 
 def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
                interference: bool = True, timestep: float = 5e-4,
-               ligaments: LigamentSpec | None = None) -> mujoco.MjSpec:
+               ligaments: LigamentSpec | None = None, wrap: str = "sphere") -> mujoco.MjSpec:
     """The MjSpec of ``robot``'s spine (see the module docstring)."""
     if joint not in ("hinge", "ball"):
         raise ValueError(f"joint must be 'hinge' or 'ball', got {joint!r}")
+    if wrap not in WRAPS:
+        raise ValueError(f"wrap must be one of {WRAPS}, got {wrap!r}")
     if not isinstance(robot.disc, DiscSpec):
         raise ValueError(f"{robot.name}: the MuJoCo body needs a linear DiscSpec, got {type(robot.disc).__name__}")
     spec = mujoco.MjSpec()
@@ -77,7 +82,7 @@ def build_spec(robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: 
     world.add_geom(name="ground", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0.6, 0.6, 0.02],
                    rgba=[0.85, 0.85, 0.85, 1], contype=0, conaffinity=0)
     links = _add_links(spec, robot, joint, loads if loads is not None else robot.loads)
-    _add_muscles(spec, robot, links, interference)
+    _add_muscles(spec, robot, links, interference, wrap)
     _add_hand(spec, robot, links[-1])
     if ligaments is not None:
         _add_ligaments(spec, links, ligaments)
@@ -131,6 +136,9 @@ def _add_links(spec, robot: SpineRobot, joint: str, loads) -> list:
     return links
 
 
+WRAPS = ("sphere", "column")  # the interference geom: a sphere, or a cylinder along the middle vertebra
+
+
 def _inward(point) -> np.ndarray:
     """Horizontal unit vector from a pull point toward its block's centre: the reel's slide axis."""
     v = -np.array([point[0], point[1], 0.0])
@@ -138,14 +146,16 @@ def _inward(point) -> np.ndarray:
     return v / norm if norm > 1e-9 else np.array([1.0, 0.0, 0.0])
 
 
-def _add_muscles(spec, robot: SpineRobot, links: list, interference: bool) -> None:
+def _add_muscles(spec, robot: SpineRobot, links: list, interference: bool, wrap: str) -> None:
     model, sensor, drive = robot.model, robot.sensor, DCMotorDrive(robot.motors)
     muscles = model.muscles
     rest = model.lengths(np.zeros(3 * model.n))
     middle = (model.n + 1) // 2
     R_rest, p_rest, _ = model.chain.frames(np.zeros(3 * model.n))
     if interference:
-        links[middle].add_geom(name="wrap", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[WRAP_RADIUS_M], mass=0.0,
+        shape = mujoco.mjtGeom.mjGEOM_SPHERE if wrap == "sphere" else mujoco.mjtGeom.mjGEOM_CYLINDER
+        half = 0.5 * model.chain.offsets[middle, 2] if middle < model.n else 0.015  # the picture's length only
+        links[middle].add_geom(name="wrap", type=shape, size=[WRAP_RADIUS_M, half, 0.0], mass=0.0,
                                rgba=[0.9, 0.6, 0.3, 0.35], contype=0, conaffinity=0)
     for j, name in enumerate(muscles.names):
         path = muscles.paths[j]
@@ -229,7 +239,7 @@ class SpineBody(MujocoBody):
 
     def __init__(self, robot: SpineRobot, loads: tuple[Load, ...] | None = None, joint: str = "hinge",
                  interference: bool = True, timestep: float = 5e-4, control_period: float | None = None,
-                 ligaments: LigamentSpec | None = None, spec: mujoco.MjSpec | None = None):
+                 ligaments: LigamentSpec | None = None, spec: mujoco.MjSpec | None = None, wrap: str = "sphere"):
         period = control_period if control_period is not None else robot.control_period_s
         substeps = whole_multiple(period, timestep, "control period")
         self.robot = robot
@@ -238,7 +248,7 @@ class SpineBody(MujocoBody):
         self.encoder = Encoder(robot.motors)
         self.sensor = TensionSensor(robot.sensor)
         if spec is None:  # a whole body (cla_body) passes its own spec, built on build_spec's spine
-            spec = build_spec(robot, loads, joint, interference, timestep, ligaments)
+            spec = build_spec(robot, loads, joint, interference, timestep, ligaments, wrap)
         super().__init__(spec, substeps=substeps)
         self.channels = {**self.channels, **declare("duty"), **declare("hand", kind=SET)}
         m = self.model

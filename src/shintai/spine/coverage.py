@@ -239,10 +239,14 @@ ROWS = (
                "7.17, 4.20 — larger on the way back; '—' where the spine could not hold and the experimenter "
                "supported it by hand; L + T buckled, no data. (Its columns order S-high before S-mid; §4.7.2 says "
                "'7種類' for the 8 listed modes)",
-        why_not="our errors are 1.3–10× smaller than Table 4.7's (all-L 0.91° / 0.38° against 4.42° / 3.68° over the "
-                "postures both hold; 9 of 14 mode–axis means beyond the declared 2°), and its '—' (the spine caught by "
-                "hand) starts where ours is lost in 5 of 14 sequences (lost = not at rest: a joint at its stop or still "
-                "falling)",
+        why_not="with the pre-compressed hardening discs (2 × the upright criterion's k*, §7.1.1) and the muscles "
+                "bearing on the column, Table 4.7's '—' (the spine caught by hand) starts where ours is lost in 11 of 14 "
+                "sequences (5 before), but all-L's errors are still 6× and 15× smaller (0.95° / 0.24° pitch / roll against the table's "
+                "5.40° / 3.68°; 4 of 14 mode–axis means within the declared 2°): the wrapped muscles are the lengthening "
+                "ones, slack by more than the 0.29 mm the column adds, so all-L's error is the same without it; "
+                "muscle–muscle contact is not representable. The thesis's own tables disagree: Table 4.7's column means "
+                "against Table 4.8's (§4.7.3 'Table 4.7 から誤差の平均を求めた') — roll all-LL 4.09 / 2.93 and L + LL "
+                "2.93 / 4.09 (two columns swapped), pitch off by up to 1.95° (L + S-high 4.92 / 6.87)",
     ),
     Row(
         key="003:table4.8",
@@ -256,11 +260,15 @@ ROWS = (
                "0.26/0.41, 0.86/0.99; 8. L + S high 6.87/4.47, ≥30/≥30, 0.25/0.33, 1.29/1.04. §4.7.3: LL, S-mid "
                "and L + LL cannot hold large pitch against gravity; modes 7 and 8 have larger errors and mean "
                "currents",
-        why_not="6 of 16 held-angle cells agree at the thesis's own criterion (lost = the spine does not come to rest: "
-                "a joint at its stop or still falling; the former 30° rule: 11): all-L, S-high, L + S-mid, L + S-high "
-                "lose pitch at ±30 and all-S-mid, L + S-mid roll at −20 / −30 (thesis ≥30), all-LL and L + LL hold "
-                "pitch to 20° (thesis 10), L + T holds 10° (thesis 0); L + S draws the least current, not the most "
-                "(0.024 vs 0.039 A)",
+        why_not="with the pre-compressed hardening discs (Rabbit's ring law; tangent at rest 2 × the upright "
+                "criterion's k* = 12.4 N m/rad, §7.1.1/§4.6.2) and the muscles bearing on the column, 11 of 16 held-angle "
+                "cells agree (6 on linear discs; 12 with the discs alone): every roll cell and all-L, all-S-high, "
+                "L + S-mid pitch ≥30, all-LL pitch 10; not: all-S-mid holds pitch to 30 (thesis 20), L + LL (0, thesis "
+                "10) and L + S-high (10, thesis ≥30; ≥30 without the column) are lost still drifting on the way back "
+                "from −30, and L + T "
+                "no longer buckles (30 / 30, thesis 0 / 0: every muscle at one tension is the criterion's stable state); "
+                "L + S draws the least current, not the most (0.027 vs 0.042 A). The thesis's Tables 4.7 and 4.8 "
+                "disagree with each other (two roll columns swapped; pitch means off by up to 1.95°)",
     ),
     Row(
         key="003:tableA",

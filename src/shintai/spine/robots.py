@@ -165,6 +165,18 @@ class RingDiscSpec:
     k_ball_n_m: float
     source: str
 
+    def compression(self, d):
+        """c = t_free − d of ring springs whose faces are ``d`` apart, and 0 where the faces part (not bonded)."""
+        return np.maximum(self.t_free_m - np.asarray(d, dtype=float), 0.0)
+
+    def force(self, c):
+        """The ring spring's push f(c) = k1 c + k3 c³ at compression c ≥ 0 (§3.5.3: silicone hardens)."""
+        return self.k1_n_m * c + self.k3_n_m3 * c**3
+
+    def energy(self, c):
+        """∫ f dc = k1 c²/2 + k3 c⁴/4."""
+        return 0.5 * self.k1_n_m * c**2 + 0.25 * self.k3_n_m3 * c**4
+
 
 @dataclass(frozen=True)
 class Load:

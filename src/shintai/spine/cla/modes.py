@@ -10,9 +10,11 @@ measures (:mod:`shintai.spine.cla.postures`). :func:`mode_metrics` turns the row
 from __future__ import annotations
 
 import numpy as np
+from scipy.stats import spearmanr
 
 from shintai.scenarios.experiment import Rig
 from shintai.spine.bodies_mujoco import SpineBody
+from shintai.spine.cla.constants import CLA_DISC_K_STAR_NM_RAD, CLA_RING_DISC
 from shintai.spine.cla.postures import (
     GOAL,
     HOLD_TESTS,
@@ -24,6 +26,7 @@ from shintai.spine.cla.postures import (
 )
 from shintai.spine.cla.setup import CLA_VIEW, calibrated, cla_gains, cla_spring, k_s_gain
 from shintai.spine.control import SETPOINTS, Mode, MuscleControl, interference_modes
+from shintai.spine.discs import HardeningDiscs
 from shintai.spine.geometry import uniform_posture
 from shintai.spine.plots import spine_state
 from shintai.spine.robots import CLA, E11_LOG_S, E11_SETTLE_S
@@ -89,13 +92,18 @@ SUMMARY_KEYS = ("mean_error_pitch_deg", "mean_error_roll_deg", "max_pitch_held_d
 
 def mode_rig(config: str, axis_name: str, *, max_angle_deg: float, hold_s: float, move_s: float, window_s: float,
              interference: bool, k_s: dict[str, float], spring_law: str, T_l_kgf: float, T_r_kgf: float,
-             log: bool = True, picture: bool = False) -> Rig:
+             disc: str = "linear", wrap: str = "sphere", log: bool = True, picture: bool = False) -> Rig:
     """One axis of §4.7.2 for one mode configuration (module doc): postures up to ``max_angle_deg``, each moved to
     in ``move_s``, held ``hold_s`` and measured over its last ``window_s``; ``k_s`` the software springs by level
-    (``mid``, ``high``, thesis units of ``spring_law``). ``picture``: keep
+    (``mid``, ``high``, thesis units of ``spring_law``); ``disc`` one of ``cla.constants.DISC_LAWS``, ``wrap`` the interference geom
+    (:data:`~shintai.spine.bodies_mujoco.WRAPS`). ``picture``: keep
     :func:`~shintai.spine.plots.spine_state` at the largest angle."""
     shortening, lengthening, spring = MODE_CONFIGS[config]
-    body = SpineBody(CLA, interference=interference)
+    body = SpineBody(CLA, interference=interference, wrap=wrap)
+    if disc == "hardening":
+        HardeningDiscs(body, CLA_RING_DISC)
+    elif disc == "linear_upright":
+        body.set_disc(2 * CLA_DISC_K_STAR_NM_RAD)
     control = MuscleControl(CLA.m, cla_gains(T_l_kgf, T_r_kgf), spring=cla_spring(spring_law))
     if spring:
         control.set_gains(k_s=k_s_gain(k_s[spring], spring_law))
@@ -238,6 +246,14 @@ def mode_metrics(rows_all: dict[str, dict[str, list[PostureRow]]], names, max_de
         for key in ("mean_current_a", "mean_current_posture_a"):
             metrics[f"l_s.max_{key}"] = max(table[m][key] for m in l_s)
             metrics[f"others.max_{key}"] = max(table[m][key] for m in working if m not in l_s)
+    # §4.7.2's prediction ("張力が大きい筋ほど l_r とのずれが大きくなる"): over every posture held, in every mode and
+    # axis, the rank correlation of the mean muscle tension with the posture error
+    held = [r for mode, by_axis in rows_all.items() if mode != ABLATION for rows in by_axis.values()
+            for r in rows_until_lost(rows)]
+    tension, error = np.array([r.tension_kgf for r in held]), np.array([r.error_deg for r in held])
+    if len(held) >= 3:  # undefined (NaN) when either is constant
+        metrics["error_tension_rank_correlation"] = (float(spearmanr(tension, error)[0]) if np.ptp(tension) > 0
+                                                     and np.ptp(error) > 0 else float("nan"))
     if ABLATION in rows_all and "all_l" in rows_all:
         pairs = [(a.error_deg, b.error_deg) for a, b in zip(rows_until_lost(rows_all["all_l"]["pitch"]),
                                                              rows_until_lost(rows_all[ABLATION]["pitch"]))]

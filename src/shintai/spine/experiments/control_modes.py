@@ -6,8 +6,9 @@ from __future__ import annotations
 
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine import plots as shared
+from shintai.spine.bodies_mujoco import WRAPS
 from shintai.spine.cla import plots as pictures
-from shintai.spine.cla.constants import TABLE_4_7_TOLERANCE_DEG
+from shintai.spine.cla.constants import DISC_LAWS, TABLE_4_7_TOLERANCE_DEG
 from shintai.spine.cla.modes import (
     ABLATION,
     AXES,
@@ -43,7 +44,7 @@ def filmed(params) -> list[str]:
 def rig(params, variant, seed):
     mode, axis = variant.rsplit(".", 1)
     kw = {k: params[k] for k in ("max_angle_deg", "hold_s", "move_s", "window_s", "interference", "spring_law",
-                                 "T_l_kgf", "T_r_kgf")}
+                                 "T_l_kgf", "T_r_kgf", "disc", "wrap")}
     kw["k_s"] = {"mid": params["k_s_mid"], "high": params["k_s_high"]}
     if mode == ABLATION:
         return mode_rig("all_l", axis, **(kw | {"interference": False}), log=False)
@@ -126,6 +127,10 @@ E11_CHECKS = [
       for m in TABLE_4_7_COLUMNS for a in AXES],
     Check("interference_error_gain_deg", ">", 0.0, "spec §5.3.9: the interference (wrapping) is what makes "
           "all-L's model error (compared over the pitch postures both runs held)", name="interference_drives_error", kind="consistency"),
+    Check("error_tension_rank_correlation", ">", 0.0, "§4.7.2's prediction, not a result: '筋が物理的に他の筋や構造材と"
+          "干渉すると、その筋は式 (4.25) で求めた長さより長くなると思われる…張力が大きい筋ほど l_r とのずれが大きくなると"
+          "予想できる' — "
+          "the posture error grows with the muscles' tension (Spearman over every posture held)", kind="consistency"),
 ]
 
 experiment(
@@ -140,11 +145,15 @@ experiment(
         Param("move_s", 1.0, "minimum-jerk transition between postures [s]", lo=0.1, hi=5.0),
         Param("window_s", 1.0, "static measuring window at the end of each hold [s]", lo=0.1, hi=5.0),
         Param("interference", True, "wrap the muscles around the middle vertebra (§4.7.1)"),
+        Param("wrap", "column", "the structure they bear on: the column (a cylinder along the middle vertebra) or a "
+              "sphere on it (before)", choices=WRAPS),
         Param("ablation", True, "also run all-L without interference (spec §5.3.9)"),
         Param("k_s_mid", 100.0, "'mid' software spring, thesis units (ADC counts / encoder counts)", lo=1.0, hi=2000.0),
         Param("k_s_high", 400.0, "'high' software spring, thesis units", lo=1.0, hi=2000.0),
         Param("spring_law", "counts", "S mode's spring: on the ADC count (§4.5.2) or linear in newtons",
               choices=SPRING_LAWS),
+        Param("disc", "hardening", "the discs: pre-compressed hardening silicone at 2 × the upright criterion's k* "
+              "(§3.6.1, §3.5.3, §7.1.1), linear at 2 k*, or linear 4 N m/rad (chosen, before)", choices=DISC_LAWS),
         Param("T_l_kgf", 1.0, "LL limit tension [kgf]", lo=0.05, hi=30.0),
         Param("T_r_kgf", 1.0, "T-mode target tension [kgf]", lo=0.05, hi=30.0),
     ],

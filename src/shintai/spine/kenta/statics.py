@@ -14,9 +14,8 @@ a motion is only the discs and ligaments, whose constants the thesis does not gi
 * :func:`lock_reels` — the reels of a :class:`~shintai.spine.bodies_mujoco.SpineBody` fixed where they are
   (two-sided stops on the reel joints: an ideal length control).
 * :func:`upright_stiffness`, :func:`upright_margin`, :func:`critical_disc_stiffness` — the thesis's criterion
-  for the discs (§7.1.1 "椎間板による基本姿勢と復元力 (重力を前提)", §4.6.2): upright is a stable equilibrium
-  under gravity with every muscle at one tension; k* the smallest disc stiffness for which it is
-  (robots.KENTA_DISC_NM_RAD = 2 × k*).
+  for the discs (§7.1.1, §4.6.2), shared with Cla in :mod:`shintai.spine.discs` (robots.KENTA_DISC_NM_RAD =
+  2 × k*).
 """
 
 from __future__ import annotations
@@ -24,6 +23,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import linprog
 from shintai.spine.kenta.constants import LOCK_SOLREF_S, LOCK_TOLERANCE_M
+from shintai.spine.discs import critical_disc_stiffness, upright_margin, upright_stiffness
+
+__all__ = ["muscle_span", "unstretched_bend", "lock_reels", "upright_stiffness", "upright_margin",
+           "critical_disc_stiffness"]
 
 
 def muscle_span(model, theta, tol: float = 1e-6) -> dict:
@@ -71,63 +74,3 @@ def lock_reels(body) -> None:
         m.jnt_range[j] = [q - LOCK_TOLERANCE_M, q + LOCK_TOLERANCE_M]
         m.jnt_solref[j] = [LOCK_SOLREF_S, 1.0]
     d.ctrl[body._motor] = 0.0
-
-
-def upright_stiffness(body, tension_n: float, disc_nm_rad: float, step_rad: float = 1e-5) -> tuple[np.ndarray, list]:
-    """The stiffness matrix K = −∂Q/∂q of ``body`` (a :class:`~shintai.spine.kenta.body.KentaBody`) about the
-    basic posture (every joint at 0: upright, §3.7.1) under gravity, every muscle in T mode at the same
-    ``tension_n`` (§4.2.1, §3.4.1: "筋の張力はつりあって…椎間板のばね成分で初期姿勢に戻ろうとする力が生じているだけ"),
-    the discs at ``disc_nm_rad`` on every spine axis. Q = joint springs (discs, neck spacers) + ligaments +
-    servos (arms, neck, eyes at their targets) − gravity − J_mᵀ t with t constant (a tension-controlled wire adds
-    only its geometric stiffness). Central differences over every joint except the reels (the reels are where
-    the tension is held). Returns (symmetric K, DOF names); upright is stable iff its smallest eigenvalue > 0."""
-    import mujoco
-
-    m, d = body.model, body.data
-    body.reset()
-    body.let_go()
-    body.set_disc(disc_nm_rad)
-    muscles = np.asarray(body.tendon_ids)
-    k_wire = m.tendon_stiffness[muscles].copy()
-    m.tendon_stiffness[muscles] = 0.0  # the wires' own spring is replaced by the held tension
-    d.ctrl[:] = 0.0
-    dofs = [j for j in range(m.njnt) if not (mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) or "").endswith(":reel")
-            and int(m.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))]
-    qadr, vadr = m.jnt_qposadr[dofs], m.jnt_dofadr[dofs]
-    q0 = d.qpos.copy()
-    moment = np.zeros((m.ntendon, m.nv))
-
-    def force(q):
-        d.qpos[:], d.qvel[:] = q, 0.0
-        mujoco.mj_forward(m, d)
-        mujoco.mju_sparse2dense(moment, d.ten_J, m.ten_J_rownnz, m.ten_J_rowadr, m.ten_J_colind)
-        f = d.qfrc_passive + d.qfrc_actuator - d.qfrc_bias - moment[muscles].T @ np.full(len(muscles), tension_n)
-        return f[vadr]
-
-    K = np.zeros((len(dofs), len(dofs)))
-    for c, a in enumerate(qadr):
-        plus, minus = q0.copy(), q0.copy()
-        plus[a] += step_rad
-        minus[a] -= step_rad
-        K[:, c] = -(force(plus) - force(minus)) / (2 * step_rad)
-    m.tendon_stiffness[muscles] = k_wire
-    body.reset()
-    names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) for j in dofs]
-    return 0.5 * (K + K.T), names
-
-
-def upright_margin(body, tension_n: float, disc_nm_rad: float) -> float:
-    """The smallest eigenvalue of :func:`upright_stiffness` [N m/rad]: > 0 iff upright is a stable equilibrium."""
-    return float(np.linalg.eigvalsh(upright_stiffness(body, tension_n, disc_nm_rad)[0])[0])
-
-
-def critical_disc_stiffness(body, tension_n: float, hi_nm_rad: float = 1000.0, tol_nm_rad: float = 0.1) -> float:
-    """k*: the smallest per-axis disc stiffness for which upright is stable (:func:`upright_margin` crosses 0),
-    by bisection on [0, ``hi_nm_rad``]."""
-    lo, hi = 0.0, hi_nm_rad
-    if upright_margin(body, tension_n, hi) <= 0:
-        raise ValueError(f"upright is unstable even with {hi} N m/rad discs")
-    while hi - lo > tol_nm_rad:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if upright_margin(body, tension_n, mid) > 0 else (mid, hi)
-    return hi
