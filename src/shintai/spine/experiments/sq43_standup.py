@@ -51,7 +51,7 @@ def plots(ctx, runs, params):
 
 experiment(
     "spine.sq43-standup",
-    source="seed 003 §3.2.4 (立ち上がり動作), Fig. 3.9",
+    source="seed 003 §3.2.4 (standing up), Fig. 3.9",
     covers=("003:fig3.9",),
     summary="SQ43 (MuJoCo) stands up from its belly: all legs at once, front/hind in turns with the spine bending, "
             "and in turns with it straight, at the S9204's 12.6 kgf·cm; and the least servo torque each needs",

@@ -45,7 +45,7 @@ def plots(ctx, runs, params):
 
 experiment(
     "spine.sq43-uneven",
-    source="seed 003 §3.2.4 (不整地歩行), Fig. 3.8",
+    source="seed 003 §3.2.4 (walking on uneven ground), Fig. 3.8",
     covers=("003:fig3.8",),
     summary="SQ43 (MuJoCo): the crawl over a block under the left feet pauses after each touchdown and levels the "
             "shoulder/hip by the accelerometers; the left front leg bends stepping up and extends stepping down",
