@@ -71,6 +71,12 @@ PRESS_M = 0.004  # the pulling hand's target this far below the desk contact, so
 SUCCESS_M = 0.05  # the object counts as pulled when it came this far toward Cla (chosen before any run: 5 cm)
 FOLD = (-0.6, 2.4, 0.0)  # the folded arm (shoulder pitch back, elbow bent, wrist) [rad]: the hand stays off the desk
 LIFT_XZ_M = (0.10, 0.06)  # the lifted hand: x, and height above the desk's contact height (chosen)
+# Tuning, as §5.2.4's "脊椎の姿勢は実機で調整し決定している": after pulls_with_spine failed (4.9 cm < 5 cm; the spine
+# twisting 6–10° in yaw under the load, the hand sliding off the cube's side), the whole-spine yaw the spine holds
+# while it leans is tuned: PULL_YAW_DEG is the value of PULL_YAW_GRID_DEG with the smallest hand_lateral_max_m (the
+# hand's drift off the cube's centre line while behind it and dragging, the with-spine run), not the pulled distance.
+PULL_YAW_GRID_DEG = (-4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0)
+PULL_YAW_DEG = 0.0
 END_S = 7.0
 
 # --- cla.roll_over ---
