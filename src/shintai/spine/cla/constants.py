@@ -76,7 +76,7 @@ LIFT_XZ_M = (0.10, 0.06)  # the lifted hand: x, and height above the desk's cont
 # while it leans is tuned: PULL_YAW_DEG is the value of PULL_YAW_GRID_DEG with the smallest hand_lateral_max_m (the
 # hand's drift off the cube's centre line while behind it and dragging, the with-spine run), not the pulled distance.
 PULL_YAW_GRID_DEG = (-4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0)
-PULL_YAW_DEG = 0.0
+PULL_YAW_DEG = 8.0  # tuned: hand_lateral_max_m 2.3 cm (0°: 4.5 cm; the grid 3.9–4.7 cm elsewhere), notes/cla-pull.md
 END_S = 7.0
 
 # --- cla.roll_over ---
