@@ -86,10 +86,11 @@ REST_S = 1.0  # lying still before the keys start
 ROLLED_DEG = 135.0  # rolled over: both the pelvis and the shoulders turned beyond 135° (chosen: past the side)
 ROLL_OVER_YAW_DEG = 60.0  # the twist (two thirds of the range, 5 × ±18°)
 # spine.cla-roll-over-ga's budget (issue 28; the thesis made its keys by hand, no GA): population 12 (seed 003's GA
-# operators, a smaller population than §5.6.2's 20) for 20 generations, chosen from one evaluation's time (≈ 7 s wall
-# for 9.5 s simulated, the muscle spine at 0.5 ms): ≈ 110 evaluations, ≈ 6 min per direction on 2 cores
+# operators, a smaller population than §5.6.2's 20) for 12 generations, chosen from one evaluation's time (≈ 7 s wall
+# for 9.5 s simulated, the muscle spine at 0.5 ms, on 2 free cores; ≈ 40 s on the session's loaded machine, where 20
+# generations first chosen would not have ended by its deadline; cut during the first generation, no result seen)
 ROLL_GA_POPULATION = 12
-ROLL_GA_GENERATIONS = 20
+ROLL_GA_GENERATIONS = 12
 
 # --- cla.teach_runs ---
 # §4.2.2 (a): three key postures taught by hand (whole-spine roll, pitch, yaw) — chosen
