@@ -105,6 +105,7 @@ def test_roll_over_genes_decode_to_the_hand_made_keys_and_prone_lies_on_its_fron
     assert keys[2].targets["spine_yaw"] == pytest.approx(math.radians(-60.0))
     assert keys[3].targets == pytest.approx({"spine_yaw": math.radians(40.0), "spine_roll": 0.0, "hip_l": 1.8,
                                              "hip_r": 0.0})
+    assert set(keys[4].targets.values()) == {0.0} and len(keys[4].targets) == 8  # lie: everything back to 0
     assert RO.keys(np.ones(RO.N_GENES))[2].targets["spine_yaw"] == pytest.approx(math.radians(90.0))
     body, _, _ = RO.build(True, calibration_s=0.01, prone=True)
     assert RO.turn_deg(body, "link0") > 175.0 and RO.turn_deg(body, f"link{CLA.n}") > 175.0

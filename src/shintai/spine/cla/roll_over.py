@@ -76,9 +76,14 @@ GENES = (("raise", "duration", 0.5, 2.0), ("twist", "duration", 0.5, 2.0), ("fol
          ("twist", "spine_yaw", -90.0, 90.0), ("twist", "spine_roll", -72.0, 72.0),
          ("twist", "shoulder_pitch_l", -1.0, 3.1), ("twist", "shoulder_roll_l", -0.3, 2.6),
          ("follow", "spine_yaw", -90.0, 90.0), ("follow", "spine_roll", -72.0, 72.0),
-         ("follow", "hip_l", -1.0, 2.2), ("follow", "hip_r", -1.0, 2.2))
+         ("follow", "hip_l", -1.0, 2.2), ("follow", "hip_r", -1.0, 2.2),
+         # the posture the sequence ends in ("lie"; hand-made: every joint back to 0). Added after the first search
+         # failed: its best reached the side (92°) once "lie" had straightened every joint, and fell back from there
+         ("lie", "spine_yaw", -90.0, 90.0), ("lie", "spine_roll", -72.0, 72.0),
+         ("lie", "shoulder_pitch_l", -1.0, 3.1), ("lie", "shoulder_roll_l", -0.3, 2.6),
+         ("lie", "shoulder_pitch_r", -1.0, 3.1), ("lie", "hip_l", -1.0, 2.2), ("lie", "hip_r", -1.0, 2.2),
+         ("lie", "knee_l", 0.0, 2.6))
 N_GENES = len(GENES)
-LIE = ("spine_roll", "spine_yaw", "shoulder_pitch_l", "shoulder_roll_l", "shoulder_pitch_r", "hip_l", "hip_r", "knee_l")
 
 
 def encode(values: dict) -> np.ndarray:
@@ -93,22 +98,23 @@ def hand_made(yaw_deg: float = ROLL_OVER_YAW_DEG) -> np.ndarray:
                    ("raise", "knee_l"): 1.2, ("twist", "spine_yaw"): -yaw_deg, ("twist", "spine_roll"): 0.0,
                    ("twist", "shoulder_pitch_l"): 2.0, ("twist", "shoulder_roll_l"): -0.3,
                    ("follow", "spine_yaw"): 2.0 * yaw_deg / 3.0, ("follow", "spine_roll"): 0.0,
-                   ("follow", "hip_l"): 1.8, ("follow", "hip_r"): 0.0})
+                   ("follow", "hip_l"): 1.8, ("follow", "hip_r"): 0.0,
+                   **{(key, what): 0.0 for key, what, _, _ in GENES if key == "lie"}})
 
 
 HAND_MADE = hand_made()
 
 
 def keys(genes=None, yaw_deg: float = ROLL_OVER_YAW_DEG) -> list[Key]:
-    """Rest, raise, twist, follow, lie (every joint the keys moved back to 0), hold; ``genes`` in [0, 1]^N
-    (default: the hand-made keys with the twist ``yaw_deg``)."""
+    """Rest, raise, twist, follow, lie (the end posture; hand-made: every joint the keys moved back to 0), hold;
+    ``genes`` in [0, 1]^N (default: the hand-made keys with the twist ``yaw_deg``)."""
     genes = hand_made(yaw_deg) if genes is None else np.clip(np.asarray(genes, dtype=float), 0.0, 1.0)
-    parts = {"raise": {}, "twist": {}, "follow": {}}
+    parts = {"raise": {}, "twist": {}, "follow": {}, "lie": {}}
     for g, (key, what, lo, hi) in zip(genes, GENES):
         v = lo + g * (hi - lo)
         parts[key][what] = math.radians(v) if what.startswith("spine_") else v
     moves = [Key(parts[k].pop("duration"), parts[k], k) for k in ("raise", "twist", "follow")]
-    return [Key(REST_S, {}, "rest"), *moves, Key(1.5, dict.fromkeys(LIE, 0.0), "lie"), Key(1.0, {}, "hold")]
+    return [Key(REST_S, {}, "rest"), *moves, Key(1.5, parts["lie"], "lie"), Key(1.0, {}, "hold")]
 
 
 def sequence_s(genes=None) -> float:
