@@ -421,10 +421,11 @@ ROWS = (
         what="Cla rolls over on the floor, yawing the spine together with shoulders and hips",
         result="§5.2.8: hip and shoulder power alone cannot raise half the body; with the spine's yaw "
                "'仰向けからうつぶせ、うつぶせから仰向けと、両方向の寝返りができるようになった'",
-        why_not="on the muscle-spine MuJoCo Cla lying on its back, hand-made keys: the spine's twist (54° reached of "
-                "60°) raises the shoulders 54° off the floor against 1.3° with the spine locked ('半身を起こす' "
-                "reproduces), but the heavier pelvis and legs never follow, so Cla does not roll over (supine → "
-                "prone only tried)",
+        why_not="on the muscle-spine MuJoCo Cla, hand-made keys from the back: the spine's twist raises the shoulders "
+                "54° against 1.3° locked ('半身を起こす' reproduces) but the pelvis stays down; keys searched by seed "
+                "003's GA (23 genes, 12 × 12): the spine carries both halves past the side (pelvis 126°, shoulders "
+                "144°; locked 89°) but not onto the front (our 135°); from the front the hand-made keys roll Cla onto "
+                "its back, with the spine locked too (the arms push on the floor), against §5.2.8's need of the spine",
     ),
     Row(
         key="003:fig5.10",
