@@ -4,6 +4,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from shintai.evolve import stalled
 from shintai.scenarios.runner import RunContext
 from shintai.spine import ga_run
 
@@ -44,3 +45,21 @@ def test_generations_to_converge():
 def _evolve(ctx, *args, **kw):
     """ga_run.evolve with the GA's parameters of ``ctx`` as named arguments (as the experiments pass them)."""
     return ga_run.evolve(ctx, *args, ga=ga_run.GARun(**{k: ctx.params[k] for k in ga_run.GA_KEYS}), **kw)
+
+
+def test_a_declared_stopping_rule_ends_the_run_before_its_cap(tmp_path):
+    """ga_params(stop=True): the run stops once the best improved < stop_tolerance over stop_window generations."""
+    ctx = _ctx(tmp_path, generations=200, stop_window=3, stop_tolerance=0.5)
+    ga = ga_run.ga_of(ctx.params)
+    result = ga_run.evolve(ctx, "peak", _peak, [-1, -1], [1, 1], ga=ga)
+    best = result.history.best_so_far
+    assert 3 < len(best) < 200 and ga_run.budget_metrics(result, ga) == {"generations": len(best), "stopped_by_rule": 1}
+    assert not stalled(best[:-1], 3, 0.5, minimize=False)  # it stopped at the first generation the rule held
+    capped = ga_run.GARun(generations=5, population=10, executor="serial")
+    assert ga_run.budget_metrics(ga_run.evolve(_ctx(tmp_path / "c"), "peak", _peak, [-1, -1], [1, 1], ga=capped),
+                                 capped) == {"generations": 5, "stopped_by_rule": 0}
+
+
+def test_ga_params_declare_the_rule_only_when_asked():
+    names = {p.name for p in ga_run.ga_params(10, 20, stop=True)} - {p.name for p in ga_run.ga_params(10, 20)}
+    assert names == set(ga_run.STOP_KEYS)

@@ -79,7 +79,7 @@ from pathlib import Path
 
 import numpy as np
 
-from shintai.evolve import Executor, GAConfig, GeneticAlgorithm, load_checkpoint
+from shintai.evolve import Executor, GAConfig, GeneticAlgorithm, load_checkpoint, stalled
 from shintai.quadruped import constants as C
 from shintai.quadruped import fitness as F
 from shintai.quadruped import swing_order as S
@@ -138,10 +138,9 @@ def converged(best: np.ndarray, window: int = C.CONVERGENCE_WINDOW,
               tolerance: float = C.CONVERGENCE_TOLERANCE) -> bool:
     """The stopping rule of stages ``action`` and ``free`` (constants ``CONVERGENCE_*``): the best
     fitness per generation ``best`` (minimised, index 0 the first population) has improved by less
-    than ``tolerance`` of its value ``window`` generations ago, i.e. ``best[-1] > (1 - tolerance) *
-    best[-1 - window]``; never before ``window + 1`` generations."""
-    best = np.asarray(best, dtype=float)
-    return len(best) > window and bool(best[-1] > (1.0 - tolerance) * best[-1 - window])
+    than ``tolerance`` of its value ``window`` generations ago (:func:`shintai.evolve.stalled`); never before
+    ``window + 1`` generations."""
+    return stalled(best, window, tolerance, minimize=True)
 
 
 def training_envs(n: int) -> W.EnvBatch:

@@ -95,6 +95,27 @@ def test_roll_over_switch_locks_the_spine_and_the_free_twist_turns_the_shoulders
     assert turned[True] > 15.0 and turned[False] < 5.0
 
 
+def test_roll_over_genes_decode_to_the_hand_made_keys_and_prone_lies_on_its_front():
+    """The hand-made keys are a genome (the search's initial individual); lay(prone) puts the front down."""
+    keys = RO.keys(RO.HAND_MADE)
+    assert [k.label for k in keys] == ["rest", "raise", "twist", "follow", "lie", "hold"]
+    assert [k.duration_s for k in keys[1:4]] == pytest.approx([1.5, 1.5, 1.5])
+    assert keys[1].targets == pytest.approx({"shoulder_pitch_r": 2.8, "shoulder_pitch_l": 1.57, "hip_l": 1.0,
+                                             "knee_l": 1.2})
+    assert keys[2].targets["spine_yaw"] == pytest.approx(math.radians(-60.0))
+    assert keys[3].targets == pytest.approx({"spine_yaw": math.radians(40.0), "spine_roll": 0.0, "hip_l": 1.8,
+                                             "hip_r": 0.0})
+    assert set(keys[4].targets.values()) == {0.0} and len(keys[4].targets) == 8  # lie: everything back to 0
+    assert RO.keys(np.ones(RO.N_GENES))[2].targets["spine_yaw"] == pytest.approx(math.radians(90.0))
+    body, _, _ = RO.build(True, calibration_s=0.01, prone=True)
+    assert RO.turn_deg(body, "link0") > 175.0 and RO.turn_deg(body, f"link{CLA.n}") > 175.0
+
+
+def test_roll_fitness_counts_both_halves_and_the_pelvis_peak():
+    o = {"final_pelvis_turn_deg": 10.0, "final_shoulder_turn_deg": 50.0, "max_pelvis_turn_deg": 40.0}
+    assert RO.roll_fitness(o) == pytest.approx(30.0 + 20.0)
+
+
 def test_cop_balance_reflex_answers_the_soles():
     """Standing, the reflex's arm offset moves against the sole CoP's front–back error (eq. 3.5); switched off,
     the arms hold."""

@@ -10,6 +10,7 @@ RUNS = (
     "spine.cla-poses",
     "spine.cla-pull",
     "spine.cla-roll-over",
+    "spine.cla-roll-over-ga",
     "spine.cla-rpy",
     "spine.cla-throw",
     "spine.control-modes",

@@ -15,6 +15,11 @@ reaches over the object, the hand comes down behind it, then the spine straighte
 arm draws the hand back along the desk to ``PULL_TO_X_M``. The arm's joint targets at each keyframe are solved by
 inverse kinematics on the model with the spine at the keyframe's lean (:func:`arm_keyframes`): "without the
 spine" (Fig. 5.6) is the same module, the same targets and controller, the spine locked upright.
+
+**Tuning** ("脊椎の姿勢は実機で調整し決定している", §5.2.4): the spine's goal while it leans carries a whole-spine
+yaw pre-offset ``yaw_deg`` against the twist the load gives it; its value is tuned (constants ``PULL_YAW_*``),
+on the hand's lateral drift off the object's centre line (:func:`pull_summary`'s ``hand_lateral_max_m``), not on
+the pulled distance.
 """
 
 from __future__ import annotations
@@ -139,9 +144,9 @@ class PullPattern(Module):
     every tick, joint-space minimum jerk from keyframe to keyframe (the seqplugin player,
     :class:`~shintai.spine.cla.keyframes.KeyframePlayer`)."""
 
-    def __init__(self, keyframes: dict[str, np.ndarray], lean: float, start_arm, name: str = "pull"):
+    def __init__(self, keyframes: dict[str, np.ndarray], lean: float, start_arm, yaw: float = 0.0, name: str = "pull"):
         super().__init__(name)
-        self.keys, self.lean, self.start = keyframes, lean, np.asarray(start_arm, dtype=float)
+        self.keys, self.lean, self.yaw, self.start = keyframes, lean, yaw, np.asarray(start_arm, dtype=float)
         self.player = KeyframePlayer(ARM, dict(zip(ARM, self.start)), arm_keys(keyframes), channel="arm")
         self.t0, self.sent = 0.0, set()
 
@@ -155,7 +160,7 @@ class PullPattern(Module):
         for _, name, fraction in TIMELINE:
             if t >= STARTS[name] and name not in self.sent:
                 self.sent.add(name)
-                out["goal"] = np.array([0.0, fraction * self.lean, 0.0])
+                out["goal"] = np.array([0.0, fraction * self.lean, self.yaw if fraction > 0 else 0.0])
         return out
 
 
@@ -172,9 +177,9 @@ class Pull:
 
 
 def pull_rig(with_spine: bool, lean_deg: float, beyond_reach_m: float, move_s: float, calibration_s: float = 1.0,
-             view=None) -> Rig:
+             view=None, yaw_deg: float = 0.0) -> Rig:
     """One pull on the seated Cla before the desk: the spine free, or locked upright from the start, leaning
-    ``lean_deg`` toward an object ``beyond_reach_m`` past the straight arm's reach. Records every 10 ms the hand,
+    ``lean_deg`` (with the yaw pre-offset ``yaw_deg`` while it leans) toward an object ``beyond_reach_m`` past the straight arm's reach. Records every 10 ms the hand,
     the object's displacement, the hand's gap to it and the whole spine (:func:`pull_series`)."""
     body = ClaBody("seated")
     m = body.model
@@ -186,7 +191,7 @@ def pull_rig(with_spine: bool, lean_deg: float, beyond_reach_m: float, move_s: f
     body.place("desk_object", [x_obj, -CLA_SHOULDER_M[1], CLA_DESK_HEIGHT_M + CLA_OBJECT_HALF_M])
     if not with_spine:
         body.lock_spine(True)
-    pattern = PullPattern(keys, lean, start)
+    pattern = PullPattern(keys, lean, start, np.radians(yaw_deg))
     stages = spine_stages(control, zero, move_s, first=[pattern])
     run = Pull(x_obj, reach_at_desk(m), reach_at_desk(m, lean), keys, body.t, body.object_pos("desk_object").copy())
 
@@ -204,7 +209,8 @@ def pull_rig(with_spine: bool, lean_deg: float, beyond_reach_m: float, move_s: f
 def pull_series(log, run: Pull) -> dict:
     """The recorded time series (``t`` from the pull's start) and the set-up."""
     hand, obj, spine = log.values("hand_m"), log.values("object_d_m"), log.values("spine_deg")
-    s = {"t": log.times("hand_m") - run.t0, "hand_gap_m": log.values("hand_gap_m")}
+    s = {"t": log.times("hand_m") - run.t0, "hand_gap_m": log.values("hand_gap_m"),
+         "hand_lateral_m": hand[:, 1] - (run.x0[1] + obj[:, 1])}
     s |= {f"hand_{a}_m": hand[:, i] for i, a in enumerate("xyz")}
     s |= {f"object_d{a}_m": obj[:, i] for i, a in enumerate("xyz")}
     s |= {f"spine_{a}_deg": spine[:, i] for i, a in enumerate(("roll", "pitch", "yaw"))}
@@ -214,8 +220,12 @@ def pull_series(log, run: Pull) -> dict:
 
 def pull_summary(s: dict) -> dict[str, float]:
     """Pulled distance (toward Cla: −x) [m], success, the hand's closest approach to the object [m] and its
-    farthest x [m], the largest spine lean [deg]."""
+    farthest x [m], the largest spine lean [deg], the spine's largest |yaw| [deg], and the hand's largest lateral
+    offset from the object's centre line from the hand's coming down behind it to the end of the drag [m]."""
     pulled = float(-s["object_dx_m"][-1])
+    drag = (s["t"] >= STARTS["down"]) & (s["t"] <= TIMELINE[-1][0])
     return {"object_pulled_m": pulled, "success": int(pulled >= SUCCESS_M),
+            "hand_lateral_max_m": float(np.abs(s["hand_lateral_m"][drag]).max()),
+            "max_abs_yaw_deg": float(np.abs(s["spine_yaw_deg"]).max()),
             "hand_min_gap_m": float(s["hand_gap_m"].min()), "hand_max_x_m": float(s["hand_x_m"].max()),
             "max_lean_deg": float(s["spine_pitch_deg"].max())}

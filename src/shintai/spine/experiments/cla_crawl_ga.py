@@ -13,7 +13,7 @@ from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine.cla import crawl as CC
 from shintai.spine.cla import plots as P
 from shintai.spine import ga_run
-from shintai.spine.robots import CRAWL_EVAL_S
+from shintai.spine.robots import CRAWL_EVAL_S, CRAWL_GA_CAP
 
 VARIANTS = ("rigid", "hand_made", "evolved")
 LABELS = {"rigid": "rigid spine (locked)", "hand_made": "hand-made roll (Fig. 5.10)", "evolved": "GA roll (Fig. 5.11)"}
@@ -38,7 +38,7 @@ def _variant_metrics(name: str, genes, sensors: np.ndarray, eval_s: float) -> di
     summary="Cla crawls on hands and knees: the spine's roll amounts and timings evolved by seed 003's GA "
             "(fitness = distance − torque integral − peak torque), against the spine locked straight and the "
             "hand-made roll",
-    params=[*ga_run.ga_params(generations=15, population=20),
+    params=[*ga_run.ga_params(generations=CRAWL_GA_CAP, population=20, stop=True),
             Param("eval_s", CRAWL_EVAL_S, "simulated time of one crawl [s]", lo=1.0, hi=120.0)],
     checks=(
         Check("evolved.distance_m", ">", "hand_made.distance_m", Q_HAND + ": the GA's crawl goes faster than the "
@@ -51,6 +51,8 @@ def _variant_metrics(name: str, genes, sensors: np.ndarray, eval_s: float) -> di
               name="roll_lengthens_stroke", kind="reproduction", row="003:fig5.10"),
         Check("rigid.max_spine_deg", "<", 0.5, "the lock holds the rigid spine straight (our model's "
               "equality constraints; < 0.5° chosen)", name="rigid_spine_locked", kind="consistency"),
+        Check("stopped_by_rule", "==", 1, "the budget is robots GA_STOP_* (the best improved < 1 % over 20 "
+              "generations), the cap only a guard: the run should end by the rule", kind="consistency"),
         Check("crawl_improvement", ">=", 0.0, "the GA keeps its best (elitism, §5.5.3): the last generation's "
               "best is at least the first's", kind="consistency"),
         Check("realtime_factor", ">=", 1.0, "§5.4.5's environment for the GA: '実時間並みの計算速度'; ours "
@@ -75,7 +77,7 @@ def cla_crawl_ga(ctx) -> dict:
     p = ctx.params
     eval_s = float(p["eval_s"])
     result = ga_run.evolve(ctx, "crawl", CC.CrawlFitness(eval_s), np.zeros(CC.N_GENES), np.ones(CC.N_GENES),
-                           ga=ga_run.GARun(**{k: p[k] for k in ga_run.GA_KEYS}),
+                           ga=(ga := ga_run.ga_of(p)),
                            batch=True, title="Cla crawl: spine roll amounts and timings (seed 003 §5.2.9)")
     genomes = {"rigid": CC.RIGID, "hand_made": CC.HAND_MADE, "evolved": result.best_genome}
     sensors, metrics = {}, {}
@@ -88,7 +90,8 @@ def cla_crawl_ga(ctx) -> dict:
     metrics["realtime_factor"] = eval_s / seconds
     history = result.history
     ctx.sim_time_s += (ga_run.evaluations(p["population"], len(history)) + len(VARIANTS)) * eval_s
-    metrics |= {"generations": len(history), "crawl_best_fitness": float(history.best[-1]),
+    metrics |= ga_run.budget_metrics(result, ga)
+    metrics |= {"crawl_best_fitness": float(history.best[-1]),
                 "crawl_initial_best": float(history.best[0]),
                 "crawl_improvement": float(history.best[-1] - history.best[0]),
                 "generations_to_converge": ga_run.generations_to_converge(history.best)}

@@ -7,7 +7,7 @@ from __future__ import annotations
 from shintai.scenarios.experiment import variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.cla import plots as P
-from shintai.spine.cla.constants import SUCCESS_M
+from shintai.spine.cla.constants import PULL_YAW_DEG, SUCCESS_M
 from shintai.spine.cla.pull import pull_rig, pull_series, pull_summary
 
 VARIANTS = ("with_spine", "without_spine")
@@ -19,7 +19,7 @@ QUOTE = "§5.2.4: '脊椎を利用しないで同様の動作を行おうとす�
 
 def rig(params, variant, seed):
     return pull_rig(variant == "with_spine", params["lean_deg"], params["beyond_reach_m"], params["move_s"],
-                    params["calibration_s"], view=VIEW)
+                    params["calibration_s"], view=VIEW, yaw_deg=params["yaw_deg"])
 
 
 def metrics(runs, params):
@@ -46,6 +46,8 @@ experiment(
     params=[
         Param("lean_deg", 70.0, "whole-spine forward lean at the reach (§5.2.4: tuned on the robot; ours)",
               lo=0.0, hi=85.0),
+        Param("yaw_deg", PULL_YAW_DEG, "whole-spine yaw held while leaning, against the load's twist: tuning "
+              "(§5.2.4 '脊椎の姿勢は実機で調整し決定している'; constants PULL_YAW_*)", lo=-30.0, hi=30.0),
         Param("beyond_reach_m", 0.005, "the object's near face beyond the straight-spine reach (ours)",
               lo=0.0, hi=0.05),
         Param("move_s", 1.0, "each spine posture move [s] (chosen)", lo=0.2, hi=3.0),

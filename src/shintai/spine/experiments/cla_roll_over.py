@@ -4,14 +4,11 @@ turn measure: :mod:`shintai.spine.cla.roll_over`."""
 
 from __future__ import annotations
 
-import numpy as np
-
-from shintai.scenarios.experiment import Rig, per_variant
+from shintai.scenarios.experiment import per_variant
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 from shintai.spine.cla import plots as P
 from shintai.spine.cla import roll_over as RO
-from shintai.spine.cla.constants import ROLLED_DEG, ROLL_OVER_YAW_DEG
-from shintai.spine.control import SETPOINTS
+from shintai.spine.cla.constants import ROLL_OVER_YAW_DEG
 
 Q_HALF = ("§5.2.8 '股関節の力・肩の力だけでは体を捻って半身を起こすことができない。脊椎を yaw 軸回りに回転させる動きと"
           "肩・股関節の動きを同時に行うことで … 半身を起こすことができる'")
@@ -19,26 +16,12 @@ Q_ROLL = "§5.2.8 'これにより、仰向けからうつぶせ、うつぶせ�
 
 
 def rig(params, variant, seed):
-    body, player, control = RO.build(variant == "spine", params["yaw_deg"])
-    return Rig(body, stages=[[player], [control]], channels=SETPOINTS,
-               duration=float(player.times[-1]) * params["fraction"],
-               record={10: lambda snap: RO.signals(body)},
-               view={"track": "link0", "distance": 0.9, "azimuth": 120.0, "elevation": -35})
-
-
-def _one(run) -> dict:
-    log = run.log
-    pelvis, shoulders = log.values("pelvis_turn_deg"), log.values("shoulder_turn_deg")
-    whole = log.values("whole_deg")
-    return {"max_shoulder_turn_deg": float(shoulders.max()), "max_pelvis_turn_deg": float(pelvis.max()),
-            "final_shoulder_turn_deg": float(shoulders[-1]), "final_pelvis_turn_deg": float(pelvis[-1]),
-            "rolled": int(min(pelvis[-1], shoulders[-1]) > ROLLED_DEG),
-            "max_yaw_deg": float(np.abs(whole[:, 2]).max()),
-            "max_spine_change_deg": float(np.abs(whole - whole[0]).max())}
+    return RO.roll_rig(variant == "spine", fraction=params["fraction"], yaw_deg=params["yaw_deg"],
+                       view={"track": "link0", "distance": 0.9, "azimuth": 120.0, "elevation": -35})
 
 
 def metrics(runs, params):
-    return per_variant({v: _one(r) for v, r in runs.items()})
+    return per_variant({v: RO.outcome(r.log) for v, r in runs.items()})
 
 
 experiment(

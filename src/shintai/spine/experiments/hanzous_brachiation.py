@@ -85,12 +85,9 @@ experiment(
     ),
     checks=(
         Check("peak_trunk_force_stiff_n", ">", "peak_trunk_force_soft_n",
-              "§5.7.4 Fig. 5.24: '硬い場合の方がピークの値が大きいことがわかる' (stiff trunk: larger peak internal force "
-              "at the trunk root; no number): the force the hinge transmits", kind="reproduction", row="003:fig5.24"),
-        Check("peak_trunk_moment_stiff_nm", ">", "peak_trunk_moment_soft_nm",
-              "§5.7.4 Fig. 5.24 (as above), 内力 read as the beam's bending moment, the component of Eq. 5.4's "
-              "F = K X (T_y) that the cam's stiffness acts on in our one-DOF trunk", kind="reproduction",
-              row="003:fig5.24"),
+              "§5.7.4 Fig. 5.24: '体幹部の根元に生じる内力の大きさ … 硬い場合の方がピークの値が大きいことがわかる' "
+              "(stiff trunk: larger peak internal force, 内力, at the trunk root; no number): the force the hinge "
+              "transmits", kind="reproduction", row="003:fig5.24"),
         Check("impact_peak_stiff_n", ">", "impact_peak_real_n",
               "§3.3.4 Fig. 3.14: 'ブラキエーション動作のバー把持時の衝撃力を脊椎の柔軟性により緩和されている' — the "
               "grasp's impact is softened by the trunk made soft before the grasp (peak in the 0.3 s after it)",
@@ -104,6 +101,8 @@ experiment(
               "sequence grasps the next bar and hangs from both under the cam-changed policy", kind="reproduction",
               row="003:fig5.23"),
     ),
+    # The bending moment at the root (peak_trunk_moment_*_nm, sequences_stiff_moment_larger) is a metric only: Fig.
+    # 5.24 plots the force (内力); the moment check was added after the force check failed on an older grasp model.
     thesis={
         "peak_force": ThesisValue("stiff > soft (no number)", "seed 003 §5.7.4 Fig. 5.24 '硬い場合の方がピークの値が"
                                   "大きいことがわかる'", "peak_trunk_force_stiff_n"),

@@ -13,6 +13,7 @@ import numpy as np
 from shintai.scenarios.experiment import film, run_rig
 from shintai.scenarios.registry import Check, Param, ThesisValue, scenario
 from shintai.spine import ga_run
+from shintai.spine.robots import TROT_GA_CAP
 from shintai.spine.sq43 import plots as P
 from shintai.spine.sq43.constants import GENE_HI, GENE_LO, THESIS_SECONDS_PER_INDIVIDUAL, TROT_DURATION_S
 from shintai.spine.sq43.gaits import GENES, TrotFitness, trot_result, trot_rig
@@ -28,18 +29,21 @@ VIEW = {"fps": 20, "width": 480, "height": 360, "track": "shoulder", "distance":
     summary="SQ43 (MuJoCo) trot from seed 003's GA over 6 genes (cycle, fore, natural length, height, two leg "
             "centres); fitness = distance − twist − swing height; the best gait replayed",
     params=[
-        *ga_run.ga_params(generations=20, population=20),
+        *ga_run.ga_params(generations=TROT_GA_CAP, population=20, stop=True),
         Param("duration_s", TROT_DURATION_S, "walking time each individual is simulated ('数秒間', §5.6.2)",
               lo=1.0, hi=30.0),
     ],
     checks=[
         Check("best_distance_mm", ">", 0.0, "§5.6.3: the GA's gait walks forward on the simulator (Fig. 5.22)",
-              kind="reproduction"),
+              kind="reproduction", row="003:fig5.22"),
         Check("fitness_gain", ">", 0.0, "§5.6.2 Fig. 5.21: the best fitness rises over the generations (the "
-              "curve; no number)", kind="reproduction"),
+              "curve; no number)", kind="reproduction", row="003:fig5.21"),
         Check("generations_to_converge", "<=", "half_generations", "§5.6.2: 'それほど世代数をかけずに学習が収束' — "
-              "no number in the text; ours: 95 % of the run's gain within the first half of the generations",
-              name="converges_in_few_generations", kind="reproduction"),
+              "no number in the text; ours: 95 % of the run's gain within the first half of the generations, the "
+              "run ended by robots GA_STOP_*",
+              name="converges_in_few_generations", kind="reproduction", row="003:fig5.21"),
+        Check("stopped_by_rule", "==", 1, "the budget is robots GA_STOP_* (the best improved < 1 % over 20 "
+              "generations), the cap only a guard: the run should end by the rule", kind="consistency"),
         Check("speedup_vs_thesis", ">=", 1800.0, "§5.6.2: '1 個体の数秒間の運動の解析に約 30 分程度' (1800 s); "
               "ours ≤ 1 s per individual", kind="consistency"),
     ],
@@ -55,7 +59,7 @@ def sq43_trot_ga(ctx):
     p = ctx.params
     fitness = TrotFitness(duration_s=float(p["duration_s"]))
     t0 = time.perf_counter()
-    ga = ga_run.GARun(**{k: p[k] for k in ga_run.GA_KEYS})
+    ga = ga_run.ga_of(p)
     result = ga_run.evolve(ctx, "trot", fitness, GENE_LO, GENE_HI, ga=ga, title="SQ43 trot GA (Fig. 5.21)")
     wall = time.perf_counter() - t0
     ctx.progress(0.95, "replaying the best gait")
@@ -79,7 +83,7 @@ def sq43_trot_ga(ctx):
         "best_distance_mm": replay["distance_mm"], "best_twist_deg": replay["twist_deg"],
         "best_swing_mm": replay["swing_mm"], "best_lateral_mm": replay["lateral_mm"],
         "replay_fitness": replay["fitness"],
-        "generations": gens, "half_generations": max(1, gens // 2),
+        **ga_run.budget_metrics(result, ga), "half_generations": max(1, gens // 2),
         "generations_to_converge": ga_run.generations_to_converge(history.best_so_far),
         "seconds_per_individual": one, "ga_wall_s": wall,
         "ga_seconds_per_individual": wall / (gens * int(p["population"])),
