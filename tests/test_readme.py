@@ -144,3 +144,18 @@ def test_readme_table_for_some_scenarios_rewrites_their_rows_and_recounts():
     counts = {"reproduced": 2, "not comparable": 1}
     assert merged[4] == "| 004 Yamaguchi — learning quadruped | " + " | ".join(
         str(counts.get(s, 0)) for s in STATUSES) + " |"
+
+
+def test_readme_rows_say_what_the_coverage_registry_says():
+    """A row's 'why' in the README is its registry text for its status (``difference`` or ``why_not``): a row
+    whose text changed in coverage.py must have its table line re-written (scripts/readme_table.py)."""
+    from shintai.scenarios.coverage import DIFFERENCE, NOT_REPRODUCED, all_rows
+    from shintai.scenarios.report import cell
+
+    rows = all_rows()
+    stale = []
+    for key, cells in readme_rows().items():
+        text = {DIFFERENCE: rows[key].difference, NOT_REPRODUCED: rows[key].why_not}.get(cells[3])
+        if text and cell(text) != cells[4]:
+            stale.append(key)
+    assert not stale, f"README rows older than their coverage text: {stale}"
