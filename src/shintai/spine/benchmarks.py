@@ -113,7 +113,8 @@ def ga_throughput(population: int = 20, repeats: int = 3) -> dict:
     約 30 分程度', and one generation of ``population`` individuals on each executor (pools started before
     timing: the per-generation cost, not the start-up)."""
     from shintai.evolve import make_executor
-    from shintai.spine.sq43.gaits import GENE_HI, GENE_LO, TrotFitness
+    from shintai.spine.sq43.constants import GENE_HI, GENE_LO
+    from shintai.spine.sq43.gaits import TrotFitness
 
     fitness = TrotFitness()
     rng = np.random.default_rng(0)
