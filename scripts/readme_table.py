@@ -76,6 +76,8 @@ def merge_present(old: str, new: str, present: set[str]) -> str:
     """``old``'s block with the rows whose scenarios are all in ``present`` taken from ``new``, the summary lines
     recounted from the rows' statuses and the commits of both runs listed (module docstring)."""
     old_lines, new_lines = old.splitlines(), new.splitlines()
+    if not COMMITS.search(old_lines[0]):
+        raise ValueError("README: the reproduction table's first line names no `shintai reproduce` commits")
     fresh = {m.group(0): li for li in new_lines if (m := re.match(r"\| \d{3}:\S+ \|", li))}
     commits = sorted(set(COMMITS.search(old_lines[0]).group(1).split(", ")) |
                      set(COMMITS.search(new_lines[0]).group(1).split(", ")))
@@ -91,11 +93,13 @@ def merge_present(old: str, new: str, present: set[str]) -> str:
     for line in out:
         if _row_seed(line):
             status = _cells(line)[3]
-            counts.setdefault(_row_seed(line), dict.fromkeys(STATUSES, 0))[status] += 1
+            if status in STATUSES:  # a row "not run here" is counted nowhere, as in the full table
+                counts.setdefault(_row_seed(line), dict.fromkeys(STATUSES, 0))[status] += 1
     for i, line in enumerate(out):
         if _summary_seed(line):
             name = _cells(line)[0]
-            out[i] = f"| {name} | " + " | ".join(str(counts[line[2:5]][s]) for s in STATUSES) + " |"
+            seed_counts = counts.get(line[2:5], dict.fromkeys(STATUSES, 0))
+            out[i] = f"| {name} | " + " | ".join(str(seed_counts[s]) for s in STATUSES) + " |"
     return "\n".join(out)
 
 

@@ -130,7 +130,8 @@ def test_readme_table_for_some_scenarios_rewrites_their_rows_and_recounts():
         "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at aaa) -->", "",
         *head, "| 004 Yamaguchi — learning quadruped | 9 | 9 | 9 | 9 | 9 |", "", *rows_head,
         "| 004:a | §2 | `q.a` | not reproduced | old | — |", "| 004:b | §3 | `q.a`, `q.b` | reproduced | kept | — |",
-        "| 004:c | §4 \\| Fig. 1 | — | not yet built | old | — |", "", "<!-- reproduction:end -->"])
+        "| 004:c | §4 \\| Fig. 1 | — | not yet built | old | — |", "| 004:d | §5 | `q.d` | not run here | old | — |", "",
+        "<!-- reproduction:end -->"])
     new = "\n".join([
         "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at bbb) -->", "",
         *head, "| 004 Yamaguchi — learning quadruped | 0 | 0 | 0 | 0 | 0 |", "", *rows_head,

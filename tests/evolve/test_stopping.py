@@ -24,3 +24,9 @@ def test_minimised_and_negative_values_improve_in_their_direction():
 
 def test_a_window_of_zero_never_stops():
     assert not stalled(np.full(100, 1.0), 0, 0.01, minimize=False)
+
+
+def test_a_best_that_does_not_move_has_stalled_even_at_zero():
+    """A best stuck at exactly 0 (no relative tolerance to compare with) stops; a move away from 0 does not."""
+    assert stalled(np.zeros(21), 20, 0.01, minimize=False) and stalled(np.zeros(21), 20, 0.01, minimize=True)
+    assert not stalled(np.concatenate([np.zeros(1), np.full(20, 1e-9)]), 20, 0.01, minimize=False)

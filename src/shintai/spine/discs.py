@@ -99,6 +99,7 @@ def upright_stiffness(body, tension_n: float, disc_nm_rad: float, step_rad: floa
     the tension is held). Returns (symmetric K, DOF names); upright is stable iff its smallest eigenvalue > 0.
     Any hand lets go (and Kenta's teacher, ``let_go``, where the body has one)."""
     m, d = body.model, body.data
+    stiffness, ctrl = m.jnt_stiffness.copy(), d.ctrl.copy()  # restored at the end: the caller's model is unchanged
     body.reset()
     body.hold(None)
     getattr(body, "let_go", lambda: None)()
@@ -127,7 +128,9 @@ def upright_stiffness(body, tension_n: float, disc_nm_rad: float, step_rad: floa
         minus[a] -= step_rad
         K[:, c] = -(force(plus) - force(minus)) / (2 * step_rad)
     m.tendon_stiffness[muscles] = k_wire
+    m.jnt_stiffness[:] = stiffness
     body.reset()
+    d.ctrl[:] = ctrl
     names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) for j in dofs]
     return 0.5 * (K + K.T), names
 

@@ -97,7 +97,7 @@ def test_scenario_short_run(smoke):
         for key in ("distance_m", "torque_integral_nms", "peak_torque_nm", "heading_drift_deg", "fitness"):
             assert math.isfinite(m[f"{v}.{key}"])
     assert m["rigid.max_spine_deg"] < 0.5 and m["rigid.spine_torque_integral_nms"] == 0
-    assert m["generations"] == result["params"]["generations"] and m["crawl_improvement"] >= 0
+    assert m["generations"] == result["params"]["generations"] and m["crawl_improvement"] >= 0  # elitism
     assert m["evolved.fitness"] == pytest.approx(m["crawl_best_fitness"])  # the replay is the GA's evaluation
     for name in ("crawl_curve", "crawl_comparison", "crawl_paths"):
         assert (run.out / f"{name}.png").exists()

@@ -75,7 +75,10 @@ class VboardRide:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         if placement not in PLACEMENTS:
             raise ValueError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
-        fig61 = placement == "fig6.1" and standing is None and lift
+        if placement == "fig6.1" and (standing is not None or not lift):
+            raise ValueError("placement='fig6.1' sets the target ZMP and the soles' reference at the lift's hand-over: "
+                             "it needs lift=True and no standing stack passed in")
+        fig61 = placement == "fig6.1"
         check_real("D", D, 0.0, low_open=True)
         self.level = level
         self.scooter = scooter_spec(theta_o_error_deg)

@@ -14,7 +14,7 @@ from scipy.stats import spearmanr
 
 from shintai.scenarios.experiment import Rig
 from shintai.spine.bodies_mujoco import SpineBody
-from shintai.spine.cla.constants import CLA_DISC_K_STAR_NM_RAD, CLA_RING_DISC
+from shintai.spine.cla.constants import CLA_DISC_K_STAR_NM_RAD, CLA_RING_DISC, DISC_LAWS
 from shintai.spine.cla.postures import (
     GOAL,
     HOLD_TESTS,
@@ -98,6 +98,8 @@ def mode_rig(config: str, axis_name: str, *, max_angle_deg: float, hold_s: float
     (``mid``, ``high``, thesis units of ``spring_law``); ``disc`` one of ``cla.constants.DISC_LAWS``, ``wrap`` the interference geom
     (:data:`~shintai.spine.bodies_mujoco.WRAPS`). ``picture``: keep
     :func:`~shintai.spine.plots.spine_state` at the largest angle."""
+    if disc not in DISC_LAWS:
+        raise ValueError(f"disc must be one of {DISC_LAWS}, got {disc!r}")
     shortening, lengthening, spring = MODE_CONFIGS[config]
     body = SpineBody(CLA, interference=interference, wrap=wrap)
     if disc == "hardening":

@@ -59,7 +59,7 @@ experiment(
         Param("torque_nm", SERVO_TORQUE_NM, "leg servos' torque limit [N·m] (S9204's 12.6 kgf·cm, §3.5.1; the seed "
               "names no servo for SQ43)", lo=0.1, hi=3.0),
         Param("steps", StandUp.steps, "front/hind turns (chosen by the search in the notes)", lo=1, hi=16),
-        Param("spine_deg", -40.0, "servo B's bend while the front pair extends [deg] (−: arched; chosen by the search "
+        Param("spine_deg", StandUp.spine_deg, "servo B's bend while the front pair extends [deg] (−: arched; chosen by the search "
               "in the notes)", lo=-60.0, hi=60.0),
         Param("phase_s", StandUp.phase_s, "duration of each pair's extension [s]", lo=0.1, hi=5.0),
         Param("all_s", StandUp.all_s, "duration of the all-at-once extension [s]", lo=0.5, hi=20.0),

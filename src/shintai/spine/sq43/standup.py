@@ -51,7 +51,7 @@ class StandUp:
     all_s: float = 3.0
     steps: int = 4
     phase_s: float = 0.75
-    spine_deg: float = 30.0
+    spine_deg: float = -40.0  # arched (−), the search's pick (notes/sq43-standup.md)
     hold_s: float = 1.5
     stood_fraction: float = 0.9
 
