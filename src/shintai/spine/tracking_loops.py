@@ -162,27 +162,37 @@ def posture_estimator(kind: str, model: SpineModel, rng: np.random.Generator, gr
 
 class SpineGazeLoop(Module):
     """The spine's loop: posture from muscle lengths by ``estimate`` (:func:`posture_estimator`), then a uniform
-    bend toward the target. Every run it records (t, whole-spine estimate, whole-spine truth) in ``estimates``."""
+    bend toward the target. Every run it records (t, whole-spine estimate, whole-spine truth) in ``estimates``.
+    ``shadow``, a second estimator (the Jacobian integration beside the NN, issue 28 item 2), reads the same
+    lengths at the same ticks from its own previous estimate without acting; its record is ``shadow_estimates``."""
 
-    def __init__(self, model: SpineModel, zero_lengths, period: float, gain: float, estimate, name: str = "spine"):
+    def __init__(self, model: SpineModel, zero_lengths, period: float, gain: float, estimate, name: str = "spine",
+                 shadow=None):
         super().__init__(name, period)
         self.model, self.zero, self.gain = model, np.asarray(zero_lengths, dtype=float), gain
-        self.estimator = estimate
+        self.estimator, self.shadow = estimate, shadow
         self.estimate = np.zeros(3 * model.n)
+        self.shadow_estimate = np.zeros(3 * model.n)
+        self.shadow_estimates: list[tuple] = []
         self.whole_cmd = np.zeros(3)
         self.times: list[float] = []
         self.estimates: list[tuple] = []
 
     def reset(self, snapshot: Snapshot) -> None:
         self.estimate = np.zeros(3 * self.model.n)
-        self.times, self.estimates = [], []
+        self.shadow_estimate = np.zeros(3 * self.model.n)
+        self.times, self.estimates, self.shadow_estimates = [], [], []
 
     def update(self, snapshot: Snapshot):
         self.times.append(float(snapshot["t"]))
         lengths = self.zero - np.asarray(snapshot["encoder"], dtype=float)  # encoder l = λ(0) − λ (control.py)
         self.estimate = self.estimator(lengths, self.estimate)
         roll, pitch, yaw = whole_spine(self.estimate)
-        self.estimates.append((self.times[-1], np.array([roll, pitch, yaw]), whole_spine(snapshot["theta"])))
+        truth = whole_spine(snapshot["theta"])
+        self.estimates.append((self.times[-1], np.array([roll, pitch, yaw]), truth))
+        if self.shadow is not None:
+            self.shadow_estimate = self.shadow(lengths, self.shadow_estimate)
+            self.shadow_estimates.append((self.times[-1], np.array(whole_spine(self.shadow_estimate)), truth))
         h, v = snapshot["target_image"]
         ymax, pmax = TRACKING_SPINE_RANGE_RAD
         self.whole_cmd = np.array([0.0, np.clip(pitch - self.gain * v, -pmax, pmax),
@@ -271,6 +281,9 @@ def tracking_metrics(log, run: Tracking, duration_s: float, amplitude_m: float, 
         out[f"{m.name}_period_s"] = measured_period(m.times)
         if isinstance(m, SpineGazeLoop) and m.estimates:
             out |= estimate_errors(m.estimates, run.t0 + min(1.0, 0.5 * duration_s))
+        if isinstance(m, SpineGazeLoop) and m.shadow_estimates:
+            shadow = estimate_errors(m.shadow_estimates, run.t0 + min(1.0, 0.5 * duration_s))
+            out |= {f"shadow_jacobian_{k}": v for k, v in shadow.items()}
     arms = run.arms
     if arms is not None:
         q = np.degrees(s["arms"][settled])

@@ -61,15 +61,16 @@ def cla_tracking(loops: tuple[str, ...], amplitude_m: float, path_period_s: floa
     """Cla zeroed (1 s, :func:`~shintai.spine.cla.control.spine_control`), then the stages of its tracking run
     with the visual ``loops`` on, the spine's posture by ``estimator`` (as :func:`posture_estimator`; the NN
     trained from ``rng``): (body, stages, :class:`Tracking`)."""
-    estimate = None
+    estimate = shadow = None
     if "spine" in loops:
         estimate = posture_estimator(estimator, CLA.model, rng if rng is not None else np.random.default_rng(0))
+        shadow = posture_estimator("jacobian", CLA.model, None) if estimator == "nn" else None
     body = TrackedCla()
     control, zero = spine_control(body)
     parts = {"neck": lambda: GazeLoop("neck", TRACKING_PERIODS_S["neck"], TRACKING_GAINS["neck"],
                                       ("neck_yaw", "neck_pitch"), -1.0, CLA_NECK_LIMIT_RAD),
              "spine": lambda: SpineGazeLoop(CLA.model, zero, TRACKING_PERIODS_S["spine"], TRACKING_GAINS["spine"],
-                                                 estimate)}
+                                                 estimate, shadow=shadow)}
     modules = [parts[name]() for name in loops]
     eye = body.data.cam_xpos[body.id("camera", "head_cam")].copy()
     return (body, *tracking_stages(body, control, eye, modules, amplitude_m, path_period_s))

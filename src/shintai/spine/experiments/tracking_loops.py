@@ -51,6 +51,10 @@ def _checks():
                 "§4.4.3 'ヤコビアンを用いて積分により求めるという手法は、小さい誤差が生じると次のステップですぐに発散"
                 "していきやすい'; '誤差も NN を利用する場合と比較して大きい' — on Kenta's tracking run (ours: a loop, "
                 "not Table 4.2's offline test)", name="kenta_jacobian_worse_than_nn", kind="consistency")
+    yield Check("kenta_shadow_jacobian_estimate_max_error_deg", ">", "kenta_estimate_max_error_deg",
+                "§4.4.3, as above, on the same run: the Jacobian integration reads the NN run's lengths at the same "
+                "ticks from its own previous estimate, without acting (issue 28 item 2)",
+                name="kenta_jacobian_worse_than_nn_same_run", kind="consistency")
     yield Check("kenta_arm_following_error_deg", "<=", 5.0,
                 "the arms follow their commanded swing while the loops run (derived: our servos and swing; 5° ours)",
                 kind="consistency")

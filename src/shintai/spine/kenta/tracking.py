@@ -30,17 +30,18 @@ def kenta_tracking(loops: tuple[str, ...], amplitude_m: float, path_period_s: fl
     """Kenta zeroed for ``zeroing_s``, then the stages of its tracking run with the visual ``loops`` on (and
     :class:`ArmSwing` when ``arm_swing_rad`` > 0), the spine's posture by ``estimator`` (``"nn"``: trained here,
     from ``rng``; ``"jacobian"``): (body, stages, :class:`Tracking`)."""
-    estimate = None
+    estimate = shadow = None
     if "spine" in loops:
         estimate = posture_estimator(estimator, KENTA.model, rng if rng is not None else np.random.default_rng(0),
                                      KENTA_NN_GRID_DEG)
+        shadow = posture_estimator("jacobian", KENTA.model, None) if estimator == "nn" else None
     body, control, zero = calibrated_kenta(seconds=zeroing_s)
     parts = {"eyes": lambda: GazeLoop("eyes", TRACKING_PERIODS_S["eyes"], TRACKING_GAINS["eyes"],
                                       ("eye_pan", "eye_tilt"), +1.0, KENTA_EYE_LIMIT_RAD),
              "neck": lambda: GazeLoop("neck", TRACKING_PERIODS_S["neck"], TRACKING_GAINS["neck"],
                                       ("neck_pan", "neck_tilt"), -1.0, KENTA_NECK_LIMIT_RAD),
              "spine": lambda: SpineGazeLoop(KENTA.model, zero, TRACKING_PERIODS_S["spine"], TRACKING_GAINS["spine"],
-                                                 estimate)}
+                                                 estimate, shadow=shadow)}
     modules = [parts[name]() for name in loops]
     arms = ArmSwing(arm_swing_rad, arm_period_s) if arm_swing_rad > 0 else None
     eye = body.data.cam_xpos[body.id("camera", "eye_L")].copy()
