@@ -495,8 +495,9 @@ ROWS = (
                    "each a Module of one Loop; the ball's centre projected into the left eye camera; the spine's "
                    "posture by Kenta's own NN (§4.4.3's method, 40-40-30 on 343 uniform bends of ±9°/joint: ours, the "
                    "thesis prints none for Kenta): in view 100 %, RMS 1.0° (max 1.5°), the estimate within 0.7°, eyes "
-                   "78 % / neck 15 % / spine 6 % of the pan. With Jacobian integration (eqs. 4.26–4.28) on the same "
-                   "run the estimate diverges 0.40 s in (2402° whole-spine error), the spine sits on its clip and "
+                   "78 % / neck 15 % / spine 6 % of the pan. Jacobian integration (eqs. 4.26–4.28) reading the same "
+                   "run's lengths beside the NN diverges 0.59 s in (1616° whole-spine error); driving the spine "
+                   "instead (the kenta-jacobian run) it diverges 0.40 s in (2402°), the spine sits on its clip and "
                    "the eyes and neck track alone (in view 99.4 %, RMS 4.1°, max 34.5°)",
     ),
     Row(
