@@ -81,3 +81,14 @@ def test_upright_criterion_fixes_clas_disc():
     assert upright_margin(body, KGF_N, k_star - 0.2) < 0.0 < upright_margin(body, KGF_N, k_star + 0.2)
     k = rest_tangent(D)
     assert np.all(np.abs(np.array([k[0], k[1], k[2] + D.k_twist_nm_rad]) - 2 * k_star) < 0.01 * 2 * k_star)
+
+
+def test_the_written_out_cross_is_numpys_bit_for_bit_and_in_its_layout():
+    """discs._cross replaces np.cross(axis=1) in the law that runs before every physics step: same values and
+    strides, so the einsum after it sums in the same order (the law's forces unchanged to the bit)."""
+    from shintai.spine.discs import _cross
+
+    rng = np.random.default_rng(3)
+    a, b = rng.normal(size=(5, 3, 16)), rng.normal(size=(5, 3, 16))
+    ours, numpys = _cross(a, b), np.cross(a, b, axis=1)
+    assert np.array_equal(ours, numpys) and ours.strides == numpys.strides
