@@ -7,6 +7,9 @@
   (§4.4.3). Both answer the same question for the same lengths (the thesis compares their errors and
   their time: Jacobian integration took 19–2100 s per posture, Table 4.2). The network is trained once
   (8-40-15, L-BFGS, seeded); its training time is reported separately.
+* ``spine.ga-throughput``: one SQ43 trot individual against the thesis's 30 min, and a generation per executor.
+* ``spine.control-modes-tick``: ``spine.control-modes``' rig through the Loop against bare ``mj_step`` for the
+  same physics steps, on the hardening and on the linear disc, and the disc law's cost per call.
 """
 
 from __future__ import annotations
@@ -141,4 +144,54 @@ def ga_throughput(population: int = 20, repeats: int = 3) -> dict:
     for kind in ("process", "ray"):
         if f"generation_{kind}_s" in out:
             out[f"speedup_{kind}_over_serial"] = out["generation_serial_s"] / out[f"generation_{kind}_s"]
+    return out
+
+
+@benchmark("spine.control-modes-tick", "Cla's control-modes rig (all-L, pitch, hardening discs, column wrap): its "
+           "1 ms tick against bare mj_step for the same physics steps, and the disc law's share")
+def control_modes_tick(seconds: float = 3.0) -> dict:
+    """The rig of ``spine.control-modes`` (defaults: hardening discs, muscles on the column; all-L on pitch) run
+    for ``seconds`` of simulated time through the Loop, against bare ``mj_step`` on the same model for the same
+    number of physics steps; the disc law (``discs.HardeningDiscs``, run before every physics step) timed alone
+    on the postures the run passed through, and the same rig on the linear disc."""
+    import mujoco
+
+    from shintai.scenarios.experiment import run_rig
+    from shintai.spine.cla.modes import mode_rig
+    from shintai.spine.discs import HardeningDiscs
+
+    def rig(disc):
+        r = mode_rig("all_l", "pitch", max_angle_deg=30, hold_s=3.0, move_s=1.0, window_s=1.0, interference=True,
+                     k_s={"mid": 100.0, "high": 400.0}, spring_law="counts", T_l_kgf=1.0, T_r_kgf=1.0, disc=disc,
+                     wrap="column", log=False)
+        r.duration = min(r.duration, seconds)
+        return r
+
+    out = {}
+    for disc in ("hardening", "linear"):
+        r = rig(disc)
+        body = r.body
+        start = body.t  # after the rig's zeroing prelude, which is not timed
+        t0 = time.perf_counter()
+        run = run_rig(r)
+        wall = time.perf_counter() - t0
+        steps = int(round((body.t - start) / body.model.opt.timestep))
+        data = mujoco.MjData(body.model)
+        data.qpos[:] = body.data.qpos
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            mujoco.mj_step(body.model, data)
+        bare = time.perf_counter() - t0
+        out |= {f"{disc}_physics_steps": steps, f"{disc}_wall_s": wall, f"{disc}_bare_mj_step_s": bare,
+                f"{disc}_overhead_ratio": wall / bare, f"{disc}_step_us": 1e6 * wall / max(steps, 1),
+                f"{disc}_bare_step_us": 1e6 * bare / max(steps, 1)}
+        hooks = [h for h in body.before_physics if isinstance(h, HardeningDiscs)]
+        if hooks:
+            calls = 2000
+            t0 = time.perf_counter()
+            for _ in range(calls):
+                hooks[0]()
+            out["disc_law_us"] = 1e6 * (time.perf_counter() - t0) / calls
+        del run
+    out["hardening_over_linear"] = out["hardening_wall_s"] / out["linear_wall_s"]
     return out
