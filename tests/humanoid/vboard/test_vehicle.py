@@ -136,6 +136,20 @@ def test_stand_measurement_recovers_eq_a1():
         assert -intercept / slope == pytest.approx(dict(VBOARD.theta_o_deg)[s], abs=0.01)
 
 
+@pytest.mark.parametrize("law", vb.FIRMWARE_LAWS)
+def test_both_firmware_laws_give_eq_a1_on_the_stand(law):
+    """Fig. A.5's stand cannot tell the laws apart: boards held 1.5° (right) and −2° (left) past θ_O, switches
+    strapped, the free wheel's steady speed is Eq. A.1's within 1 % whether the motor is speed-servoed or torque
+    driven against the bearing's drag (its time constant I/b ≈ 0.5 s: 5 s is ≈ 10 of them)."""
+    theta = {"r": VBOARD.theta_o("r") + 1.5 * DEG, "l": VBOARD.theta_o("l") - 2.0 * DEG}
+    body = vb.build_vboard(theta, hold=True, fixed=True, strapped=("r", "l"), law=law)
+    snap = run(body, 5.0)
+    for s, omega in vb.wheel_speeds(snap).items():
+        assert omega == pytest.approx(vb.wheel_speed(theta[s], s), rel=0.01)
+    dampers = [body.id("actuator", f"wheel_{s}_damper") for s in vb.SIDES]
+    assert np.all((body.data.actuator_force[dampers] == 0.0) == (law == "torque"))  # the torque law has no speed term
+
+
 def test_tilted_boards_drive_the_scooter_at_eq_a4():
     """On the floor, boards held 1° and 0.5° past θ_O (switches strapped): the true v and ω of the
     scooter are Eq. A.4's, and so is the wheels' odometry (Eqs. A.2–A.3)."""

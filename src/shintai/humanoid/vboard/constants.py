@@ -56,6 +56,13 @@ TYRE = [0.15, 0.15, 0.16, 1]
 METAL = [0.6, 0.6, 0.62, 1]
 
 SWITCH_MARGIN = 0.02  # m, the contact switch's sensing region reaches this far beyond the pad
+# The firmware's law (VboardFirmware's law; issue 26's candidate): "speed" (default) the hub motor speed-servoed to
+# Eq. A.1; "torque" τ_s = k_τ (θ_s − θ_sO) + k_τ T_d θ̇_s with k_τ,s = K_s · VboardSpec.wheel_damping (2.647 / 2.484
+# N·m/rad right / left), the only k_τ for which the wheel in the air (App. A.1.2, Fig. A.5: belt on the switch,
+# tachometer on the free wheel) turns at Eq. A.1's Ω against the bearing's drag — derivation in VboardFirmware
+FIRMWARE_LAW = "speed"
+FIRMWARE_LAWS = ("speed", "torque")
+TORQUE_TILT_TD = 0.1  # s, chosen: the torque law's tilt-rate (gyro D) term as k_τ·T_d; zero at Eq. A.1's steady state
 
 # --- the numbers of vboard/sign_chain.py (issue 26's probe) -------------------------------------------------------
 PROBE_STEP_DEG = 1.0  # deg, chosen: the common-mode step of the commanded foot pitch (as the issue's probe)

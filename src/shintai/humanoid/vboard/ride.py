@@ -24,7 +24,7 @@ from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Standing
 from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD, LIFT_GAP, LIFT_SPEED, VBOARD
 from shintai.humanoid.law_params import check_real
-from shintai.humanoid.vboard.constants import (COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, LEVELS,
+from shintai.humanoid.vboard.constants import (COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, FIRMWARE_LAW, LEVELS,
                                              NOSLIP_ITERATIONS, PLACEMENT, PLACEMENTS)
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
@@ -55,7 +55,8 @@ class VboardRide:
     sensors' noise; ``com_reading``, ``attitude_tau`` the stabilizer's CoM reading (lift-placed start; default
     :data:`~shintai.humanoid.vboard.constants.COM_READING`), ``foot_origin`` its frame's origin (``"sole"``, ``"ankle"``);
     ``placement`` the references of the lift-placed start (:data:`~shintai.humanoid.vboard.constants.PLACEMENT`:
-    ``"fig6.1"`` puts them on the scooter's centre at the hand-over, :class:`CentreReference`); ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
+    ``"fig6.1"`` puts them on the scooter's centre at the hand-over, :class:`CentreReference`); ``firmware`` the scooter's law (:class:`~shintai.humanoid.vboard.vehicle.VboardFirmware`'s ``law``; lift-placed start);
+    ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
     ``governor(lift)`` → the module (the lift, or None, for its start gate), default a
     :class:`~shintai.humanoid.vboard.governor.SpeedGovernor` on ``gains`` ((K_P, K_I, K_D) for v, for ω) with MLC
     if ``learn``. ``standing``: instead of the lift-placed start, a
@@ -70,11 +71,13 @@ class VboardRide:
                  speed: float = LIFT_SPEED, seed: int = 0, noise: bool = True, posture: bool = False,
                  standing: Standing | None = None, supervisor: Module | None = None,
                  com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole",
-                 placement: str = PLACEMENT):
+                 placement: str = PLACEMENT, firmware: str = FIRMWARE_LAW):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         if placement not in PLACEMENTS:
             raise ValueError(f"placement must be one of {PLACEMENTS}, got {placement!r}")
+        if firmware != FIRMWARE_LAW and standing is not None:
+            raise ValueError("firmware sets the lift-placed start's scooter; a standing stack brings its own body")
         if placement == "fig6.1" and (standing is not None or not lift):
             raise ValueError("placement='fig6.1' sets the target ZMP and the soles' reference at the lift's hand-over: "
                              "it needs lift=True and no standing stack passed in")
@@ -84,7 +87,7 @@ class VboardRide:
         self.scooter = scooter_spec(theta_o_error_deg)
         self.lift = None
         if standing is None:
-            body = build_vboard_stand(self.scooter)
+            body = build_vboard_stand(self.scooter, law=firmware)
             if fig61:
                 body.model.opt.noslip_iterations = NOSLIP_ITERATIONS
             if lift:

@@ -54,7 +54,7 @@ def chain_rig(step: bool, seed: int = 0, t_step: float = PROBE_T_STEP, step_deg:
               after: float = max(PROBE_AFTER), D: float = D_VBOARD, theta_o_error_deg: float = THETA_O_ERROR_DEG,
               **ride) -> Rig:
     """One ride of the probe: level 2, noise off, with (``step``) or without the step; ``ride``: more
-    :class:`VboardRide` options (e.g. ``com_reading``)."""
+    :class:`VboardRide` options (e.g. ``com_reading``, ``firmware="torque"``)."""
     excite = step_excite(t_step, step_deg) if step else (lambda t: (0.0, 0.0))
     r = VboardRide(level=2, theta_o_error_deg=theta_o_error_deg, D=D, excite=excite, seed=seed, noise=False, **ride)
     body = r.body

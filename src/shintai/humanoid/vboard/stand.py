@@ -22,6 +22,7 @@ import numpy as np
 from shintai.humanoid.balance.scooter import posture_on_pads
 from shintai.humanoid.constants import SCENE, SUBSTEPS, VBOARD, VboardSpec
 from shintai.humanoid.robots.hrp2 import add_hrp2
+from shintai.humanoid.vboard.constants import FIRMWARE_LAW
 from shintai.humanoid.vboard.vehicle import PAD, add_vboard, install_firmware, vboard_state
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import fill_keyframe, scene_spec
@@ -37,8 +38,8 @@ def standing_posture(model: mujoco.MjModel, v: VboardSpec = VBOARD) -> np.ndarra
     return posture_on_pads(model, qpos, v.deck_height, PAD, "vboard_centre", "on the V-BOARD")
 
 
-def build_vboard_stand(v: VboardSpec = VBOARD, substeps: int = SUBSTEPS) -> MujocoBody:
-    """HRP2 standing on the V-BOARD (keyframe ``stand``), the firmware installed."""
+def build_vboard_stand(v: VboardSpec = VBOARD, substeps: int = SUBSTEPS, law: str = FIRMWARE_LAW) -> MujocoBody:
+    """HRP2 standing on the V-BOARD (keyframe ``stand``), the firmware (its ``law``) installed."""
     spec = scene_spec("hrp2-vboard", *SCENE)
     add_vboard(spec, spec.worldbody, v=v)
     add_hrp2(spec, spec.worldbody, [0.0, 0.0, 1.0])
@@ -46,5 +47,5 @@ def build_vboard_stand(v: VboardSpec = VBOARD, substeps: int = SUBSTEPS) -> Mujo
     model = spec.compile()
     fill_keyframe(model, "stand", standing_posture(model, v))
     body = MujocoBody(model, substeps=substeps, keyframe="stand", spec=spec)
-    body.firmware = install_firmware(body, v)
+    body.firmware = install_firmware(body, v, law=law)
     return body

@@ -69,7 +69,8 @@ import mujoco
 import numpy as np
 
 from shintai.humanoid.constants import SCENE, SOLE, SUBSTEPS, VBOARD, VBOARD_HOLD_SERVO, WHEEL, VboardSpec
-from shintai.humanoid.vboard.constants import HOUSING, METAL, RUBBER, SWITCH_MARGIN, TYRE
+from shintai.humanoid.vboard.constants import (FIRMWARE_LAW, FIRMWARE_LAWS, HOUSING, METAL, RUBBER, SWITCH_MARGIN,
+                                             TORQUE_TILT_TD, TYRE)
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import add_hinge, add_visual, box_inertia, fill_keyframe, scene_spec, set_joints
 
@@ -218,34 +219,52 @@ class VboardFirmware:
     gain 1 (its force −k_v Ω_s, integrated implicitly by MuJoCo); while off, both get 0. θ_s is read
     from ``qpos`` (current), the pad force from ``sensordata`` (one physics step old: MuJoCo computes
     sensors at the start of a step), a 1 ms switch latency.
+
+    ``law="torque"`` (issue 26's candidate; default :data:`~shintai.humanoid.vboard.constants.FIRMWARE_LAW`,
+    the speed servo): the hub motor is current (torque) driven from the tilt, τ_s = k_τ,s (θ_s − θ_sO) +
+    d_τ,s θ̇_s, ``wheel_s_damper`` gain 0. Its reaction −τ_s on the half is the levelling torque, −d_τ θ̇_s its
+    damping (a gyro's D term). k_τ from Eq. A.1 as Fig. A.5 measured it, the wheel in the air: the half held
+    (θ̇_s = 0), the wheel's only load its bearing's drag b (``VboardSpec.wheel_damping``), so at steady speed
+    k_τ (θ_s − θ_sO) = b Ω_s, i.e. Ω_s = (k_τ/b)(θ_s − θ_sO): Eq. A.1 exactly iff k_τ,s = K_s b (K_s in rad/s per
+    rad; 2.647 N·m/rad right, 2.484 left with b = 0.01 N·m·s/rad). The stand cannot tell this law from the
+    speed servo (whose steady Ω is k_v/(k_v + b) of Eq. A.1's). d_τ,s = k_τ,s T_d,
+    T_d = :data:`~shintai.humanoid.vboard.constants.TORQUE_TILT_TD` (chosen: Eq. A.1, measured at rest, cannot fix it).
     """
 
-    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, v: VboardSpec = VBOARD, strapped=()):
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, v: VboardSpec = VBOARD, strapped=(),
+                 law: str = FIRMWARE_LAW):
         unknown = set(strapped) - set(SIDES)
         if unknown:
             raise ValueError(f"strapped sides must be among {sorted(SIDES)}, got {sorted(unknown)}")
-        self.data, self.v, self.strapped = data, v, frozenset(strapped)
+        if law not in FIRMWARE_LAWS:
+            raise ValueError(f"law must be one of {FIRMWARE_LAWS}, got {law!r}")
+        self.data, self.v, self.strapped, self.law = data, v, frozenset(strapped), law
+        torque = law == "torque"
         self._sides = []
         for s in SIDES:
-            self._sides.append((s, int(model.jnt_qposadr[model.joint(BOARD[s]).id]),
+            j = model.joint(BOARD[s]).id
+            gain = (v.wheel_damping if torque else v.speed_gain) * v.gain(s)  # k_τ = K b, or k_v K
+            self._sides.append((s, int(model.jnt_qposadr[j]), int(model.jnt_dofadr[j]),
                                 int(model.sensor_adr[model.sensor(TOUCH[s]).id]),
                                 model.actuator(f"wheel_{s}_motor").id, model.actuator(f"wheel_{s}_damper").id,
-                                v.speed_gain * v.gain(s), v.theta_o(s)))
+                                gain, gain * TORQUE_TILT_TD if torque else 0.0, v.theta_o(s)))
+        self._damper_on = 0.0 if torque else 1.0
         self.on = dict.fromkeys(SIDES, False)
 
     def __call__(self) -> None:
         d = self.data
-        qpos, touch, ctrl = d.qpos, d.sensordata, d.ctrl
-        for side, qadr, tadr, motor, damper, gain, theta_o in self._sides:
+        qpos, qvel, touch, ctrl = d.qpos, d.qvel, d.sensordata, d.ctrl
+        for side, qadr, dadr, tadr, motor, damper, gain, rate_gain, theta_o in self._sides:
             on = side in self.strapped or bool(touch[tadr] > self.v.switch_force)
             self.on[side] = on
-            ctrl[motor] = gain * (qpos[qadr] - theta_o) if on else 0.0
-            ctrl[damper] = 1.0 if on else 0.0
+            ctrl[motor] = gain * (qpos[qadr] - theta_o) + rate_gain * qvel[dadr] if on else 0.0
+            ctrl[damper] = self._damper_on if on else 0.0
 
 
-def install_firmware(body: MujocoBody, v: VboardSpec = VBOARD, strapped=()) -> VboardFirmware:
-    """Run the V-BOARD's firmware before every physics step of ``body``; returns it (``.on``: switches)."""
-    firmware = VboardFirmware(body.model, body.data, v, strapped)
+def install_firmware(body: MujocoBody, v: VboardSpec = VBOARD, strapped=(), law: str = FIRMWARE_LAW) -> VboardFirmware:
+    """Run the V-BOARD's firmware (``law``: :class:`VboardFirmware`) before every physics step of ``body``; returns it
+    (``.on``: switches)."""
+    firmware = VboardFirmware(body.model, body.data, v, strapped, law)
     body.before_physics.append(firmware)
     return firmware
 
@@ -271,11 +290,11 @@ def scooter_velocity(snapshot) -> tuple[float, float]:
 
 
 def build_vboard(theta: dict | None = None, v: VboardSpec = VBOARD, *, hold: bool = False, fixed: bool = False,
-                 strapped=(), substeps: int = SUBSTEPS) -> MujocoBody:
+                 strapped=(), substeps: int = SUBSTEPS, law: str = FIRMWARE_LAW) -> MujocoBody:
     """The V-BOARD alone (keyframe ``park``: boards at ``theta``, default θ_O), its firmware installed.
 
     ``hold``/``fixed``: see :func:`add_vboard` (the fixture then holds ``theta``); ``strapped``: see
-    :class:`VboardFirmware`. ``body.firmware`` is the firmware.
+    :class:`VboardFirmware`, as ``law``. ``body.firmware`` is the firmware.
     """
     spec = scene_spec("vboard", *SCENE)
     add_vboard(spec, spec.worldbody, v=v, hold=hold, fixed=fixed)
@@ -285,5 +304,5 @@ def build_vboard(theta: dict | None = None, v: VboardSpec = VBOARD, *, hold: boo
     vboard_state(model, qpos, theta, v)
     fill_keyframe(model, "park", qpos)
     body = MujocoBody(model, substeps=substeps, keyframe="park", spec=spec)
-    body.firmware = install_firmware(body, v, strapped)
+    body.firmware = install_firmware(body, v, strapped, law)
     return body
