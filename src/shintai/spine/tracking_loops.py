@@ -89,10 +89,11 @@ class TargetPath(Module):
         return {"target": self.at(snapshot["t"])}
 
 
-class ArmSwing(Module):
-    """Both arms' cyclic motion (module docstring): writes ``shoulder_pitch_L/R`` and ``elbow_pitch_L/R`` every tick."""
+class Swing(Module):
+    """A cyclic joint motion of amplitude ``a`` and period ``T`` from the time the Loop starts: every tick it
+    writes :meth:`at` (the joints' targets at body time t), which a subclass defines."""
 
-    def __init__(self, amplitude_rad: float, period_s: float, name: str = "arms"):
+    def __init__(self, amplitude_rad: float, period_s: float, name: str):
         super().__init__(name)
         self.a, self.T = amplitude_rad, period_s
         self.t0 = 0.0
@@ -101,12 +102,22 @@ class ArmSwing(Module):
         self.t0 = float(snapshot["t"])
 
     def at(self, t: float) -> dict:
-        phase = 2 * math.pi * (t - self.t0) / self.T
-        swing, bend = self.a * math.sin(phase), 0.5 * self.a * (1 - math.cos(phase))
-        return {"shoulder_pitch_L": swing, "shoulder_pitch_R": -swing, "elbow_pitch_L": bend, "elbow_pitch_R": bend}
+        raise NotImplementedError
 
     def update(self, snapshot: Snapshot):
         return self.at(float(snapshot["t"]))
+
+
+class ArmSwing(Swing):
+    """Both arms' cyclic motion (module docstring): writes ``shoulder_pitch_L/R`` and ``elbow_pitch_L/R`` every tick."""
+
+    def __init__(self, amplitude_rad: float, period_s: float, name: str = "arms"):
+        super().__init__(amplitude_rad, period_s, name)
+
+    def at(self, t: float) -> dict:
+        phase = 2 * math.pi * (t - self.t0) / self.T
+        swing, bend = self.a * math.sin(phase), 0.5 * self.a * (1 - math.cos(phase))
+        return {"shoulder_pitch_L": swing, "shoulder_pitch_R": -swing, "elbow_pitch_L": bend, "elbow_pitch_R": bend}
 
 
 def concurrent_fraction(t, parts, window_s: float, threshold: float) -> float:

@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.runtime import Module, Snapshot
 from shintai.scenarios.experiment import Rig
 from shintai.spine.control import SETPOINTS, encoder_targets
 from shintai.spine.geometry import uniform_posture, whole_spine
@@ -24,26 +23,18 @@ from shintai.spine.kenta.body import ARM_NAMES, calibrated_kenta
 from shintai.spine.kenta.tracking import SWUNG
 from shintai.spine.robots import CONCURRENT_THRESHOLD_DEG, CONCURRENT_WINDOW_S, KENTA
 from shintai.spine.teaching import Playback
-from shintai.spine.tracking_loops import ArmSwing, concurrent_fraction
+from shintai.spine.tracking_loops import ArmSwing, Swing, concurrent_fraction
 
 
-class NeckSwing(Module):
+class NeckSwing(Swing):
     """The whole neck's pan a sin(2π t / T) and tilt (a / 2) sin(2π t / (0.7 T)) (``neck_pan``, ``neck_tilt``)."""
 
     def __init__(self, amplitude_rad: float, period_s: float, name: str = "neck"):
-        super().__init__(name)
-        self.a, self.T = amplitude_rad, period_s
-        self.t0 = 0.0
-
-    def reset(self, snapshot: Snapshot) -> None:
-        self.t0 = float(snapshot["t"])
+        super().__init__(amplitude_rad, period_s, name)
 
     def at(self, t: float) -> dict:
         w = 2 * math.pi * (t - self.t0) / self.T
         return {"neck_pan": self.a * math.sin(w), "neck_tilt": 0.5 * self.a * math.sin(w / 0.7)}
-
-    def update(self, snapshot: Snapshot):
-        return self.at(float(snapshot["t"]))
 
 
 @dataclass
