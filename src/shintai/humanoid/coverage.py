@@ -331,17 +331,21 @@ ROWS = (
                    "θ_O's error",
     ),
     Row(
-        key="000:tab6.2",
-        where="seed 000 §6.2.2 (C), Table 6.2, Fig. 6.9, Eqs. 6.14–6.16",
-        what="identification of the speed plants P_*(s) = K_*/(s(1 + T_* s)) from measured v, ω",
-        result="Table 6.2: 'T_v = 1.1, T_ω = 0.6, K_v = 5.88×10², K_ω = 1.39×10⁴' (least squares on v̇, ω̇, Fig. 6.9)",
-        difference="humanoid.vboard-plant-id: level 2, square-wave u (ours, the thesis does not name its input), v "
-                   "from the simulated Eq. 6.3 filter, ω from the gyro. From the boards' pitch increments "
-                   "Eqs. 6.6–6.10 hold (R² 0.98, K within 3 % of (r/Δt)(K_R + K_L)/2)",
-        why_not="from the commanded u the fit fails (R² 0.003 for v, 0.04 for ω; K_v < 0): the foot torque damping "
-                "(D = 40) turns the soles back within ≈0.2 s, so the commanded pitch does not reach the boards "
-                "(d ≈ −M u, not a disturbance independent of u as Eq. 6.10 assumes); from the boards' own pitch "
-                "K_v 5.27×10³ (R² 0.98), K_ω 1.95×10⁴ (R² 0.99), both runs ride their 10 s",
+        key="000:tab6.2-v",
+        where="seed 000 §6.2.2 (D), Table 6.2 (T_v, K_v), Fig. 6.9 (a), Eqs. 6.14–6.16",
+        what="identification of the translational speed plant P_v(s) = K_v/(s(1 + T_v s)) from u_v and the measured v",
+        result="Table 6.2: 'T_v = 1.1, K_v = 5.88×10²' (least squares on v̇, Fig. 6.9 (a): '変化が観察できる部分については"
+               "概ねモデルデータと実際の計測データが揃っており同定に成功している')",
+        difference="PENDING",
+        why_not="PENDING",
+    ),
+    Row(
+        key="000:tab6.2-omega",
+        where="seed 000 §6.2.2 (D), Table 6.2 (T_ω, K_ω), Fig. 6.9 (b), Eqs. 6.14–6.16",
+        what="identification of the turning plant P_ω(s) = K_ω/(s(1 + T_ω s)) from u_ω and the measured ω",
+        result="Table 6.2: 'T_ω = 0.6, K_ω = 1.39×10⁴' (least squares on ω̇, Fig. 6.9 (b))",
+        difference="PENDING",
+        why_not="PENDING",
     ),
     Row(
         key="000:fig6.15",

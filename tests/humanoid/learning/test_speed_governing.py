@@ -85,6 +85,22 @@ def test_identification_recovers_T_and_K_from_a_noisy_series(K, T):
     assert fit["r2"] < 0.2  # the fit explains little of the differentiated noise, yet T and K come back
 
 
+@pytest.mark.parametrize("K, T", [(K_V, T_V), (K_OMEGA, T_OMEGA)])
+def test_identification_low_pass_on_both_sides_keeps_T_and_K_and_takes_the_noise_out_of_r2(K, T):
+    rng = np.random.default_rng(14)
+    n = round(40.0 / DT)
+    hold = rng.integers(100, 500, size=200)
+    u = np.repeat(rng.normal(0, 1e-4 * K_V / K, hold.size), hold)[:n]
+    p = SpeedPlant(K, T, DT)
+    y = np.array([p.step(x) for x in u])
+    y_meas = y + rng.normal(0, 1e-2 * np.std(y), n)
+    raw, filtered = identify_plant(u, y_meas, DT), identify_plant(u, y_meas, DT, cutoff_hz=2.0)
+    assert filtered["T"] == pytest.approx(T, rel=0.03) and filtered["K"] == pytest.approx(K, rel=0.02)
+    assert raw["r2"] < 0.2 < 0.8 < filtered["r2"]
+    with pytest.raises(ValueError, match="cutoff_hz"):
+        identify_plant(u, y_meas, DT, cutoff_hz=0.0)
+
+
 def test_identification_rejects_mismatched_series():
     with pytest.raises(ValueError, match="same length"):
         identify_plant(np.zeros(100), np.zeros(99), DT)

@@ -127,28 +127,41 @@ class IdentifiedScooterPlant(Body):
         self.t = round(self.t + self.dt, 9)
 
 
-def identify_plant(u, y, dt: float, T_bounds=(0.05, 5.0)) -> dict:
+def identify_plant(u, y, dt: float, T_bounds=(0.05, 5.0), cutoff_hz: float | None = None) -> dict:
     """Fit ẏ = K LPF_T{u} (Eq. 6.14) to a recorded input u and output y (both sampled at ``dt``).
 
     ẏ_act is the central difference of y (the thesis differentiates the measured v, ω: Fig. 6.9's noise).
     T maximises the normalised correlation of LPF_T{u} with ẏ_act over ``T_bounds`` (phase alignment); K then
     minimises Σ(ẏ_act − K LPF_T{u})² (Eqs. 6.15–6.16). Returns T, K and the fit's R².
+
+    ``cutoff_hz``: a first-order low-pass at that corner applied to *both* ẏ_act and the model's LPF_T{u} before
+    the alignment and the least squares (ours; the thesis fits the raw derivative). Filtering both sides alike
+    leaves T and K unbiased and takes the differentiated sensor noise out of R².
     """
     u = np.asarray(u, dtype=float)
     y = np.asarray(y, dtype=float)
     if u.shape != y.shape or u.ndim != 1 or u.size < 10:
         raise ValueError("u and y must be 1-D series of the same length (at least 10 samples)")
     ydot = np.gradient(y, dt)
+    tc = None if cutoff_hz is None else 1.0 / (2.0 * math.pi * check_real("cutoff_hz", cutoff_hz, 0.0, low_open=True))
+
+    def smooth(x: np.ndarray) -> np.ndarray:
+        return x if tc is None else lowpass(x, tc, dt)
+
+    ydot = smooth(ydot)
+
+    def model(T: float) -> np.ndarray:
+        return smooth(lowpass(u, T, dt))
 
     def misalignment(T: float) -> float:
-        w = lowpass(u, T, dt)
+        w = model(T)
         return -abs(w @ ydot) / (np.linalg.norm(w) * np.linalg.norm(ydot) + 1e-300)
 
     grid = np.geomspace(*T_bounds, 40)
     best = int(np.argmin([misalignment(T) for T in grid]))
     lo, hi = grid[max(best - 1, 0)], grid[min(best + 1, grid.size - 1)]
     T = float(minimize_scalar(misalignment, bounds=(lo, hi), method="bounded", options={"xatol": 1e-4}).x)
-    w = lowpass(u, T, dt)
+    w = model(T)
     K = float(w @ ydot / (w @ w))
     residual = ydot - K * w
     return {"T": T, "K": K, "r2": 1.0 - float(residual @ residual) / float(ydot @ ydot)}

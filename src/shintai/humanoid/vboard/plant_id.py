@@ -16,7 +16,9 @@ from shintai.humanoid.vboard.constants import (
     EXCITE_AMPLITUDE,
     EXCITE_PERIOD,
     EXCITE_S,
+    FIT_CUTOFF_HZ,
     START_S,
+    TABLE_6_2,
     THETA_O_ERROR_DEG,
     VIEW,
 )
@@ -57,10 +59,12 @@ def plant_id_rig(axis: str, seed: int, excite_s: float = EXCITE_S, amplitude: fl
                until=lambda s: ride.fallen(), record={1: board}, view=VIEW, state=ride)
 
 
-def fit(u, y, window):
+def fit(u, y, window, cutoff_hz: float | None = None):
+    """Eq. 6.14's fit on the window; ``cutoff_hz`` the low-pass on both sides (:data:`FIT_CUTOFF_HZ` for the fits
+    from u, declared before the run; none for the boards' side, an exact consistency fit)."""
     if window.sum() < 50:
         return {"T": float("nan"), "K": float("nan"), "r2": float("nan")}
-    return identify_plant(u[window], y[window], CONTROL_PERIOD)
+    return identify_plant(u[window], y[window], CONTROL_PERIOD, cutoff_hz=cutoff_hz)
 
 
 def series(run):
@@ -81,11 +85,13 @@ def identification(runs) -> dict:
     """The fits of both runs (``runs['v']``, ``runs['omega']``), from u and from the boards' pitch."""
     (tv, sv), (tw, sw) = series(runs["v"]), series(runs["omega"])
     wv, ww = window(tv), window(tw)
-    fv, fw = fit(sv["foot_pitch.u_v"], sv["sensors.v"], wv), fit(sw["foot_pitch.u_omega"], sw["sensors.omega"], ww)
+    c = FIT_CUTOFF_HZ
+    fv, fw = fit(sv["foot_pitch.u_v"], sv["sensors.v"], wv, c), fit(sw["foot_pitch.u_omega"], sw["sensors.omega"], ww, c)
     # the board side of Eqs. 6.6–6.10: the boards' measured pitch increments (u + the damping's d) → true v, ω
     dR, dL = (np.diff(sv[k], prepend=sv[k][0]) for k in ("board_R", "board_L"))
     # the same fits against the simulator's truth (the sensors' noise and Eq. 6.3's filter out of the way)
-    tv_, tw_ = fit(sv["foot_pitch.u_v"], sv["sensors.true_v"], wv), fit(sw["foot_pitch.u_omega"], sw["sensors.true_omega"], ww)
+    tv_ = fit(sv["foot_pitch.u_v"], sv["sensors.true_v"], wv, c)
+    tw_ = fit(sw["foot_pitch.u_omega"], sw["sensors.true_omega"], ww, c)
     bv = fit((dR + dL) / 2, sv["sensors.true_v"], wv)
     dR, dL = (np.diff(sw[k], prepend=sw[k][0]) for k in ("board_R", "board_L"))
     bw = fit((dR - dL) / 2, sw["sensors.true_omega"], ww)
@@ -103,6 +109,8 @@ def identification(runs) -> dict:
             "K_v_eq610": K_V_EQ610, "K_omega_eq610": K_OMEGA_EQ610,
             "K_v_board_ratio": bv["K"] / K_V_EQ610, "K_omega_board_ratio": bw["K"] / K_OMEGA_EQ610,
             "pitch_reaching_boards": reach,
+            **{f"{k}_table_ratio": x / TABLE_6_2[k]  # ours / Table 6.2's, the sensors' fits from u
+               for k, x in (("K_v", fv["K"]), ("T_v", fv["T"]), ("K_omega", fw["K"]), ("T_omega", fw["T"]))},
             "v_span_mps": float(np.ptp(sv["sensors.true_v"][wv])) if wv.any() else float("nan"),
             "omega_span_rad_s": float(np.ptp(sw["sensors.true_omega"][ww])) if ww.any() else float("nan")}
 
