@@ -72,6 +72,25 @@ def _cells(line: str) -> list[str]:
     return [c.strip() for c in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
 
 
+def _insert_new_rows(out: list[str], new_lines: list[str], fresh: dict[str, str], present: set[str]) -> None:
+    """Rows of the registry that ``out`` lacks (a new or a split row), each after the row before it in the fresh
+    table, when all their scenarios are in ``present``."""
+    key = lambda li: m.group(0) if (m := re.match(r"\| \d{3}:\S+ \|", li)) else None
+    have = {key(li) for li in out} - {None}
+    previous = None
+    for li in new_lines:
+        k = key(li)
+        if k is None:
+            continue
+        scenarios = set(re.findall(r"`([^`]+)`", _cells(li)[2]))
+        if k not in have and scenarios and scenarios <= present and previous is not None:
+            at = next(i for i, o in enumerate(out) if key(o) == previous)
+            out.insert(at + 1, li)
+            have.add(k)
+        if k in have:
+            previous = k
+
+
 def merge_present(old: str, new: str, present: set[str]) -> str:
     """``old``'s block with the rows whose scenarios are all in ``present`` taken from ``new``, the summary lines
     recounted from the rows' statuses and the commits of both runs listed (module docstring)."""
@@ -88,7 +107,10 @@ def merge_present(old: str, new: str, present: set[str]) -> str:
             scenarios = set(re.findall(r"`([^`]+)`", _cells(fresh[m.group(0)])[2]))
             if scenarios and scenarios <= present:
                 line = fresh[m.group(0)]
+        elif m and m.group(0) not in fresh:  # a row the registry no longer has (e.g. split in two)
+            continue
         out.append(line)
+    _insert_new_rows(out, new_lines, fresh, present)
     counts: dict[str, dict[str, int]] = {}
     for line in out:
         if _row_seed(line):

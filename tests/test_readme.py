@@ -147,6 +147,34 @@ def test_readme_table_for_some_scenarios_rewrites_their_rows_and_recounts():
         str(counts.get(s, 0)) for s in STATUSES) + " |"
 
 
+def test_readme_table_for_some_scenarios_replaces_a_split_row_by_its_halves():
+    """``--present``: a row the registry split in two (000:tab6.2 → -v, -omega) is replaced by both, in place."""
+    import importlib.util
+
+    from shintai.scenarios.coverage import STATUSES
+
+    spec = importlib.util.spec_from_file_location("readme_table", README.parents[0] / "scripts" / "readme_table.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    head = ["| thesis | " + " | ".join(STATUSES) + " |", "|---|" + "---|" * len(STATUSES)]
+    rows_head = ["| row | where | scenarios | status | why | our reproduction checks |", "|---|---|---|---|---|---|"]
+    top = "<!-- reproduction:begin (written by scripts/readme_table.py from `shintai reproduce` at {}) -->"
+    old = "\n".join([top.format("aaa"), "", *head, "| 004 Y | 9 | 9 | 9 | 9 | 9 |", "", *rows_head,
+                     "| 004:a | §2 | `q.a` | reproduced | old | — |", "| 004:b | §3 | `q.b` | reproduced | old | — |",
+                     "| 004:c | §4 | `q.c` | reproduced | kept | — |", "", "<!-- reproduction:end -->"])
+    new = "\n".join([top.format("bbb"), "", *head, "| 004 Y | 0 | 0 | 0 | 0 | 0 |", "", *rows_head,
+                     "| 004:a | §2 | `q.a` | reproduced | new | — |", "| 004:b-1 | §3 | `q.b` | not reproduced | one | — |",
+                     "| 004:b-2 | §3 | `q.b` | reproduced | two | — |", "| 004:c | §4 | `q.c` | not run here | — | — |",
+                     "", "<!-- reproduction:end -->"])
+    merged = script.merge_present(old, new, {"q.a", "q.b"}).splitlines()
+    assert merged[8:12] == ["| 004:a | §2 | `q.a` | reproduced | new | — |",
+                            "| 004:b-1 | §3 | `q.b` | not reproduced | one | — |",
+                            "| 004:b-2 | §3 | `q.b` | reproduced | two | — |",
+                            "| 004:c | §4 | `q.c` | reproduced | kept | — |"]
+    counts = {"reproduced": 3, "not reproduced": 1}
+    assert merged[4] == "| 004 Y | " + " | ".join(str(counts.get(s, 0)) for s in STATUSES) + " |"
+
+
 def test_readme_rows_say_what_the_coverage_registry_says():
     """A row's 'why' in the README is its registry text for its status (``difference`` or ``why_not``): a row
     whose text changed in coverage.py must have its table line re-written (scripts/readme_table.py)."""
