@@ -290,17 +290,23 @@ class StabilizerModule(Module):
     ``foot_origin``: ``"sole"`` (default) the frame's origin at the stance sole points; ``"ankle"`` at the ankle
     links' origins, as hrpsys's ``calcFootOriginCoords`` (the force sensor's link, ``foot_origin_offset`` 0), the
     reference ankles above the reference soles at the commanded pitch ``foot_pitch_ref``, and the distributor over the
-    actual soles in that frame (issue 26: measured, it changes level 2 and the probe by < 25 %)."""
+    actual soles in that frame (issue 26: measured, it changes level 2 and the probe by < 25 %); ``ref_ankle_pitch``
+    (R, L) keeps the reference ankles at that pitch's place (the commanded pitch as an ankle joint angle,
+    :mod:`~shintai.humanoid.vboard.ankle_pivot`)."""
 
     def __init__(self, body: MujocoBody, lip: bool = True, k=LIP_K, force_difference: bool = True,
                  name: str = "stabilizer", period: float = CONTROL_PERIOD, truncate: bool = False,
-                 com_reading: str = "world", attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole"):
+                 com_reading: str = "world", attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole",
+                 ref_ankle_pitch=None):
         super().__init__(name, period)
         if com_reading not in ("world", "imu", "feet"):
             raise ValueError(f"stabilizer: com_reading is 'world', 'imu' or 'feet', got {com_reading!r}")
         if foot_origin not in ("sole", "ankle"):
             raise ValueError(f"stabilizer: foot_origin is 'sole' or 'ankle', got {foot_origin!r}")
         self.foot_origin = foot_origin
+        if ref_ankle_pitch is not None and foot_origin != "ankle":
+            raise ValueError("stabilizer: ref_ankle_pitch places the reference ankles; it needs foot_origin='ankle'")
+        self.ref_ankle_pitch = None if ref_ankle_pitch is None else tuple(float(p) for p in ref_ankle_pitch)
         self.com_reading = com_reading
         self.tilt = TiltEstimate(attitude_tau, period) if com_reading == "imu" else None
         self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
@@ -329,8 +335,10 @@ class StabilizerModule(Module):
 
     def _ref_ankle_dx(self, snapshot, stance) -> float:
         """The reference ankles' mean x offset from the reference sole points: h_a sin φ_ref, φ_ref the soles' pitch
-        the leg IK is commanded without the damping's δ (``foot_pitch_ref``: R, L; 0 without it)."""
-        ref = snapshot.get("foot_pitch_ref")
+        the leg IK is commanded without the damping's δ (``foot_pitch_ref``: R, L; 0 without it), or the fixed
+        ``ref_ankle_pitch`` (R, L) when the commanded pitch turns the feet about their ankles
+        (:mod:`~shintai.humanoid.vboard.ankle_pivot`)."""
+        ref = self.ref_ankle_pitch or snapshot.get("foot_pitch_ref")
         if ref is None:
             return 0.0
         pitch = {"r": float(ref[0]), "l": float(ref[1])}

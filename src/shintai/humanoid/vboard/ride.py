@@ -24,6 +24,7 @@ from shintai.humanoid.balance.stabilizer import StabilizerModule
 from shintai.humanoid.balance.standing import Standing
 from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD, LIFT_GAP, LIFT_SPEED, VBOARD
 from shintai.humanoid.law_params import check_real
+from shintai.humanoid.vboard.ankle_pivot import AnklePivotIK
 from shintai.humanoid.vboard.constants import (COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, FIRMWARE_LAW, LEVELS,
                                              NOSLIP_ITERATIONS, PLACEMENT, PLACEMENTS)
 from shintai.humanoid.vboard.governor import SpeedGovernor
@@ -56,6 +57,8 @@ class VboardRide:
     :data:`~shintai.humanoid.vboard.constants.COM_READING`), ``foot_origin`` its frame's origin (``"sole"``, ``"ankle"``);
     ``placement`` the references of the lift-placed start (:data:`~shintai.humanoid.vboard.constants.PLACEMENT`:
     ``"fig6.1"`` puts them on the scooter's centre at the hand-over, :class:`CentreReference`); ``firmware`` the scooter's law (:class:`~shintai.humanoid.vboard.vehicle.VboardFirmware`'s ``law``; lift-placed start);
+    ``foot_pitch_about`` ``"ankle"`` turns the commanded pitch about the ankles, as an ankle joint angle
+    (:mod:`~shintai.humanoid.vboard.ankle_pivot`; needs ``foot_origin="ankle"``; default ``"sole"``);
     ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
     ``governor(lift)`` → the module (the lift, or None, for its start gate), default a
     :class:`~shintai.humanoid.vboard.governor.SpeedGovernor` on ``gains`` ((K_P, K_I, K_D) for v, for ω) with MLC
@@ -71,7 +74,7 @@ class VboardRide:
                  speed: float = LIFT_SPEED, seed: int = 0, noise: bool = True, posture: bool = False,
                  standing: Standing | None = None, supervisor: Module | None = None,
                  com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole",
-                 placement: str = PLACEMENT, firmware: str = FIRMWARE_LAW):
+                 placement: str = PLACEMENT, firmware: str = FIRMWARE_LAW, foot_pitch_about: str = "sole"):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         if placement not in PLACEMENTS:
@@ -81,7 +84,13 @@ class VboardRide:
         if placement == "fig6.1" and (standing is not None or not lift):
             raise ValueError("placement='fig6.1' sets the target ZMP and the soles' reference at the lift's hand-over: "
                              "it needs lift=True and no standing stack passed in")
+        if foot_pitch_about not in ("sole", "ankle"):
+            raise ValueError(f"foot_pitch_about must be 'sole' or 'ankle', got {foot_pitch_about!r}")
+        if foot_pitch_about == "ankle" and (standing is not None or posture or foot_origin != "ankle"):
+            raise ValueError("foot_pitch_about='ankle' (the pitch as an ankle joint angle) rides the lift-placed start, "
+                             "without chest posture control, with foot_origin='ankle'")
         fig61 = placement == "fig6.1"
+        theta0 = (VBOARD.theta_o("r"), VBOARD.theta_o("l")) if fig61 else (0.0, 0.0)
         check_real("D", D, 0.0, low_open=True)
         self.level = level
         self.scooter = scooter_spec(theta_o_error_deg)
@@ -100,8 +109,11 @@ class VboardRide:
             stack = {"D": D} if level >= 2 else {"damping": False, "lip": False, "force_difference": False}
             # §4.3.3, Fig. 4.10 (B): with chest posture control the IK turns the upper body about the feet
             ik = ChestPitchIK if posture else None
+            pivot = foot_pitch_about == "ankle"  # the commanded pitch as an ankle joint angle (vboard.ankle_pivot)
+            if pivot:
+                ik = functools.partial(AnklePivotIK, pitch0=theta0)
             stab = functools.partial(StabilizerModule, com_reading=com_reading, attitude_tau=attitude_tau,
-                                     foot_origin=foot_origin)
+                                     foot_origin=foot_origin, ref_ankle_pitch=theta0 if pivot else None)
             self.standing = Standing(body=body, ik=ik, stabilizer=stab, **stack)  # settles 0.1 s (held by the lift, if any), clock to 0
             if self.lift is not None:
                 self.lift.lowering = True
@@ -117,7 +129,6 @@ class VboardRide:
         self.governor = None
         if level == 3:
             self.governor = (governor or (lambda lift: SpeedGovernor(gains0=gains, learn=learn)))(self.lift)
-        theta0 = (VBOARD.theta_o("r"), VBOARD.theta_o("l")) if fig61 else (0.0, 0.0)
         self.foot_pitch = FootPitch(excite, theta0=theta0) if level >= 2 else None
         self.centre = CentreReference(self) if fig61 else None
         self.stages = self.standing.stages(
