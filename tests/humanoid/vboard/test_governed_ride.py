@@ -97,7 +97,7 @@ def test_speed_governing_runs_short(smoke):
 def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
     """Fig. 6.16's start (§6.4.1): the robot boards from the floor (ch. 5's SLC boarding); the governor stays off
     (level 2) until the right foot's sole-force guard (f_Rz > 25 N, SLC's stop), then runs with the learned D."""
-    ride = governed_ride(TABLE, boarding=True, noise=False)
+    ride = governed_ride(TABLE, boarding="slc", noise=False)
     st, sched = ride.boarding
     assert ride.lift is None and ride.body is st.body
     loop = Loop(ride.body, stages=ride.stages, channels=ride.channels)

@@ -30,7 +30,7 @@ STARTS = ("boarding", "lift")
 def rig(params, variant, seed):
     return governed_rig(params["plant"], params["learn_s"], variant, seed, params["theta_o_error_deg"],
                         params["damping_d"], start_delay=params.get("start_delay_s", START_DELAY),
-                        eta_scale=params.get("eta_scale", 1.0), boarding=params["start"] == "boarding")
+                        eta_scale=params.get("eta_scale", 1.0), boarding="slc" if params["start"] == "boarding" else None)
 
 
 def eq643_residual(s: dict, r_sat: float = R_SAT_V) -> float:

@@ -38,6 +38,9 @@ NOSLIP_ITERATIONS = 10  # chosen: MuJoCo's no-slip passes for "fig6.1"; without 
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
 PLANTS = ("board", "table6.2")
 MODES = ("corrected", "saturated", "plain")
+# Fig. 6.16's self-boarded start (vboard.governed_ride.governed_ride's boarding): "preset" §6.4.1 as written, ch. 5's
+# gains applied beforehand (D = D_VBOARD, no SLC); "slc" SLC learning D during the boarding (§7.4.2's SOLC order)
+BOARDINGS = ("preset", "slc")
 VIEW = {"track": "waist", "azimuth": 60.0, "elevation": -10.0, "distance": 3.5}  # the camera of the scenarios
 EXCITE_S = 8.0  # s, chosen: the length of each run's excitation
 THETA_O_ERROR_DEG = 0.3  # deg, chosen: the true θ_O minus the regression intercept, as humanoid.vboard-levels

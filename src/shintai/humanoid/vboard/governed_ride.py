@@ -36,7 +36,7 @@ from shintai.humanoid.learning.mlc import MLC_OMEGA, MLC_V, MLCParams
 from shintai.humanoid.learning.prior_value_integrator import PriorValueIntegrator
 from shintai.humanoid.learning.slc import SLCParams
 from shintai.humanoid.vboard.boarding import boarding_stack
-from shintai.humanoid.vboard.constants import MODES, PLANTS, START_DELAY, VIEW
+from shintai.humanoid.vboard.constants import BOARDINGS, D_VBOARD, MODES, PLANTS, START_DELAY, VIEW
 from shintai.humanoid.vboard.governor import GatedGovernor
 from shintai.humanoid.vboard.plant_id import identified_plant
 from shintai.humanoid.vboard.ride import VboardRide, scooter_spec
@@ -65,23 +65,29 @@ def mlc_params(plant: dict, eta_scale: float = 1.0) -> tuple[MLCParams, MLCParam
 
 
 def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gains=((0.0,) * 3,) * 2,
-                  start_delay: float = START_DELAY, eta_scale: float = 1.0, boarding: bool = False,
+                  start_delay: float = START_DELAY, eta_scale: float = 1.0, boarding: str | None = None,
                   theta_o_error_deg: float = 0.0, **ride_kw) -> VboardRide:
     """A lift-placed :class:`VboardRide` at level 3 whose governor is a :class:`GatedGovernor` with MLC on the
     given plant and integrator ``mode``; learning starts ``start_delay`` after the lift lets go (or at
     ``start_delay`` without a lift). ``boarding``: Fig. 6.16's start instead — the robot boards by itself from
-    the floor (:func:`~shintai.humanoid.vboard.boarding.boarding_stack`: SLC on Table 5.2 from D₀ = 22, ch. 5's gains and
-    parameters, §6.4.1 '第5章で獲得した足部トルクダンピング制御系まわりのゲイン/パラメータを事前に適用'), and
-    learning starts when both feet have landed on the boards by Fig. 5.5's sole-force guard, i.e. on SLC's stop
-    (f_Rz > 25 N; §6.4.1 '両足がボード上に着地したタイミング … 図 5.5 で示したような足裏反力の閾値判定'),
-    ``start_delay`` unused; ``ride.boarding`` is the (stack, SLC schedule)."""
+    the floor (:func:`~shintai.humanoid.vboard.boarding.boarding_stack`) and learning starts when both feet have
+    landed on the boards by Fig. 5.5's sole-force guard (f_Rz > 25 N; §6.4.1 '両足がボード上に着地したタイミング … 図 5.5
+    で示したような足裏反力の閾値判定'), ``start_delay`` unused; ``ride.boarding`` is the (stack, SLC schedule).
+    :data:`BOARDINGS`: ``"preset"`` as §6.4.1 writes, '第5章で獲得した足部トルクダンピング制御系まわりのゲイン/パラメータを
+    事前に適用した状態から実行する' — D = :data:`~shintai.humanoid.vboard.constants.D_VBOARD` (§5.4.2's learned '約 D =
+    40.0') from the start, SLC only marking its window; ``"slc"`` SLC learning D from D₀ = 22 during the boarding
+    (Table 5.2), which is §7.4.2's SOLC order rather than §6.4.1's."""
     if mode not in MODES:
         raise ValueError(f"mode must be one of {', '.join(MODES)}, got {mode!r}")
     if not start_delay >= 0.0:
         raise ValueError(f"start_delay must be >= 0, got {start_delay!r}")
     stack = sched = None
-    if boarding:
-        stack = boarding_stack(SLCParams(), v=scooter_spec(theta_o_error_deg))
+    if boarding not in (None, *BOARDINGS):
+        raise ValueError(f"boarding must be None or one of {', '.join(BOARDINGS)}, got {boarding!r}")
+    if boarding is not None:
+        preset = boarding == "preset"
+        stack = boarding_stack(SLCParams(D0=D_VBOARD) if preset else SLCParams(), learn=not preset,
+                               v=scooter_spec(theta_o_error_deg))
         sched = stack[1]
         ride_kw = {k: v for k, v in ride_kw.items() if k != "D"}  # the boarding's own (learned) gains
 
@@ -103,15 +109,15 @@ def governed_ride(plant: dict, mode: str = "corrected", learn: bool = True, gain
 
 def governed_rig(plant: str, learn_s: float, mode: str, seed: int, theta_o_error_deg: float, D: float,
                  start_delay: float = START_DELAY, eta_scale: float = 1.0, learn: bool = True,
-                 boarding: bool = False) -> Rig:
+                 boarding: str | None = None) -> Rig:
     """One run of the scenarios: :func:`governed_ride` on the plant named ``plant`` (:func:`plant_values`),
     stopping at a fall or ``learn_s`` after the learning start; records the ride's signals every 5 ticks.
-    ``boarding``: Fig. 6.16's self-boarding start."""
+    ``boarding``: Fig. 6.16's self-boarding start (:data:`BOARDINGS`, :func:`governed_ride`)."""
     pv = plant_values(plant)
     ride = governed_ride(pv, mode=mode, learn=learn, start_delay=start_delay, theta_o_error_deg=theta_o_error_deg,
                          D=D, eta_scale=eta_scale, seed=seed, boarding=boarding)
     ride.plant = pv
-    before = ride.boarding[0].duration if boarding else 0.0  # the boarding plan's length: a bound on the start
+    before = ride.boarding[0].duration if boarding is not None else 0.0  # the boarding plan's length: a bound on the start
 
     def until(snapshot) -> bool:
         t0 = ride.governor.t_start

@@ -142,12 +142,13 @@ def _boarding_run(ax, run):
 
 def speed_governing(ctx, runs, params):
     for name, run in runs.items():
-        fig = "fig6_16" if name == "boarding" else f"fig6_15_{name}"
+        boarded = name.startswith("boarding")  # Fig. 6.16's self-boarded starts: "boarding", "boarding_slc"
+        fig = f"fig6_16{name[len('boarding'):]}" if boarded else f"fig6_15_{name}"
         with ctx.figure(fig, 5, 2, figsize=(13, 15), sharex=True) as (_fig, ax):
-            _governed_run(ax, run, f"{name} (Fig. {'6.16' if name == 'boarding' else '6.15'} layout)")
-    if "boarding" in runs:
-        with ctx.figure("fig6_16_boarding", 3, 1, figsize=(8, 7), sharex=True) as (_fig, ax):
-            _boarding_run(ax, runs["boarding"])
+            _governed_run(ax, run, f"{name} (Fig. {'6.16' if boarded else '6.15'} layout)")
+        if boarded:
+            with ctx.figure(f"{fig}_boarding", 3, 1, figsize=(8, 7), sharex=True) as (_fig, ax):
+                _boarding_run(ax, run)
 
 
 def boarding(ctx, runs, params):
