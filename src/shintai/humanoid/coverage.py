@@ -385,13 +385,13 @@ ROWS = (
         what="the same learning after the robot boarded by itself (ch. 5 damping gains applied)",
         result="§6.4.1: converged at '約 54[s]'; 'v は 4[s]-8[s] で ω は 0[s]-2[s] において不安定な状態となり,この期間では"
                "評価関数 J_v, J_ω も各々高まって'; the targets are followed near 50 s",
-        why_not="humanoid.speed-governing (boarding): HRP2 boards by SLC (window 1.25 s, D 22 → 81.9), learning starts "
-                "at the right foot's f_Rz > 25 N guard (3.228 s) and it rides the 60 s without falling. The boards end "
-                "the boarding at θ_L −4.7°, θ_R +0.4° and the scooter spins (ω 2.9 rad/s at 1 s); the ω governor "
-                "stops it by 8 s and meets Eq. 6.32 at 20 s (gains ≈3–4×10⁻⁴), flagged unstable for 0–2 s only (the "
-                "thesis's 'ω は 0[s]-2[s]'); final |v| 0.048 m/s, |ω| 0.031 rad/s. v does not converge: K_I^v is "
-                "clipped back to 0 at 4 s and 8 s and stays 0 (Eq. 6.41 fails for 56 s, P^v 2.9×10⁻⁴ > D^v but I = 0) "
-                "— the governor's pitch barely reaches v through the foot damping (humanoid.vboard-plant-id)",
+        why_not="humanoid.speed-governing (boarding, §6.4.1 as written: ch. 5's D = 40 applied before the boarding, no "
+                "SLC): HRP2 boards by itself, both feet land (the f_Rz > 25 N guard at 2.864 s) and it falls 0.70 s "
+                "later, before MLC's first update; why D = 40 from the first step fails where SLC's rising D rides is "
+                "not measured. The SLC-during-boarding variant (boarding_slc, §7.4.2's SOLC order; reported, not "
+                "checked): D 22 → 84.8 in a 1.32 s window, it rides the 60 s, ω meets Eq. 6.32 at 18 s, v does not "
+                "(K_I^v ≈ 10⁻⁴, P^v ≈ 0; Eq. 6.41 fails for 44 s), final |v| 0.117 m/s, |ω| 0.077 rad/s, drift "
+                "−1.59 m — the governor's pitch barely reaches v (humanoid.vboard-plant-id, 000:tab6.2-v)",
     ),
     Row(
         key="000:fig6.17",
