@@ -400,10 +400,11 @@ ROWS = (
              "data (0–6 s)",
         result="§6.4.2: '飽和制約を設けた場合(緑線)は瞬間的な変化を伴い制御入力が増加している' at 4 s, while the "
                "proposed integrator gives a smooth u_I; the extra slope is (r_sat − 1)u_I/Δt (Eq. 6.43 vs 6.44)",
-        why_not="humanoid.integrator-comparison on Fig. 6.16's data (our self-boarded run, the thesis's source): "
+        why_not="humanoid.integrator-comparison on Fig. 6.16's data (our self-boarded run with SLC, the thesis's source; "
+                "000:fig6.16's run with D = 40 preset falls before MLC's first update): "
                 "K_I^v rises only from 0 there (at 2 s and 6 s, MLC clipping it back to 0 each time), where u_I was 0 "
                 "and Eq. 6.42's ratio is unbounded: the saturated and corrected u_I are the same trapezoid step "
-                "(3.99×10⁻⁹), no jump to compare (the thesis's 0–6 s has a marked I-gain amplification). With "
+                "(4.81×10⁻⁹), no jump to compare (the thesis's 0–6 s has a marked I-gain amplification). With "
                 "--set start=lift (Fig. 6.15's start) K_I^v rises from non-zero values and the saturated u_I^v jumps "
                 "≈250× the corrected step (7.48×10⁻⁷ vs 2.94×10⁻⁹, at 10 s; thesis 4 s); Eq. 6.43 holds to rounding",
     ),
