@@ -564,12 +564,12 @@ ROWS = (
         result="§7.4.2: '… 調速行動による停止操作が完了するまでは全体で 79.5[s] かかり, t = 79.5[s] で式 6.32 の終了条件"
                "を満たした'; 'Riding Phase by SLC: 4 ≤ t ≤ 5.5, Speed Governing Phase by MLC: 5.5 ≤ t ≤ 79.5'; D grows "
                "as in Fig. 5.8; P and I dominate D; v, ω converge to 0 (Fig. 7.21)",
-        why_not="humanoid.solc: one Switcher INIT → SLC → MLC → DONE on the sole-force landings; SLC 1.976 → 3.224 s "
-                "(riding phase 1.25 s; thesis 4 → 5.5 s; SLC after the damping in the tick, Fig. 5.4's order), "
-                "D 22 → 81.9, then MLC: ω's gains settle and meet Eq. 6.32, "
-                "but v's I gain is clipped to 0 and its P gain keeps growing while the scooter drifts back ever faster "
-                "(the foot damping cancels the governor's pitch, humanoid.vboard-plant-id): the robot falls at 77.2 s "
-                "without DONE (thesis: DONE at 79.5 s)",
+        why_not="humanoid.solc: one Switcher INIT → SLC → MLC → DONE on the sole-force landings; SLC 1.976 → 3.296 s "
+                "(riding phase 1.32 s; thesis 4 → 5.5 s; SLC after the damping in the tick, Fig. 5.4's order), "
+                "D 22 → 84.8, then MLC: ω's gains settle and meet Eq. 6.32, but v's do not (D dominates: P 3.0, "
+                "I 2.2, D 5.4 ×10⁻⁴) while the scooter runs away (|v| 0.79 m/s over the last 2 s; the governor's "
+                "pitch does not drive v, 000:tab6.2-v): the robot falls at 67.8 s without DONE (thesis: DONE at "
+                "79.5 s)",
     ),
     # --- appendix --------------------------------------------------------------------------------------------
     Row(
