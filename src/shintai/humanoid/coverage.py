@@ -387,8 +387,9 @@ ROWS = (
                "評価関数 J_v, J_ω も各々高まって'; the targets are followed near 50 s",
         why_not="humanoid.speed-governing (boarding, §6.4.1 as written: ch. 5's D = 40 applied before the boarding, no "
                 "SLC): HRP2 boards by itself, both feet land (the f_Rz > 25 N guard at 2.864 s) and it falls 0.70 s "
-                "later, before MLC's first update; why D = 40 from the first step fails where SLC's rising D rides is "
-                "not measured. The SLC-during-boarding variant (boarding_slc, §7.4.2's SOLC order; reported, not "
+                "later, before MLC's first update. The boarding itself fails at D = 40: humanoid.vboard-boarding "
+                "--set D0=40 falls with and without SLC (without: the left board tipped to −19°, δ at its 10° limit, "
+                "0.83 s after the right landing), so our boarding rides only from Table 5.2's D₀ = 22. The SLC-during-boarding variant (boarding_slc, §7.4.2's SOLC order; reported, not "
                 "checked): D 22 → 84.8 in a 1.32 s window, it rides the 60 s, ω meets Eq. 6.32 at 18 s, v does not "
                 "(K_I^v ≈ 10⁻⁴, P^v ≈ 0; Eq. 6.41 fails for 44 s), final |v| 0.117 m/s, |ω| 0.077 rad/s, drift "
                 "−1.59 m — the governor's pitch barely reaches v (humanoid.vboard-plant-id, 000:tab6.2-v)",
