@@ -26,10 +26,9 @@ from functools import lru_cache
 
 import mujoco
 import numpy as np
-from llvmlite import ir
-from numba import njit, types
-from numba.extending import intrinsic
+from numba import njit
 
+from shintai.spine.geometry import fma
 from shintai.spine.robots import RingDiscSpec
 
 
@@ -79,20 +78,6 @@ class RingLaw:
                      self.c3, out, dofs)
 
 
-@intrinsic
-def _fma(typingctx, a, b, c):
-    """a·b + c rounded once (LLVM's fma): how OpenBLAS's dgemm forms each element of a product R p (the
-    NumPy law's ``R @ up.T``, matched to the bit)."""
-    sig = types.float64(types.float64, types.float64, types.float64)
-
-    def codegen(context, builder, signature, args):
-        double = ir.DoubleType()
-        fma = builder.module.declare_intrinsic("llvm.fma", [double], ir.FunctionType(double, [double] * 3))
-        return builder.call(fma, args)
-
-    return sig, codegen
-
-
 @njit(cache=True)
 def _faces(qpos, index, up, low, t_free, trig, x, u, d, c):
     """The ring's geometry at posture q = qpos[index] (n joints × (roll, pitch, yaw)): each joint's cos and
@@ -110,7 +95,7 @@ def _faces(qpos, index, up, low, t_free, trig, x, u, d, c):
         for k in range(up.shape[0]):
             uu = 0.0
             for a in range(3):
-                x[i, k, a] = _fma(R[a][2], up[k, 2], _fma(R[a][1], up[k, 1], R[a][0] * up[k, 0]))
+                x[i, k, a] = fma(R[a][2], up[k, 2], fma(R[a][1], up[k, 1], R[a][0] * up[k, 0]))
                 u[i, k, a] = x[i, k, a] - low[k, a]
                 uu += u[i, k, a] * u[i, k, a]
             d[i, k] = math.sqrt(uu)
