@@ -57,9 +57,10 @@ def ring_forces(disc: RingDiscSpec, q) -> np.ndarray:
 class RingLaw:
     """The ring law of the module docstring for ``n`` joints, in two compiled loops over the joints and the ring
     (:func:`_faces`, :func:`_generalised`) on buffers allocated once: it runs before every physics step, where
-    the same law in NumPy (≈ 40 calls on (n, 3, k) arrays) cost 4 × MuJoCo's step. The loops compute what
-    that NumPy law computed, bit for bit (the same products and sums in the same order); between them c³ is
-    NumPy's ``power``, as in :meth:`RingDiscSpec.force` (a product c·c·c differs in the last place)."""
+    NumPy's per-call cost on (n, 3, k) arrays would be several MuJoCo steps. The loops keep NumPy's arithmetic
+    (R p as OpenBLAS's fma chain, the einsums' orders of summation), so they give the bits of the law written
+    with NumPy arrays; c³ between them is NumPy's ``power``, as :meth:`RingDiscSpec.force` computes it (a
+    product c·c·c differs in the last place)."""
 
     def __init__(self, disc: RingDiscSpec, n: int):
         up, low = ring_points(disc)
@@ -104,9 +105,10 @@ def _faces(qpos, index, up, low, t_free, trig, x, u, d, c):
 
 @njit(cache=True)
 def _generalised(qpos, index, k0, k1, k3, trig, x, u, d, c, c3, out, dofs):
-    """out[dofs] = Q + K₀ q: Q_j = Σ_k f(c_k) ∂d_k/∂q_j, f(c) = k1 c + k3 c³ (:meth:`RingDiscSpec.force`), ∂d/∂q_j = a_j · (x × u) / d with
-    the hinge axes a in the parent frame (roll Rz Ry e_x, pitch Rz e_y, yaw e_z). One running sum, over the
-    axes' components inside the ring (the NumPy law's einsum order, so the same bits)."""
+    """out[dofs] = Q + K₀ q: Q_j = Σ_k f(c_k) ∂d_k/∂q_j, f(c) = k1 c + k3 c³ (:meth:`RingDiscSpec.force`),
+    ∂d/∂q_j = a_j · (x × u) / d with the hinge axes a in the parent frame (roll Rz Ry e_x, pitch Rz e_y, yaw
+    e_z). One running sum, over the axes' components inside the ring (the NumPy law's einsum order, so the
+    same bits)."""
     for i in range(trig.shape[0]):
         cp, cy, sp, sy = trig[i, 0, 1], trig[i, 0, 2], trig[i, 1, 1], trig[i, 1, 2]
         axes = ((cy * cp, sy * cp, -sp), (-sy, cy, 0.0), (0.0, 0.0, 1.0))
