@@ -83,12 +83,15 @@ def test_upright_criterion_fixes_clas_disc():
     assert np.all(np.abs(np.array([k[0], k[1], k[2] + D.k_twist_nm_rad]) - 2 * k_star) < 0.01 * 2 * k_star)
 
 
-def test_the_written_out_cross_is_numpys_bit_for_bit_and_in_its_layout():
-    """discs._cross replaces np.cross(axis=1) in the law that runs before every physics step: same values and
-    strides, so the einsum after it sums in the same order (the law's forces unchanged to the bit)."""
-    from shintai.spine.discs import _cross
-
-    rng = np.random.default_rng(3)
-    a, b = rng.normal(size=(5, 3, 16)), rng.normal(size=(5, 3, 16))
-    ours, numpys = _cross(a, b), np.cross(a, b, axis=1)
-    assert np.array_equal(ours, numpys) and ours.strides == numpys.strides
+def test_each_joints_disc_forces_depend_on_its_own_angles_only():
+    """The compiled law (discs.RingLaw) runs over every joint at once: the five joints' forces are, to the bit,
+    five one-joint evaluations, and the hook writes only the spine's hinges of qfrc_applied."""
+    q = np.random.default_rng(5).uniform(-0.3, 0.3, (CLA.n, 3))
+    assert np.array_equal(ring_forces(D, q), np.vstack([ring_forces(D, qi) for qi in q]))
+    body = SpineBody(CLA)
+    hook = HardeningDiscs(body, D)
+    body.set_theta(q.reshape(-1))
+    body.data.qfrc_applied[:] = 7.0
+    hook()
+    others = np.setdiff1d(np.arange(body.model.nv), hook.dofs)
+    assert np.all(body.data.qfrc_applied[others] == 7.0) and not np.any(body.data.qfrc_applied[hook.dofs] == 7.0)

@@ -237,3 +237,17 @@ def test_one_posture_takes_the_same_products_as_a_batch():
             assert all(np.array_equal(one, many[k]) for one, many in zip(model.chain.frames(thetas[k]), batch))
             assert np.array_equal(model.lengths(thetas[k]), model.lengths(thetas)[k])
             assert np.array_equal(uniform_posture(wholes[k], model.n), uniform_posture(wholes, model.n)[k])
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_one_postures_lengths_in_the_compiled_loop_are_numpys(name):
+    """lengths of one posture (geometry._segment_lengths, the players' 1 ms path) are, bit for bit, eq. 4.25
+    through the NumPy frames, path points and segments (every chain robot: Kenta's wedges, Rabbit's helical
+    many-segment muscles)."""
+    model, rng = MODELS[name], np.random.default_rng(4)
+    for _ in range(50):
+        theta = random_posture(model, rng, scale=1.2)
+        numpy_path = model.muscles.sum_per_muscle(model.muscles.segments(model.points(theta))[1])
+        assert np.array_equal(model.lengths(theta), numpy_path)
+    with pytest.raises(ValueError):
+        model.lengths(np.zeros(3 * model.n + 1))

@@ -153,7 +153,8 @@ def control_modes_tick(seconds: float = 3.0) -> dict:
     """The rig of ``spine.control-modes`` (defaults: hardening discs, muscles on the column; all-L on pitch) run
     for ``seconds`` of simulated time through the Loop, against bare ``mj_step`` on the same model for the same
     number of physics steps; the disc law (``discs.HardeningDiscs``, run before every physics step) timed alone
-    on the postures the run passed through, and the same rig on the linear disc."""
+    on the postures the run passed through, and the same rig on the linear disc; the rest of the tick as each
+    module's time per tick (the Loop's timing) and the body's snapshot timed alone."""
     import mujoco
 
     from shintai.scenarios.experiment import run_rig
@@ -185,6 +186,13 @@ def control_modes_tick(seconds: float = 3.0) -> dict:
         out |= {f"{disc}_physics_steps": steps, f"{disc}_wall_s": wall, f"{disc}_bare_mj_step_s": bare,
                 f"{disc}_overhead_ratio": wall / bare, f"{disc}_step_us": 1e6 * wall / max(steps, 1),
                 f"{disc}_bare_step_us": 1e6 * bare / max(steps, 1)}
+        ticks = max(run.steps, 1)  # the rest of the tick, per 1 ms tick: each module, and the body's snapshot
+        out |= {f"{disc}_{name}_us_per_tick": 1e6 * t.total_s / ticks for name, t in run.loop.timing.items()}
+        calls = 2000
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            body.snapshot()
+        out[f"{disc}_snapshot_us"] = 1e6 * (time.perf_counter() - t0) / calls
         hooks = [h for h in body.before_physics if isinstance(h, HardeningDiscs)]
         if hooks:
             calls = 2000

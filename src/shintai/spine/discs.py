@@ -21,11 +21,14 @@ one tension. :func:`upright_stiffness` is the stiffness about it, :func:`upright
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import mujoco
 import numpy as np
+from numba import njit
 
+from shintai.spine.geometry import fma
 from shintai.spine.robots import RingDiscSpec
 
 
@@ -44,37 +47,79 @@ def ring_points(disc: RingDiscSpec) -> tuple[np.ndarray, np.ndarray]:
 def ring_forces(disc: RingDiscSpec, q) -> np.ndarray:
     """The disc's generalised forces (n, 3) [N m] on each joint's (roll, pitch, yaw) hinges at q (n, 3) [rad]
     (the order of eq. 4.1's θ; module docstring)."""
-    q = np.atleast_2d(np.asarray(q, dtype=float))
-    up, low = ring_points(disc)
-    cr, sr = np.cos(q[:, 0]), np.sin(q[:, 0])
-    cp, sp = np.cos(q[:, 1]), np.sin(q[:, 1])
-    cy, sy = np.cos(q[:, 2]), np.sin(q[:, 2])
-    R = np.empty((len(q), 3, 3))  # Rz(ψ) Ry(θ) Rx(φ)
-    R[:, 0, 0], R[:, 0, 1], R[:, 0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
-    R[:, 1, 0], R[:, 1, 1], R[:, 1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
-    R[:, 2, 0], R[:, 2, 1], R[:, 2, 2] = -sp, cp * sr, cp * cr
-    x = R @ up.T  # (n, 3, k): the upper points about the centre, parent frame
-    diff = x - low.T
-    d = np.sqrt(np.einsum("nak,nak->nk", diff, diff))
-    f = disc.force(disc.compression(d))
-    # ∂d/∂q_j = u · (a_j × x) = a_j · (x × u), the hinge axes a in the parent frame: roll Rz Ry e_x, pitch Rz e_y, yaw e_z
-    xu = _cross(x, diff) / d[:, None, :]  # (n, 3, k)
-    axes = np.empty((len(q), 3, 3))
-    axes[:, 0] = np.stack([cy * cp, sy * cp, -sp], axis=1)
-    axes[:, 1] = np.stack([-sy, cy, np.zeros_like(cy)], axis=1)
-    axes[:, 2] = [0.0, 0.0, 1.0]
-    return np.einsum("nk,nja,nak->nj", f, axes, xu)
+    q = np.ascontiguousarray(np.atleast_2d(np.asarray(q, dtype=float))).reshape(-1)
+    law, index = RingLaw(disc, len(q) // 3), np.arange(len(q))
+    out = np.empty(len(q))
+    law(q, index, np.zeros(len(q)), out, index)
+    return out.reshape(-1, 3)
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``np.cross(a, b, axis=1)`` for (n, 3, k) arrays, written out (the same products and differences, so the
-    same bits, in the same memory layout as NumPy's, whose strides the einsum after it sums in; NumPy's general
-    cross costs 30 µs here, most of the law's time)."""
-    out = np.moveaxis(np.empty((a.shape[0], a.shape[2], 3)), -1, 1)
-    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
-    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
-    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-    return out
+class RingLaw:
+    """The ring law of the module docstring for ``n`` joints, in two compiled loops over the joints and the ring
+    (:func:`_faces`, :func:`_generalised`) on buffers allocated once: it runs before every physics step, where
+    NumPy's per-call cost on (n, 3, k) arrays would be several MuJoCo steps. The loops keep NumPy's arithmetic
+    (R p as OpenBLAS's fma chain, the einsums' orders of summation), so they give the bits of the law written
+    with NumPy arrays; c³ between them is NumPy's ``power``, as :meth:`RingDiscSpec.force` computes it (a
+    product c·c·c differs in the last place)."""
+
+    def __init__(self, disc: RingDiscSpec, n: int):
+        up, low = ring_points(disc)
+        self.disc, self.up, self.low = disc, np.ascontiguousarray(up), np.ascontiguousarray(low)
+        k = disc.n_ring
+        self.trig = np.empty((n, 2, 3))  # cos, sin of (roll, pitch, yaw)
+        self.x, self.u = np.empty((n, k, 3)), np.empty((n, k, 3))
+        self.d, self.c, self.c3 = np.empty((n, k)), np.empty((n, k)), np.empty((n, k))
+
+    def __call__(self, qpos, index, k0, out, dofs) -> None:
+        """out[dofs] = Q(q) + k0 q at q = qpos[index] (3n,), in eq. 4.1's order per joint."""
+        disc = self.disc
+        _faces(qpos, index, self.up, self.low, disc.t_free_m, self.trig, self.x, self.u, self.d, self.c)
+        np.power(self.c, 3, out=self.c3)
+        _generalised(qpos, index, k0, disc.k1_n_m, disc.k3_n_m3, self.trig, self.x, self.u, self.d, self.c,
+                     self.c3, out, dofs)
+
+
+@njit(cache=True)
+def _faces(qpos, index, up, low, t_free, trig, x, u, d, c):
+    """The ring's geometry at posture q = qpos[index] (n joints × (roll, pitch, yaw)): each joint's cos and
+    sin ``trig``, R = Rz(ψ) Ry(θ) Rx(φ), the upper face points x = R p about the centre (n, k, 3), the spring
+    vectors u = x − p_low, their lengths d = |u| and compressions c = max(t_free − d, 0) (n, k)."""
+    for i in range(trig.shape[0]):
+        for a in range(3):
+            trig[i, 0, a] = math.cos(qpos[index[3 * i + a]])
+            trig[i, 1, a] = math.sin(qpos[index[3 * i + a]])
+        cr, cp, cy = trig[i, 0, 0], trig[i, 0, 1], trig[i, 0, 2]
+        sr, sp, sy = trig[i, 1, 0], trig[i, 1, 1], trig[i, 1, 2]
+        R = ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+             (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+             (-sp, cp * sr, cp * cr))
+        for k in range(up.shape[0]):
+            uu = 0.0
+            for a in range(3):
+                x[i, k, a] = fma(R[a][2], up[k, 2], fma(R[a][1], up[k, 1], R[a][0] * up[k, 0]))
+                u[i, k, a] = x[i, k, a] - low[k, a]
+                uu += u[i, k, a] * u[i, k, a]
+            d[i, k] = math.sqrt(uu)
+            c[i, k] = max(t_free - d[i, k], 0.0)
+
+
+@njit(cache=True)
+def _generalised(qpos, index, k0, k1, k3, trig, x, u, d, c, c3, out, dofs):
+    """out[dofs] = Q + K₀ q: Q_j = Σ_k f(c_k) ∂d_k/∂q_j, f(c) = k1 c + k3 c³ (:meth:`RingDiscSpec.force`),
+    ∂d/∂q_j = a_j · (x × u) / d with the hinge axes a in the parent frame (roll Rz Ry e_x, pitch Rz e_y, yaw
+    e_z). One running sum, over the axes' components inside the ring (the NumPy law's einsum order, so the
+    same bits)."""
+    for i in range(trig.shape[0]):
+        cp, cy, sp, sy = trig[i, 0, 1], trig[i, 0, 2], trig[i, 1, 1], trig[i, 1, 2]
+        axes = ((cy * cp, sy * cp, -sp), (-sy, cy, 0.0), (0.0, 0.0, 1.0))
+        for j in range(3):
+            total = 0.0
+            for k in range(c.shape[1]):
+                f = k1 * c[i, k] + k3 * c3[i, k]
+                for a in range(3):
+                    b, e = (a + 1) % 3, (a + 2) % 3
+                    total += f * axes[j][a] * ((x[i, k, b] * u[i, k, e] - x[i, k, e] * u[i, k, b]) / d[i, k])
+            out[dofs[3 * i + j]] = total + k0[3 * i + j] * qpos[index[3 * i + j]]
 
 
 def rest_tangent(disc: RingDiscSpec, step_rad: float = 1e-6) -> np.ndarray:
@@ -94,16 +139,16 @@ class HardeningDiscs:
             raise ValueError("HardeningDiscs needs the hinge spine (three hinges per joint)")
         m = body.model
         self.disc, self.data = disc, body.data
-        self.qpos = body.spine_qpos
+        self.qpos = body.spine_qpos.astype(np.intp)  # the kernels' one index type (compiled once)
         joints = [m.jnt_qposadr.tolist().index(a) for a in self.qpos]
-        self.dofs = m.jnt_dofadr[joints]
+        self.dofs = m.jnt_dofadr[joints].astype(np.intp)
         self.k0 = np.tile(np.maximum(rest_tangent(disc), 0.0), body.robot.n)
         m.jnt_stiffness[joints] = self.k0 + np.tile([0.0, 0.0, disc.k_twist_nm_rad], body.robot.n)
+        self.law = RingLaw(disc, body.robot.n)
         body.before_physics.append(self)
 
     def __call__(self) -> None:
-        q = self.data.qpos[self.qpos]
-        self.data.qfrc_applied[self.dofs] = ring_forces(self.disc, q.reshape(-1, 3)).reshape(-1) + self.k0 * q
+        self.law(self.data.qpos, self.qpos, self.k0, self.data.qfrc_applied, self.dofs)
 
 
 def upright_stiffness(body, tension_n: float, disc_nm_rad: float, step_rad: float = 1e-5) -> tuple[np.ndarray, list]:

@@ -40,9 +40,13 @@ software spring of eq. 4.36 gives the joints.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import intrinsic
 from scipy.optimize import linprog, nnls
 
 E = np.eye(3)
@@ -262,7 +266,18 @@ class SpineModel:
         return self.muscles.world_points(R, p)
 
     def lengths(self, theta, gap=None) -> np.ndarray:
-        """q = f⁻¹(θ): muscle lengths by eq. 4.25, (..., m) metres."""
+        """q = f⁻¹(θ): muscle lengths by eq. 4.25, (..., m) metres. One posture without a gap change (the
+        players' 1 ms path) goes through :func:`_segment_lengths`, the same numbers in one compiled loop."""
+        if gap is None and np.ndim(theta) == 1:
+            chain, mus = self.chain, self.muscles
+            theta = np.asarray(theta, dtype=float)
+            if theta.shape[-1] != 3 * chain.n:
+                raise ValueError(f"posture has {theta.shape[-1]} values, the chain has 3n = {3 * chain.n}")
+            seg_len = np.empty(len(mus.seg_start))
+            _segment_lengths(theta, chain.offsets, chain.rest, mus.point_link, mus.point_xyz, mus.seg_start,
+                             mus.seg_end, np.empty((chain.n + 1, 3, 3)), np.empty((chain.n + 1, 3)),
+                             np.empty((len(mus.point_link), 3)), seg_len)
+            return mus.sum_per_muscle(seg_len)
         _, seg_len = self.muscles.segments(self.points(theta, gap))
         return self.muscles.sum_per_muscle(seg_len)
 
@@ -383,3 +398,54 @@ def distribute_tension(J, tau, t_min: float = 0.0) -> TensionDistribution:
         candidate = shift + t_min
     residual = float(np.linalg.norm(-JT @ candidate - tau))
     return TensionDistribution(candidate, t0, null_dim, residual, residual <= 1e-9 * scale)
+
+
+@intrinsic
+def fma(typingctx, a, b, c):
+    """a·b + c rounded once (LLVM's fma), for compiled loops: how OpenBLAS's dgemm forms each element of a small
+    matrix product (NumPy's ``@`` on 3 × 3 blocks), so a loop that uses it gives NumPy's bits."""
+    sig = types.float64(types.float64, types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        double = ir.DoubleType()
+        fused = builder.module.declare_intrinsic("llvm.fma", [double], ir.FunctionType(double, [double] * 3))
+        return builder.call(fused, args)
+
+    return sig, codegen
+
+
+@njit(cache=True)
+def _segment_lengths(theta, offsets, rest, point_link, point_xyz, seg_start, seg_end, R, p, x, out):
+    """Eq. 4.25's segment lengths |⁰p − ⁰q| (S,) at one posture θ (3n,), into ``out``: the link frames
+    p_i = p_{i−1} + R_{i−1} o_i, R_i = R_{i−1} W_i Rz(ψ_i) Ry(θ_i) Rx(φ_i) (module docstring; ``R``, ``p``
+    (n+1, …) are scratch), the path points in the base frame (``x``, P × 3), the segments between them. The
+    arithmetic of :meth:`Chain._frames_one`, :meth:`MuscleSet.world_points` and :meth:`MuscleSet.segments`
+    (NumPy's 3-term einsums sum terms 0, 2, then 1; its 3 × 3 ``@`` is an fma chain), so the same bits."""
+    for a in range(3):
+        p[0, a] = 0.0
+        for b in range(3):
+            R[0, a, b] = 1.0 if a == b else 0.0
+    W, J = np.empty((3, 3)), np.empty((3, 3))
+    for i in range(offsets.shape[0]):
+        cr, sr = math.cos(theta[3 * i]), math.sin(theta[3 * i])
+        cp, sp = math.cos(theta[3 * i + 1]), math.sin(theta[3 * i + 1])
+        cy, sy = math.cos(theta[3 * i + 2]), math.sin(theta[3 * i + 2])
+        J[0, 0], J[0, 1], J[0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr  # rpy_matrix
+        J[1, 0], J[1, 1], J[1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+        J[2, 0], J[2, 1], J[2, 2] = -sp, cp * sr, cp * cr
+        o = offsets[i]
+        for a in range(3):
+            p[i + 1, a] = p[i, a] + ((R[i, a, 0] * o[0] + R[i, a, 2] * o[2]) + R[i, a, 1] * o[1])
+            for c in range(3):
+                W[a, c] = fma(R[i, a, 2], rest[i, 2, c], fma(R[i, a, 1], rest[i, 1, c], R[i, a, 0] * rest[i, 0, c]))
+        for a in range(3):
+            for c in range(3):
+                R[i + 1, a, c] = fma(W[a, 2], J[2, c], fma(W[a, 1], J[1, c], W[a, 0] * J[0, c]))
+    for k in range(point_link.shape[0]):
+        link, v = point_link[k], point_xyz[k]
+        for a in range(3):
+            x[k, a] = ((R[link, a, 0] * v[0] + R[link, a, 2] * v[2]) + R[link, a, 1] * v[1]) + p[link, a]
+    for s in range(seg_start.shape[0]):
+        end, start = seg_end[s], seg_start[s]
+        d0, d1, d2 = x[end, 0] - x[start, 0], x[end, 1] - x[start, 1], x[end, 2] - x[start, 2]
+        out[s] = math.sqrt((d0 * d0 + d1 * d1) + d2 * d2)
