@@ -143,9 +143,10 @@ class FootDampingModule(Module):
         e_tau = [a - b for a, b in zip(tau_d, tau)]  # Eq. 5.2
         raw = [damping_step(d, e, g, law.T, law.dt) for d, e, g, law in zip(delta, e_tau, D, laws)]  # Eq. 5.1
         delta = [min(max(r, -law.limit), law.limit) for r, law in zip(raw, laws)]
-        for i, law in ((0, left), (2, right)):
-            law.e_tau, law.delta = np.array(e_tau[i:i + 2]), np.array(delta[i:i + 2])
-            law.saturated = np.array([abs(raw[i]) >= law.limit, abs(raw[i + 1]) >= law.limit])
+        for i, law in ((0, left), (2, right)):  # each foot's state, in place
+            law.e_tau[0], law.e_tau[1] = e_tau[i], e_tau[i + 1]
+            law.delta[0], law.delta[1] = delta[i], delta[i + 1]
+            law.saturated[0], law.saturated[1] = abs(raw[i]) >= law.limit, abs(raw[i + 1]) >= law.limit
         if self.recorder is not None:  # the log's signals are formed only when something records them
             self.log(snapshot["t"], **{f"{self.name}.delta_L": left.delta.copy(), f"{self.name}.delta_R": right.delta.copy(),
                                            f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})

@@ -184,17 +184,18 @@ class PreviewController:
     def step(self, window: np.ndarray) -> np.ndarray:
         """One period: ``window`` (N_L + 1, 2) is p_ref(k), …, p_ref(k + N_L). Returns x(k+1) (3, 2).
 
-        The products with the gains and A stay NumPy's (BLAS: its rounding is the pattern's); the rest,
-        element by element, is on Python floats (the same IEEE operations, without a dozen tiny arrays a tick)."""
+        The products with the gains and A stay BLAS's (``dot``: the kernels ``@`` calls, with less dispatch; their
+        rounding is the pattern's); the rest, element by element, is on Python floats (the same IEEE operations,
+        without a dozen tiny arrays a tick)."""
         g = self.gains
         x = self.x
-        (px, py), (rx, ry) = (self.c @ x).tolist(), window[0].tolist()
+        (px, py), (rx, ry) = self.c.dot(x).tolist(), window[0].tolist()
         e = self.err_sum
         e[0], e[1] = e[0] + (px - rx), e[1] + (py - ry)  # Σ e += c x(k) − p_ref(k)
-        (ex, ey), (fx, fy), (wx, wy) = e.tolist(), (g.gx @ x).tolist(), (g.gp @ window[1:]).tolist()
+        (ex, ey), (fx, fy), (wx, wy) = e.tolist(), g.gx.dot(x).tolist(), g.gp.dot(window[1:]).tolist()
         ux, uy = -g.gi * ex - fx - wx, -g.gi * ey - fy - wy  # u(k) = −G_i Σ e − G_x x(k) − Σ G_p(j) p_ref(k+j)
-        b = self._b
-        self.x = np.array([[a0 + bi * ux, a1 + bi * uy] for (a0, a1), bi in zip((self.A @ x).tolist(), b)])
+        # x(k+1) = A x(k) + b u(k)
+        self.x = np.array([[a0 + bi * ux, a1 + bi * uy] for (a0, a1), bi in zip(self.A.dot(x).tolist(), self._b)])
         return self.x
 
 

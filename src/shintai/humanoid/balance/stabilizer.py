@@ -76,6 +76,7 @@ from shintai.sim.body import MujocoBody
 # --- constants ------------------------------------------------------------------------------------
 SIDES = ("l", "r")
 FOOT = {"l": "L", "r": "R"}  # the foot_damping module's names
+FOOT_KEYS = {s: (f"tau_d_{f}", f"tau_{f}", f"f_{f}z") for s, f in FOOT.items()}  # each foot's channels (below)
 # support code on the loop's "support" channel (a number, so it can travel on a channel)
 SUPPORT_CODE = {"lr": 0.0, "l": 1.0, "r": -1.0}
 SUPPORT_NAME = {v: k for k, v in SUPPORT_CODE.items()}
@@ -371,12 +372,13 @@ class StabilizerModule(Module):
         # point and mean yaw), re-expressed on the reference stance feet, which have no yaw (module docstring)
         stance = STANCE[support]
         n = len(stance)
-        feet = [w[SIDES[i]] for i in stance]
-        psi = mean_yaw([f[6] for f in feet])
-        ax = sum(f[3] for f in feet) / n
-        ay = sum(f[4] for f in feet) / n
-        rx = sum(soles[i][0] for i in stance) / n
-        ry = sum(soles[i][1] for i in stance) / n
+        _, _, _, feet_x, feet_y, feet_z, feet_yaw = zip(*[w[SIDES[i]] for i in stance])
+        ref_x, ref_y, _ = zip(*[soles[i] for i in stance])
+        psi = mean_yaw(feet_yaw)
+        ax = sum(feet_x) / n
+        ay = sum(feet_y) / n
+        rx = sum(ref_x) / n
+        ry = sum(ref_y) / n
         if self.foot_origin == "ankle":  # hrpsys's foot origin: the ankle links' origins (module docstring)
             d = self.body.data
             ax = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][0]) for i in stance) / n
@@ -404,7 +406,7 @@ class StabilizerModule(Module):
             if self.com_reading != "world":  # the offset from the stance feet ("imu": through the estimated attitude)
                 ex, ey = com[0] - ax, com[1] - ay
                 if self.tilt is not None:
-                    az = sum(f[5] for f in feet) / n
+                    az = sum(feet_z) / n
                     ex, ey, _ = (err @ np.array([ex, ey, com[2] - az])).tolist()
                 cx, cy = into_yawed(ex, ey, psi)
                 cx, cy = cx + rx, cy + ry
@@ -431,11 +433,12 @@ class StabilizerModule(Module):
         for s, fd in (("l", fz_l), ("r", fz_r)):
             on = s in support
             fz, tau_x, tau_y, *_, yaw = w[s]
+            tau_d_key, tau_key, fz_key = FOOT_KEYS[s]
             # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j
-            out[f"tau_d_{FOOT[s]}"] = np.array([-dy * fd, dx * fd]) if on else self._zero
+            out[tau_d_key] = np.array([-dy * fd, dx * fd]) if on else self._zero
             # τ about the foot's own roll and pitch axes, the axes δ turns it about
-            out[f"tau_{FOOT[s]}"] = np.array(into_yawed(tau_x, tau_y, yaw)) if on else self._zero
-            out[f"f_{FOOT[s]}z"] = np.array(fz)
+            out[tau_key] = np.array(into_yawed(tau_x, tau_y, yaw)) if on else self._zero
+            out[fz_key] = np.array(fz)
         dz = (0.0, 0.0)
         if self.use_force_difference:
             # Δf of the exerted vertical forces (downward: −f_z), see the sign convention

@@ -36,7 +36,6 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
 from shintai.humanoid.balance.foot_damping import FootDampingModule
@@ -199,6 +198,13 @@ class StepPreview(PreviewModule):
                 "zmp_ref": np.array([zx + ox, zy + oy])}
 
 
+def rot_xy_flat(roll: float, pitch: float) -> tuple[float, ...]:
+    """:func:`~shintai.core.geometry.rot_xy` (Ry(pitch) Rx(roll)) as its 9 floats, row-major, without the array:
+    the sole attitude δ gives the leg IK each tick."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    return cp, sp * sr, sp * cr, 0.0, cr, -sr, -sp, cp * sr, cp * cr
+
+
 class LegIKModule(Module):
     """Stage 4: reads ``com_ref``, ``sole_ref``, ``foot_damping`` (δ: L roll, L pitch, R roll, R pitch)
     and ``sole_dz``; writes the whole ``ctrl`` vector: the ``stand`` keyframe's targets with the leg
@@ -229,7 +235,7 @@ class LegIKModule(Module):
             x, y, z = soles[i]
             rot = _EYE9
             if delta is not None:
-                rot = rot_xy(delta[2 * i], delta[2 * i + 1]).ravel().tolist()
+                rot = rot_xy_flat(delta[2 * i], delta[2 * i + 1])
             if dz is not None:
                 z += float(dz[i])
             angles, reach_error = leg_angles(s, waist, _EYE9, (x, y, z), rot)
