@@ -240,13 +240,9 @@ class FootSensors:
             self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
         self._xmat, self._xpos, self._com, self._sensors = d.site_xmat, d.site_xpos, d.subtree_com, d.sensordata
 
-    def yaw(self, side: str) -> float:
-        """The sole's yaw in the world (rad): the angle of its x axis projected on the floor."""
-        r = self._xmat[self.rows[side][1]]
-        return math.atan2(float(r[3]), float(r[0]))
-
     def read_floats(self) -> dict[str, tuple[float, ...]]:
-        """:meth:`read` on Python floats: side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw)."""
+        """:meth:`read` on Python floats: side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw), the yaw
+        the angle of the sole's x axis projected on the floor (rad, world)."""
         sensors = self._sensors.tolist()
         out = {}
         for s, (site, sole, link, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
@@ -271,6 +267,7 @@ class FootSensors:
         return out
 
     def read(self) -> dict[str, FootWrench]:
+        """Both feet's :class:`FootWrench` (side → wrench)."""
         return {s: FootWrench(fz, np.array([tx, ty]), np.array([sx, sy, sz]))
                 for s, (fz, tx, ty, sx, sy, sz, _) in self.read_floats().items()}
 
