@@ -192,6 +192,7 @@ class StepPreview(PreviewModule):
             raise ValueError(f"preview: heights must be {len(plan.zmp)} finite values, one per plan tick")
 
     def references(self, k: int) -> dict:
+        """The preview's references of tick ``k``, the CoM raised by the stance height and both moved by ``offset``."""
         x, y = self.controller.x[0].tolist()
         (ox, oy), (zx, zy) = self.offset.tolist(), self._padded[k].tolist()
         return {"com_ref": np.array([x + ox, y + oy, self.zc + float(self.heights[k])]),
