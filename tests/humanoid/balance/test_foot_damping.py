@@ -53,3 +53,24 @@ def test_force_difference_control_splits_the_correction_in_double_support_and_de
     before = law.z_ctrl
     law.step(0.0, -50.0, double_support=False)
     assert law.z_ctrl == pytest.approx(before * (1 - DT / 1.5))
+
+
+def test_the_module_steps_both_feet_as_each_foots_law_would():
+    """FootDampingModule runs Eq. 5.1 on both feet's floats at once: the same δ, e_τ and saturation, to the bit,
+    as each foot's FootDamping.step on its arrays (the clip included: the right pitch saturates)."""
+    from shintai.humanoid.balance.foot_damping import FootDampingModule
+
+    module = FootDampingModule(D=[30.0, 1.0])
+    laws = {f: FootDamping(D=[30.0, 1.0]) for f in "LR"}
+    rng = np.random.default_rng(0)
+    for k in range(300):
+        snap = {"t": k * DT, **{f"tau_d_{f}": rng.normal(0.0, 5.0, 2) for f in "LR"},
+                **{f"tau_{f}": rng.normal(0.0, 5.0, 2) for f in "LR"}}
+        snap["tau_d_R"][1] += 200.0
+        out = module.update(snap)
+        expected = np.concatenate([laws[f].step(snap[f"tau_d_{f}"], snap[f"tau_{f}"]) for f in "LR"])
+        assert np.array_equal(out["foot_damping"], expected) and np.array_equal(out["damping_delta"], expected)
+        assert np.array_equal(out["e_tau"], np.concatenate([laws[f].e_tau for f in "LR"]))
+        for f in "LR":
+            assert np.array_equal(module.feet[f].saturated, laws[f].saturated)
+    assert module.feet["R"].saturated[1] and not module.feet["L"].saturated.any()

@@ -163,3 +163,20 @@ def test_module_writes_the_pattern_into_the_loop():
 def test_bad_parameters_raise_one_clear_value_error(make, word):
     with pytest.raises(ValueError, match=word):
         make()
+
+
+def test_a_step_is_the_matrix_form_to_the_bit():
+    """PreviewController.step (floats around BLAS's products) gives the module docstring's matrix form exactly:
+    Σe += c x − p_ref(k), u = −G_i Σe − G_x x − Σ G_p p_ref(k+j), x ← A x + b u."""
+    plan = zmp_plan((0.0, 0.06), (0.0, -0.06), [Footstep("l", 0.1, 0.06), Footstep("r", 0.2, -0.06)], hold=0.4)
+    model = CartTable(CONTROL_PERIOD, ZC)
+    ours = PreviewController(model, com0=plan.zmp[0])
+    x, err = ours.x.copy(), ours.err_sum.copy()
+    g, n = ours.gains, ours.horizon
+    padded = np.concatenate([plan.zmp, np.repeat(plan.zmp[-1:], n + 1, axis=0)])
+    for k in range(len(plan.zmp)):
+        window = padded[k:k + n + 1]
+        err += model.c @ x - window[0]
+        u = -g.gi * err - g.gx @ x - g.gp @ window[1:]
+        x = model.A @ x + np.outer(model.b, u)
+        assert np.array_equal(ours.step(window), x) and np.array_equal(ours.err_sum, err)

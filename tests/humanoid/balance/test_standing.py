@@ -248,3 +248,25 @@ def test_push_on_a_named_link_as_a_before_physics_hook():
     assert not body.data.xfrc_applied[[chest, waist]].any()  # off again after t0 + duration
     with pytest.raises(ValueError, match="push: force"):
         Push(body, (1.0, math.nan, 0.0), 0.0, 0.1)
+
+
+def test_the_leg_ik_module_commands_what_leg_ik_solves_for_its_references():
+    """LegIKModule's float path (leg_angles, rot_xy_flat) gives the leg joints leg_ik gives for the waist under
+    the CoM reference and the soles turned by δ and raised by the force difference, to the bit."""
+    from shintai.core.geometry import rot_xy
+    from shintai.humanoid.balance.standing import rot_xy_flat
+    from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+
+    for roll, pitch in ((0.0, 0.0), (0.03, -0.02), (-0.1, 0.2)):
+        assert rot_xy_flat(roll, pitch) == tuple(rot_xy(roll, pitch).ravel().tolist())
+    st = Standing()
+    com_ref = st.body.data.subtree_com[st.body.id("body", "waist")] + np.array([0.01, -0.005, -0.01])
+    soles = np.array([st.soles["l"], st.soles["r"]]) + np.array([[0.02, 0.0, 0.0], [-0.01, 0.0, 0.005]])
+    delta, dz = np.array([0.02, -0.03, -0.01, 0.04]), np.array([0.003, -0.003])
+    ctrl = st.ik.update({"com_ref": com_ref, "sole_ref": soles, "foot_damping": delta, "sole_dz": dz})["ctrl"]
+    waist = com_ref - st.ik.com_offset
+    for i, s in enumerate("lr"):
+        res = leg_ik(s, waist, np.eye(3), soles[i] + (0.0, 0.0, dz[i]), rot_xy(delta[2 * i], delta[2 * i + 1]))
+        assert res.reachable and np.array_equal(ctrl[[st.body.id("actuator", f"{s}_{j}") for j in JOINT_NAMES]], res.q)
+    others = np.setdiff1d(np.arange(len(ctrl)), st.ik._legs)
+    assert np.array_equal(ctrl[others], st.ik.ctrl0[others])

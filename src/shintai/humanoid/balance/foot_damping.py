@@ -45,8 +45,8 @@ CHANNELS = {**declare("damping_delta", "e_tau", kind=SET), GAIN: Channel(GAIN, S
 
 
 def damping_step(delta, e_tau, D, T: float, dt: float):
-    """One forward-Euler step of Eq. 5.1 with e_τ = τᵈ − τ (Eq. 5.2): δ + Δt (e_τ/D − δ/T)."""
-    return delta + dt * (np.asarray(e_tau, dtype=float) / D - np.asarray(delta, dtype=float) / T)
+    """One forward-Euler step of Eq. 5.1 with e_τ = τᵈ − τ (Eq. 5.2): δ + Δt (e_τ/D − δ/T), on floats or arrays."""
+    return delta + dt * (e_tau / D - delta / T)
 
 
 def damping_controller_gain(D: float, T: float) -> float:
@@ -133,9 +133,22 @@ class FootDampingModule(Module):
         gain = snapshot.get(GAIN)
         if gain is not None:
             left.D[:], right.D[:] = gain[:2], gain[2:]
-        deltas = {f: law.step(snapshot[f"tau_d_{f}"], snapshot[f"tau_{f}"]) for f, law in self.feet.items()}
+        # both feet's Eq. 5.1 at once on Python floats, [L roll, L pitch, R roll, R pitch] (FootDamping.step's
+        # maths: the same IEEE operations as on its arrays, without a dozen tiny NumPy calls a tick)
+        tau_d = snapshot["tau_d_L"].tolist() + snapshot["tau_d_R"].tolist()
+        tau = snapshot["tau_L"].tolist() + snapshot["tau_R"].tolist()
+        D = left.D.tolist() + right.D.tolist()
+        delta = left.delta.tolist() + right.delta.tolist()
+        laws = (left, left, right, right)
+        e_tau = [a - b for a, b in zip(tau_d, tau)]  # Eq. 5.2
+        raw = [damping_step(d, e, g, law.T, law.dt) for d, e, g, law in zip(delta, e_tau, D, laws)]  # Eq. 5.1
+        delta = [min(max(r, -law.limit), law.limit) for r, law in zip(raw, laws)]
+        for i, law in ((0, left), (2, right)):  # each foot's state, in place
+            law.e_tau[0], law.e_tau[1] = e_tau[i], e_tau[i + 1]
+            law.delta[0], law.delta[1] = delta[i], delta[i + 1]
+            law.saturated[0], law.saturated[1] = abs(raw[i]) >= law.limit, abs(raw[i + 1]) >= law.limit
         if self.recorder is not None:  # the log's signals are formed only when something records them
-            self.log(snapshot["t"], **{f"{self.name}.delta_L": deltas["L"], f"{self.name}.delta_R": deltas["R"],
+            self.log(snapshot["t"], **{f"{self.name}.delta_L": left.delta.copy(), f"{self.name}.delta_R": right.delta.copy(),
                                            f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
-        delta = np.concatenate([deltas["L"], deltas["R"]])
-        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.concatenate([left.e_tau, right.e_tau])}
+        delta = np.array(delta)
+        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.array(e_tau)}

@@ -156,6 +156,7 @@ class PreviewController:
         self.model = model
         self.gains = gains or preview_gains(model)
         self.A, self.b, self.c = model.A, model.b, model.c
+        self._b = self.b.tolist()
         self.x = np.zeros((3, 2))
         self.x[0] = np.asarray(com0, float)
         self.err_sum = np.zeros(2)
@@ -181,11 +182,20 @@ class PreviewController:
         self.err_sum = -(g.gx @ self.x + g.gp @ previous) / g.gi
 
     def step(self, window: np.ndarray) -> np.ndarray:
-        """One period: ``window`` (N_L + 1, 2) is p_ref(k), …, p_ref(k + N_L). Returns x(k+1) (3, 2)."""
+        """One period: ``window`` (N_L + 1, 2) is p_ref(k), …, p_ref(k + N_L). Returns x(k+1) (3, 2).
+
+        The products with the gains and A stay BLAS's (``dot``: the kernels ``@`` calls, with less dispatch; their
+        rounding is the pattern's); the rest, element by element, is on Python floats (the same IEEE operations,
+        without a dozen tiny arrays a tick)."""
         g = self.gains
-        self.err_sum += self.c @ self.x - window[0]
-        u = -g.gi * self.err_sum - g.gx @ self.x - g.gp @ window[1:]
-        self.x = self.A @ self.x + np.outer(self.b, u)
+        x = self.x
+        (px, py), (rx, ry) = self.c.dot(x).tolist(), window[0].tolist()
+        e = self.err_sum
+        e[0], e[1] = e[0] + (px - rx), e[1] + (py - ry)  # Σ e += c x(k) − p_ref(k)
+        (ex, ey), (fx, fy), (wx, wy) = e.tolist(), g.gx.dot(x).tolist(), g.gp.dot(window[1:]).tolist()
+        ux, uy = -g.gi * ex - fx - wx, -g.gi * ey - fy - wy  # u(k) = −G_i Σ e − G_x x(k) − Σ G_p(j) p_ref(k+j)
+        # x(k+1) = A x(k) + b u(k)
+        self.x = np.array([[a0 + bi * ux, a1 + bi * uy] for (a0, a1), bi in zip(self.A.dot(x).tolist(), self._b)])
         return self.x
 
 
@@ -315,8 +325,12 @@ class PreviewModule(Module):
     def update(self, snapshot):
         n = self.controller.horizon
         k = min(self.k, len(self.plan.zmp) - 1)
-        x = self.controller.x
-        out = {"com_ref": np.array([x[0, 0], x[0, 1], self.zc]), "zmp_ref": self._padded[k].copy()}
+        out = self.references(k)
         self.controller.step(self._padded[k:k + n + 1])
         self.k += 1
         return out
+
+    def references(self, k: int) -> dict:
+        """What tick ``k`` writes, before its step: ``com_ref`` (x(k), y(k), z_c), ``zmp_ref`` p_ref(k)."""
+        x, y = self.controller.x[0].tolist()
+        return {"com_ref": np.array([x, y, self.zc]), "zmp_ref": self._padded[k].copy()}

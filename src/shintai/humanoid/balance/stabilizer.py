@@ -76,9 +76,11 @@ from shintai.sim.body import MujocoBody
 # --- constants ------------------------------------------------------------------------------------
 SIDES = ("l", "r")
 FOOT = {"l": "L", "r": "R"}  # the foot_damping module's names
+FOOT_KEYS = {s: (f"tau_d_{f}", f"tau_{f}", f"f_{f}z") for s, f in FOOT.items()}  # each foot's channels (below)
 # support code on the loop's "support" channel (a number, so it can travel on a channel)
 SUPPORT_CODE = {"lr": 0.0, "l": 1.0, "r": -1.0}
 SUPPORT_NAME = {v: k for k, v in SUPPORT_CODE.items()}
+STANCE = {name: tuple(i for i, side in enumerate(SIDES) if side in name) for name in SUPPORT_CODE}  # the feet down
 
 CHANNELS = {
     **declare("tau_d_L", "tau_d_R", "tau_L", "tau_R", "f_Lz", "f_Rz", "zmp_d", "zmp_act", "sole_dz", kind=SET),
@@ -94,7 +96,7 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
 
 def mean_yaw(yaws: list[float]) -> float:
     """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
-    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws) / len(yaws)
+    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws[1:]) / len(yaws)  # the first's own term is 0
 
 
 def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
@@ -183,9 +185,19 @@ def distribute(zmp_d, points: dict, support: str, total_fz: float) -> Distributi
         raise ValueError(f"distribute: support is 'lr', 'l' or 'r', got {support!r}")
     if not (math.isfinite(total_fz) and total_fz >= 0):
         raise ValueError(f"distribute: total_fz must be a finite force ≥ 0 N, got {total_fz!r}")
-    px, py = float(zmp_d[0]), float(zmp_d[1])
-    lx, ly = float(points["l"][0]), float(points["l"][1])
-    rx, ry = float(points["r"][0]), float(points["r"][1])
+    alpha, fz_l, fz_r, dx, dy = distribution(float(zmp_d[0]), float(zmp_d[1]), float(points["l"][0]),
+                                             float(points["l"][1]), float(points["r"][0]), float(points["r"][1]),
+                                             support, total_fz)
+    fz = {"l": fz_l, "r": fz_r}
+    # exerted torque about a_j of a downward force f at q_j: (−d_y f, d_x f) (roll, pitch)
+    tau_d = {s: np.array([-dy * f, dx * f]) for s, f in fz.items()}
+    return Distribution(alpha, fz, tau_d)
+
+
+def distribution(px: float, py: float, lx: float, ly: float, rx: float, ry: float, support: str,
+                 total_fz: float) -> tuple[float, float, float, float, float]:
+    """:func:`distribute`'s arithmetic on Python floats (p_d = (px, py), a_L, a_R; unchecked, the stabilizer's
+    4 ms tick): (α, f_L, f_R, d_x, d_y), d = p_d − p_α each foot's pressure-centre offset from its point."""
     if support == "l":
         alpha = 1.0
     elif support == "r":
@@ -195,11 +207,8 @@ def distribute(zmp_d, points: dict, support: str, total_fz: float) -> Distributi
         n2 = ux * ux + uy * uy
         alpha = min(1.0, max(0.0, ((px - rx) * ux + (py - ry) * uy) / n2)) if n2 > 0 else 0.5
     ax, ay = rx + alpha * (lx - rx), ry + alpha * (ly - ry)  # p_α
-    dx, dy = px - ax, py - ay  # each foot's pressure centre q_j = a_j + (p_d − p_α)
-    fz = {"l": alpha * total_fz, "r": (1.0 - alpha) * total_fz}
-    # exerted torque about a_j of a downward force f at q_j: (−d_y f, d_x f) (roll, pitch)
-    tau_d = {s: np.array([-dy * f, dx * f]) for s, f in fz.items()}
-    return Distribution(alpha, fz, tau_d)
+    # each foot's pressure centre q_j = a_j + (p_d − p_α)
+    return alpha, alpha * total_fz, (1.0 - alpha) * total_fz, px - ax, py - ay
 
 
 class FootWrench(NamedTuple):
@@ -214,11 +223,12 @@ class FootWrench(NamedTuple):
 class FootSensors:
     """Both feet's exerted wrenches (sign convention: module docstring) from the ankle F/T sensors: the
     quasi-static reaction of :func:`~shintai.humanoid.robots.hrp2.ft_reaction` (foot weight compensated),
-    moved from the sensor site to the sole point, negated. Ids and masses are looked up once and the
-    arithmetic is on Python floats (it runs every 4 ms tick; ``ft_reaction`` costs ≈0.15 ms a foot)."""
+    moved from the sensor site to the sole point, negated. Ids and masses are looked up once, MjData's arrays
+    held as live views (as :class:`~shintai.sim.body.MujocoBody` holds its own) and the arithmetic is on Python
+    floats (it runs every 4 ms tick; ``ft_reaction`` costs ≈0.15 ms a foot)."""
 
     def __init__(self, body: MujocoBody):
-        m = body.model
+        m, d = body.model, body.data
         self.body = body
         self.rows = {}
         for s in SIDES:
@@ -228,22 +238,19 @@ class FootSensors:
             f_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_force")])
             t_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_torque")])
             self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
+        self._xmat, self._xpos, self._com, self._sensors = d.site_xmat, d.site_xpos, d.subtree_com, d.sensordata
 
-    def yaw(self, side: str) -> float:
-        """The sole's yaw in the world (rad): the angle of its x axis projected on the floor."""
-        r = self.body.data.site_xmat[self.rows[side][1]]
-        return math.atan2(float(r[3]), float(r[0]))
-
-    def read(self) -> dict[str, FootWrench]:
-        d = self.body.data
-        sensors = d.sensordata
+    def read_floats(self) -> dict[str, tuple[float, ...]]:
+        """:meth:`read` on Python floats: side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw), the yaw
+        the angle of the sole's x axis projected on the floor (rad, world)."""
+        sensors = self._sensors.tolist()
         out = {}
         for s, (site, sole, link, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
-            r = d.site_xmat[site].tolist()
-            fx, fy, fz = sensors[f_adr:f_adr + 3].tolist()
-            tx, ty, tz = sensors[t_adr:t_adr + 3].tolist()
-            px, py, pz = d.site_xpos[site].tolist()
-            cx, cy, cz = d.subtree_com[link].tolist()
+            r = self._xmat[site].tolist()
+            fx, fy, fz = sensors[f_adr:f_adr + 3]
+            tx, ty, tz = sensors[t_adr:t_adr + 3]
+            px, py, pz = self._xpos[site].tolist()
+            cx, cy, cz = self._com[link].tolist()
             cx, cy, cz = cx - px, cy - py, cz - pz
             # reaction about the sensor: f = −R f_s − m g, τ = −R τ_s − (c × m g)
             Fx = -(r[0] * fx + r[1] * fy + r[2] * fz) - gx
@@ -251,12 +258,18 @@ class FootSensors:
             Fz = -(r[6] * fx + r[7] * fy + r[8] * fz) - gz
             Tx = -(r[0] * tx + r[1] * ty + r[2] * tz) - (cy * gz - cz * gy)
             Ty = -(r[3] * tx + r[4] * ty + r[5] * tz) - (cz * gx - cx * gz)
-            sx, sy, sz = d.site_xpos[sole].tolist()
+            sx, sy, sz = self._xpos[sole].tolist()
             lx, ly, lz = px - sx, py - sy, pz - sz  # sensor − sole point
             tau_x = Tx + ly * Fz - lz * Fy  # the reaction torque about the sole point
             tau_y = Ty + lz * Fx - lx * Fz
-            out[s] = FootWrench(Fz, np.array([-tau_x, -tau_y]), np.array([sx, sy, sz]))
+            q = self._xmat[sole].tolist()
+            out[s] = (Fz, -tau_x, -tau_y, sx, sy, sz, math.atan2(q[3], q[0]))
         return out
+
+    def read(self) -> dict[str, FootWrench]:
+        """Both feet's :class:`FootWrench` (side → wrench)."""
+        return {s: FootWrench(fz, np.array([tx, ty]), np.array([sx, sy, sz]))
+                for s, (fz, tx, ty, sx, sy, sz, _) in self.read_floats().items()}
 
 
 def foot_wrenches(body: MujocoBody, snapshot=None) -> dict[str, FootWrench]:
@@ -358,18 +371,19 @@ class StabilizerModule(Module):
         vr = [(cr[0] - prev_ref[0]) / dt, (cr[1] - prev_ref[1]) / dt]
         self._prev_ref = cr
         support = SUPPORT_NAME[float(snapshot["support"])]
-        w = self.sensors.read()
+        w = self.sensors.read_floats()  # side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw)
         soles = snapshot["sole_ref"].tolist()
         # the foot-origin frame: actual CoM, ZMP and torques relative to the actual stance feet (their mean
         # point and mean yaw), re-expressed on the reference stance feet, which have no yaw (module docstring)
-        stance = [i for i, side in enumerate(SIDES) if side in support]
+        stance = STANCE[support]
         n = len(stance)
-        yaw = {s: self.sensors.yaw(s) for s in SIDES}
-        psi = mean_yaw([yaw[SIDES[i]] for i in stance])
-        ax = sum(w[SIDES[i]].point[0] for i in stance) / n
-        ay = sum(w[SIDES[i]].point[1] for i in stance) / n
-        rx = sum(soles[i][0] for i in stance) / n
-        ry = sum(soles[i][1] for i in stance) / n
+        _, _, _, feet_x, feet_y, feet_z, feet_yaw = zip(*[w[SIDES[i]] for i in stance])
+        ref_x, ref_y, _ = zip(*[soles[i] for i in stance])
+        psi = mean_yaw(feet_yaw)
+        ax = sum(feet_x) / n
+        ay = sum(feet_y) / n
+        rx = sum(ref_x) / n
+        ry = sum(ref_y) / n
         if self.foot_origin == "ankle":  # hrpsys's foot origin: the ankle links' origins (module docstring)
             d = self.body.data
             ax = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][0]) for i in stance) / n
@@ -382,12 +396,12 @@ class StabilizerModule(Module):
 
         # measured ZMP of the feet in contact (the sole points on the floor plane): Σ(a f + (τ_y, −τ_x)) / Σ f
         num_x = num_y = total = 0.0
-        for x in w.values():
-            if x.fz > CONTACT_FZ:
-                num_x += x.point[0] * x.fz + x.tau[1]
-                num_y += x.point[1] * x.fz - x.tau[0]
-                total += x.fz
-        act = np.array(to_ref(num_x / total, num_y / total)) if total > 0 else np.full(2, np.nan)
+        for fz, tau_x, tau_y, px, py, _, _ in w.values():
+            if fz > CONTACT_FZ:
+                num_x += px * fz + tau_y
+                num_y += py * fz - tau_x
+                total += fz
+        act_x, act_y = to_ref(num_x / total, num_y / total) if total > 0 else (math.nan, math.nan)
         k1, k2, k3 = self.k
         if self.tilt is not None:
             err = self.tilt.update(snapshot)
@@ -397,7 +411,7 @@ class StabilizerModule(Module):
             if self.com_reading != "world":  # the offset from the stance feet ("imu": through the estimated attitude)
                 ex, ey = com[0] - ax, com[1] - ay
                 if self.tilt is not None:
-                    az = sum(w[SIDES[i]].point[2] for i in stance) / n
+                    az = sum(feet_z) / n
                     ex, ey, _ = (err @ np.array([ex, ey, com[2] - az])).tolist()
                 cx, cy = into_yawed(ex, ey, psi)
                 cx, cy = cx + rx, cy + ry
@@ -408,30 +422,35 @@ class StabilizerModule(Module):
                 self._read_prev, self._read_support = (cx, cy), support
                 vx, vy = self._read_vel
             self.read_com = (cx, vx)
-            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act[0]),
-                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act[1])])
+            # [55] Eq. 26 (lip_feedback, on floats)
+            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act_x),
+                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act_y)])
         else:
             zmp_d = np.array(zr[:2])
         if self.truncate:
             zmp_d = truncate_zmp(zmp_d, support_polygon(soles, support))
-        points = {"l": soles[0], "r": soles[1]}
+        (lx, ly, _), (rx_, ry_, _) = soles
         if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
-            points = {s: to_ref(*w[s].point[:2].tolist()) for s in SIDES}
-        dist = distribute(zmp_d, points, support, self.weight)
+            (lx, ly), (rx_, ry_) = (to_ref(*w[s][3:5]) for s in SIDES)
+        alpha, fz_l, fz_r, dx, dy = distribution(*zmp_d.tolist(), lx, ly, rx_, ry_, support, self.weight)
+        act = np.array([act_x, act_y])
         out = {"zmp_d": zmp_d, "zmp_act": act}
-        for s in SIDES:
+        for s, fd in (("l", fz_l), ("r", fz_r)):
             on = s in support
-            out[f"tau_d_{FOOT[s]}"] = dist.tau_d[s] if on else self._zero
+            fz, tau_x, tau_y, *_, yaw = w[s]
+            tau_d_key, tau_key, fz_key = FOOT_KEYS[s]
+            # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j
+            out[tau_d_key] = np.array([-dy * fd, dx * fd]) if on else self._zero
             # τ about the foot's own roll and pitch axes, the axes δ turns it about
-            out[f"tau_{FOOT[s]}"] = np.array(into_yawed(*w[s].tau.tolist(), yaw[s])) if on else self._zero
-            out[f"f_{FOOT[s]}z"] = np.array(w[s].fz)
+            out[tau_key] = np.array(into_yawed(tau_x, tau_y, yaw)) if on else self._zero
+            out[fz_key] = np.array(fz)
         dz = (0.0, 0.0)
         if self.use_force_difference:
             # Δf of the exerted vertical forces (downward: −f_z), see the sign convention
-            z_r, z_l = self.force_difference.step(dist.fz["r"] - dist.fz["l"], w["r"].fz - w["l"].fz, support == "lr")
+            z_r, z_l = self.force_difference.step(fz_r - fz_l, w["r"][0] - w["l"][0], support == "lr")
             dz = (z_l, z_r)
         out["sole_dz"] = np.array(dz)
         if self.recorder is not None:
             self.log(snapshot["t"], **{f"{self.name}.zmp_d": zmp_d, f"{self.name}.zmp_act": act,
-                                       f"{self.name}.com": np.array(com), f"{self.name}.alpha": dist.alpha})
+                                       f"{self.name}.com": np.array(com), f"{self.name}.alpha": alpha})
         return out

@@ -36,7 +36,6 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from shintai.core.geometry import rot_xy
 from shintai.core.runtime import SET, Loop, Module, declare
 from shintai.humanoid.balance.foot_damping import CHANNELS as DAMPING_CHANNELS
 from shintai.humanoid.balance.foot_damping import FootDampingModule
@@ -60,7 +59,7 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.hrp2 import build_hrp2
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik_floats
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_angles
 from shintai.sim.body import MujocoBody
 
 _EYE9 = tuple(np.eye(3).ravel().tolist())  # an upright waist / a level sole, row-major
@@ -192,13 +191,19 @@ class StepPreview(PreviewModule):
         if len(self.heights) != len(plan.zmp) or not np.all(np.isfinite(self.heights)):
             raise ValueError(f"preview: heights must be {len(plan.zmp)} finite values, one per plan tick")
 
-    def update(self, snapshot):
-        k = min(self.k, len(self.heights) - 1)
-        out = super().update(snapshot)
-        out["com_ref"][2] += self.heights[k]
-        out["com_ref"][:2] += self.offset
-        out["zmp_ref"] = out["zmp_ref"] + self.offset
-        return out
+    def references(self, k: int) -> dict:
+        """The preview's references of tick ``k``, the CoM raised by the stance height and both moved by ``offset``."""
+        x, y = self.controller.x[0].tolist()
+        (ox, oy), (zx, zy) = self.offset.tolist(), self._padded[k].tolist()
+        return {"com_ref": np.array([x + ox, y + oy, self.zc + float(self.heights[k])]),
+                "zmp_ref": np.array([zx + ox, zy + oy])}
+
+
+def rot_xy_flat(roll: float, pitch: float) -> tuple[float, ...]:
+    """:func:`~shintai.core.geometry.rot_xy` (Ry(pitch) Rx(roll)) as its 9 floats, row-major, without the array:
+    the sole attitude δ gives the leg IK each tick."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    return cp, sp * sr, sp * cr, 0.0, cr, -sr, -sp, cp * sr, cp * cr
 
 
 class LegIKModule(Module):
@@ -214,25 +219,32 @@ class LegIKModule(Module):
         self.index = {s: [body.id("actuator", f"{s}_{j}") for j in JOINT_NAMES] for s in SIDES}
         self.unreachable = 0
         self._eye = np.eye(3)
+        self._legs = np.array(self.index["l"] + self.index["r"])  # both legs' actuators, in one assignment
+        self._offset = self.com_offset.tolist()
 
     def update(self, snapshot):
-        # on Python floats (leg_ik_floats), the values leg_ik would convert to
-        waist = (np.asarray(snapshot["com_ref"], float) - self.com_offset).tolist()
-        soles = np.asarray(snapshot["sole_ref"], float).tolist()
+        # on Python floats (leg_angles), the values leg_ik would convert to
+        cr, off = snapshot["com_ref"].tolist(), self._offset
+        waist = [cr[0] - off[0], cr[1] - off[1], cr[2] - off[2]]
+        soles = snapshot["sole_ref"].tolist()
         delta = snapshot.get("foot_damping")
         dz = snapshot.get("sole_dz")
-        ctrl = self.ctrl0.copy()
+        if delta is not None:
+            delta = delta.tolist()
+        q = []
         for i, s in enumerate(SIDES):
             x, y, z = soles[i]
             rot = _EYE9
             if delta is not None:
-                rot = rot_xy(float(delta[2 * i]), float(delta[2 * i + 1])).ravel().tolist()
+                rot = rot_xy_flat(delta[2 * i], delta[2 * i + 1])
             if dz is not None:
                 z += float(dz[i])
-            res = leg_ik_floats(s, waist, _EYE9, (x, y, z), rot)
-            if not res.reachable:
+            angles, reach_error = leg_angles(s, waist, _EYE9, (x, y, z), rot)
+            if reach_error != 0.0:
                 self.unreachable += 1
-            ctrl[self.index[s]] = res.q
+            q += angles
+        ctrl = self.ctrl0.copy()
+        ctrl[self._legs] = q
         return {"ctrl": ctrl}
 
 

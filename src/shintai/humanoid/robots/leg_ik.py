@@ -98,6 +98,19 @@ def leg_ik_floats(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hr
                   sole: bool = True) -> LegIKResult:
     """:func:`leg_ik` on Python floats: the positions as 3 floats, the rotations as 9 (row-major), e.g.
     tuples formed once (the tricycle's feet in the waist frame); nothing is converted."""
+    q, reach_error = leg_angles(side, waist_pos, waist_rot, sole_pos, sole_rot, links, sole)
+    violated = ()
+    for name, v, (lo, hi) in zip(JOINT_NAMES, q, _LIMITS[side]):
+        if not lo <= v <= hi:
+            violated += (f"{side}_{name}",)
+    return LegIKResult(np.array(q), reach_error == 0.0, reach_error, not violated, violated)
+
+
+def leg_angles(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2Links = HRP2_LINKS,
+               sole: bool = True) -> tuple[list[float], float]:
+    """The closed form of the module docstring on Python floats (:func:`leg_ik_floats`' arguments): the six
+    angles as a list and ``reach_error`` (0 when reachable), without the limit check (the stabilizer's leg IK:
+    every 4 ms tick, both legs)."""
     w0, w1, w2, w3, w4, w5, w6, w7, w8 = waist_rot
     f0, f1, f2, f3, f4, f5, f6, f7, f8 = sole_rot
     wx, wy, wz = waist_pos
@@ -124,24 +137,20 @@ def leg_ik_floats(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hr
     else:  # the ankle-roll branch with |q6| ≤ π/2 (the hip below the ankle: far outside the limits)
         q6, yz = math.atan2(-ry, -rz), -math.sqrt(ry * ry + rz * rz)
     q5 = math.atan2(-rx, yz) - math.atan2(l1 * math.sin(q4), l2 + l1 * math.cos(q4))
-    # M = N Rx(−q6) Ry(−q4 − q5) = Rz(q1) Rx(q2) Ry(q3), N = R_wᵀ R_f; only five entries are needed
-    n = [[w0 * f0 + w3 * f3 + w6 * f6, w0 * f1 + w3 * f4 + w6 * f7, w0 * f2 + w3 * f5 + w6 * f8],
-         [w1 * f0 + w4 * f3 + w7 * f6, w1 * f1 + w4 * f4 + w7 * f7, w1 * f2 + w4 * f5 + w7 * f8],
-         [w2 * f0 + w5 * f3 + w8 * f6, w2 * f1 + w5 * f4 + w8 * f7, w2 * f2 + w5 * f5 + w8 * f8]]
+    # M = N Rx(−q6) Ry(−q4 − q5) = Rz(q1) Rx(q2) Ry(q3), N = R_wᵀ R_f (n_ij); only five entries of M are needed
+    n01, n02 = w0 * f1 + w3 * f4 + w6 * f7, w0 * f2 + w3 * f5 + w6 * f8
+    n11, n12 = w1 * f1 + w4 * f4 + w7 * f7, w1 * f2 + w4 * f5 + w7 * f8
+    n20, n21, n22 = w2 * f0 + w5 * f3 + w8 * f6, w2 * f1 + w5 * f4 + w8 * f7, w2 * f2 + w5 * f5 + w8 * f8
     c6, s6 = math.cos(q6), math.sin(q6)
     cb, sb = math.cos(q4 + q5), -math.sin(q4 + q5)
-    m01 = c6 * n[0][1] - s6 * n[0][2]
-    m11 = c6 * n[1][1] - s6 * n[1][2]
-    m21 = c6 * n[2][1] - s6 * n[2][2]
-    col2 = s6 * n[2][1] + c6 * n[2][2]  # (N Rx(−q6))[2, 2]
-    m20 = cb * n[2][0] - sb * col2
-    m22 = sb * n[2][0] + cb * col2
-    q = [math.atan2(-m01, m11), math.atan2(m21, math.sqrt(m01 * m01 + m11 * m11)), math.atan2(-m20, m22), q4, q5, q6]
-    violated = ()
-    for name, v, (lo, hi) in zip(JOINT_NAMES, q, _LIMITS[side]):
-        if not lo <= v <= hi:
-            violated += (f"{side}_{name}",)
-    return LegIKResult(np.array(q), reach_error == 0.0, reach_error, not violated, violated)
+    m01 = c6 * n01 - s6 * n02
+    m11 = c6 * n11 - s6 * n12
+    m21 = c6 * n21 - s6 * n22
+    col2 = s6 * n21 + c6 * n22  # (N Rx(−q6))[2, 2]
+    m20 = cb * n20 - sb * col2
+    m22 = sb * n20 + cb * col2
+    return [math.atan2(-m01, m11), math.atan2(m21, math.sqrt(m01 * m01 + m11 * m11)), math.atan2(-m20, m22),
+            q4, q5, q6], reach_error
 
 
 def legs_ik(waist_pos, waist_rot, soles: dict, links: Hrp2Links = HRP2_LINKS, sole: bool = True) -> dict[str, LegIKResult]:
