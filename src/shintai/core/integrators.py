@@ -16,12 +16,12 @@ def rk4_constant_rate(f: Callable, x, q, u, h: float, steps: int = 1, k1=None):
     for i in range(steps):
         if i or k1 is None:
             k1 = f(x, q)
-        mid = q + 0.5 * h * u
+        mid, end = q + 0.5 * h * u, q + h * u
         k2 = f(x + 0.5 * h * k1, mid)
         k3 = f(x + 0.5 * h * k2, mid)
-        k4 = f(x + h * k3, q + h * u)
+        k4 = f(x + h * k3, end)
         x = x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-        q = q + h * u
+        q = end
     return x, q
 
 

@@ -22,7 +22,7 @@ from shintai.core.integrators import rk4_constant_rate
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
 from shintai.snake.linalg import lstsq
-from shintai.snake.model import check_mode, configuration, constraint_terms
+from shintai.snake.model import check_mode, configuration, constraint_rows, rate_sums
 
 
 class KinematicSnake(Body):
@@ -46,7 +46,12 @@ class KinematicSnake(Body):
         self.phi = cfg.phi.copy()
         self.grounded = np.ones(geometry.n, dtype=bool)  # all wheels on the ground until commanded
         self.phi_dot = np.zeros(geometry.n)
+        self._held = self._plain_command()
         self.slip = 0.0
+
+    def _plain_command(self) -> tuple[list, list]:
+        """The held command as the O(n) pass reads it: Φ (``rate_sums`` of φ̇) and σ, as plain lists."""
+        return rate_sums(self.phi_dot), self.grounded.tolist()
 
     def snapshot(self) -> dict:
         psi = np.zeros(self.geometry.joints)
@@ -61,6 +66,7 @@ class KinematicSnake(Body):
         if phi_dot.shape != (self.geometry.n,):
             raise ValueError(f"phi_dot must have n = {self.geometry.n} entries, got shape {phi_dot.shape}")
         self.phi_dot = phi_dot
+        self._held = self._plain_command()
 
     def head_velocity(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
@@ -69,8 +75,10 @@ class KinematicSnake(Body):
         return w_dot, A_s @ w_dot - rhs
 
     def _grounded_terms(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        A, b_phi_dot = constraint_terms(w_h[2], phi, self.geometry.l, self.phi_dot)
-        return A[self.grounded], b_phi_dot[self.grounded]
+        """A_σ and B_σ φ̇ (2.10)–(2.11) at (w̃_h, φ) for the held command."""
+        rates, grounded = self._held
+        rows = constraint_rows(float(w_h[2]), phi.tolist(), self.geometry.l, rates, grounded)
+        return rows[:, :3], rows[:, 3]
 
     def _head_rate(self, w_h: np.ndarray, phi: np.ndarray) -> np.ndarray:
         """ẇ̃_h of :meth:`head_velocity` alone (RK4's later stages do not need the residual)."""
