@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.core.integrators import rk4_constant_rate
+import math
+
+from shintai.core.integrators import rk4_constant_rate_floats
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
 from shintai.snake.linalg import lstsq
@@ -68,30 +70,31 @@ class KinematicSnake(Body):
         self.phi_dot = phi_dot
         self._held = self._plain_command()
 
-    def head_velocity(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def head_velocity(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
         """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
-        A_s, rhs = self._grounded_terms(w_h, phi)
+        A_s, rhs = self._grounded_terms(float(w_h[2]), list(phi))
         w_dot = lstsq(A_s, rhs)
         return w_dot, A_s @ w_dot - rhs
 
-    def _grounded_terms(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """A_σ and B_σ φ̇ (2.10)–(2.11) at (w̃_h, φ) for the held command."""
+    def _grounded_terms(self, theta_h: float, phi: list) -> tuple[np.ndarray, np.ndarray]:
+        """A_σ and B_σ φ̇ (2.10)–(2.11) at heading θ_{y,h} and yaw angles φ (floats) for the held command."""
         rates, grounded = self._held
-        rows = constraint_rows(float(w_h[2]), phi.tolist(), self.geometry.l, rates, grounded)
+        rows = constraint_rows(theta_h, phi, self.geometry.l, rates, grounded)
         return rows[:, :3], rows[:, 3]
 
-    def _head_rate(self, w_h: np.ndarray, phi: np.ndarray) -> np.ndarray:
-        """ẇ̃_h of :meth:`head_velocity` alone (RK4's later stages do not need the residual)."""
-        return lstsq(*self._grounded_terms(w_h, phi))
+    def _head_rate(self, w_h: list, phi: list) -> list:
+        """ẇ̃_h of :meth:`head_velocity` alone, on floats (RK4's later stages do not need the residual)."""
+        return lstsq(*self._grounded_terms(w_h[2], phi)).tolist()
 
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
         k1, residual = self.head_velocity(self.w_h, self.phi)
         self.slip = float(np.max(np.abs(residual), initial=0.0))
-        w, phi = rk4_constant_rate(self._head_rate, self.w_h, self.phi,
-                                   self.phi_dot, self.dt / self.settings.rk4_steps, self.settings.rk4_steps, k1)
-        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(phi))):
+        steps = self.settings.rk4_steps
+        w, phi = rk4_constant_rate_floats(self._head_rate, self.w_h.tolist(), self.phi.tolist(),
+                                          self.phi_dot.tolist(), self.dt / steps, steps, k1.tolist())
+        if not all(map(math.isfinite, w + phi)):
             raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")
-        self.w_h, self.phi = w, phi
+        self.w_h, self.phi = np.array(w), np.array(phi)
         self.steps += 1
         self.t = self.steps * self.dt
