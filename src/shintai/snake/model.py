@@ -77,6 +77,15 @@ def _point_weights(n: int, k: int) -> np.ndarray:
 
 
 @lru_cache(maxsize=8)
+def _scaled_weights(n: int, k: int, l: float) -> tuple[np.ndarray, np.ndarray]:
+    """(−w_j l, w_j l) of :func:`_point_weights` (read-only, shared)."""
+    weight = _point_weights(n, k)
+    minus, plus = -weight * l, weight * l
+    minus.flags.writeable = plus.flags.writeable = False
+    return minus, plus
+
+
+@lru_cache(maxsize=8)
 def _first(n: int, k: int) -> np.ndarray:
     """[j < k] over j = 0..n−1 as floats: the θ_k row of J_{k,2} (read-only, shared)."""
     first = (np.arange(n) < k).astype(float)
@@ -109,7 +118,7 @@ def configuration(w_h, phi, l: float) -> Configuration:
         raise ValueError(f"w_h must be [x_h, y_h, theta_h] (3 numbers), got shape {w_h.shape}")
     if phi.ndim != 1 or phi.shape[0] < 2:
         raise ValueError(f"phi must be a 1-D array of n >= 2 yaw angles, got shape {phi.shape}")
-    theta = w_h[2] + np.cumsum(phi)  # (2.5)
+    theta = w_h[2] + phi.cumsum()  # (2.5)
     diff = theta[:, None] - theta[None, :]
     return Configuration(w_h, phi, float(l), theta, np.cos(theta), np.sin(theta), np.cos(diff), np.sin(diff))
 
@@ -160,7 +169,7 @@ def constraint_matrices(cfg: Configuration) -> tuple[np.ndarray, np.ndarray]:
     A[:, 0] = cfg.sin
     np.negative(cfg.cos, out=A[:, 1])
     A[:, 2] = -l * (1.0 + np.cos(cfg.theta - cfg.w_h[2]) + 2.0 * below.sum(axis=1))
-    tail_sums = np.cumsum(below[:, ::-1], axis=1)[:, ::-1]  # Σ_{j≥k} (below)_{ij} = Σ_{j=k}^{i−1}
+    tail_sums = below[:, ::-1].cumsum(axis=1)[:, ::-1]  # Σ_{j≥k} (below)_{ij} = Σ_{j=k}^{i−1}
     B = l * _lower(n) + 2.0 * l * tail_sums
     return A, B
 
@@ -248,11 +257,11 @@ def second_point_jacobians(cfg: Configuration, k: int) -> tuple[np.ndarray, np.n
     n, l = cfg.n, cfg.l
     if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
         raise ValueError(f"second control point must be a wheel 1..{n}, got {k!r}")
-    weight = _point_weights(n, k)
-    gx, gy = -weight * l * cfg.sin, weight * l * cfg.cos
+    minus_wl, wl = _scaled_weights(n, k, l)
+    gx, gy = minus_wl * cfg.sin, wl * cfg.cos
     J2 = np.empty((3, n))
-    np.cumsum(gx[::-1], out=J2[0, ::-1])
-    np.cumsum(gy[::-1], out=J2[1, ::-1])
+    gx[::-1].cumsum(out=J2[0, ::-1])
+    gy[::-1].cumsum(out=J2[1, ::-1])
     J2[2] = _first(n, k)
     th_h = cfg.w_h[2]
     J1 = np.array([[1.0, 0.0, -l * np.sin(th_h) + gx.sum()],
@@ -296,7 +305,9 @@ def singular_configuration_II(B_c: np.ndarray, tol: float = 1e-9) -> bool:
 def _sin_prefix(cfg: Configuration) -> np.ndarray:
     """E[i, m] = Σ_{j<m} sin(θ_i − θ_j), shape (n, n)."""
     n = cfg.n
-    return np.concatenate((np.zeros((n, 1)), np.cumsum(cfg.sin_rel, axis=1)), axis=1)[:, :n]
+    E = np.zeros((n, n + 1))
+    cfg.sin_rel.cumsum(axis=1, out=E[:, 1:])
+    return E[:, :n]
 
 
 def a_matrix_derivative(cfg: Configuration) -> np.ndarray:
@@ -330,9 +341,10 @@ def second_point_jacobian_derivative(cfg: Configuration, k: int) -> np.ndarray:
     From :func:`second_point_jacobians`, ∂J_{k,2}[:, m]/∂φ_q = Σ_{j ≥ max(m, q)} w_j l [−cos θ_j, −sin θ_j, 0].
     """
     n, l = cfg.n, cfg.l
-    weight = _point_weights(n, k)
-    hx = np.append(np.cumsum((-weight * l * cfg.cos)[::-1])[::-1], 0.0)
-    hy = np.append(np.cumsum((-weight * l * cfg.sin)[::-1])[::-1], 0.0)
+    minus_wl, _ = _scaled_weights(n, k, l)
+    hx, hy = np.zeros(n + 1), np.zeros(n + 1)  # the sums from j = m, and 0 past the tail
+    (minus_wl * cfg.cos)[::-1].cumsum(out=hx[n - 1::-1])
+    (minus_wl * cfg.sin)[::-1].cumsum(out=hy[n - 1::-1])
     start = _max_index(n)  # [q, m] → max(m, q)
     dJ2 = np.zeros((n, 3, n))
     dJ2[:, 0, :] = hx[start]

@@ -97,8 +97,8 @@ def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """
     U, s, Vt = thin_svd(X) if svd is None else svd
     s2 = s * s
-    others = np.prod(np.where(_diagonal(len(s)), 1.0, s2), axis=1)
-    return float(np.prod(s2)), 2.0 * (U * (s * others)) @ Vt
+    others = np.multiply.reduce(np.where(_diagonal(len(s)), 1.0, s2), axis=1)  # np.prod without its wrapper
+    return float(np.multiply.reduce(s2)), 2.0 * (U * (s * others)) @ Vt
 
 
 @dataclass(frozen=True)
