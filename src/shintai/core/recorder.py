@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 _FIRST_ROWS = 1024  # rows a new column holds before it first doubles
+_PLAIN_NUMBERS = (int, bool)  # scalars a float64 row takes as np.array(value, dtype=float) would convert them
 
 
 class _Column:
@@ -67,9 +68,10 @@ class Recorder:
             n = c.n
             if n == c.capacity:
                 c.grow(2 * n)
-            # a float (np.float64 too) into a scalar column, an array of the column's shape as it is: written
-            # with the same conversion to float64 as np.array(value, dtype=float); anything else checked first
-            if not (c.shape == () and isinstance(value, float) or type(value) is np.ndarray and value.shape == c.shape):
+            # a float (np.float64 too), int or bool into a scalar column, an array of the column's shape as it is:
+            # written with the same conversion to float64 as np.array(value, dtype=float); anything else checked first
+            if not (c.shape == () and (isinstance(value, float) or type(value) in _PLAIN_NUMBERS)
+                    or type(value) is np.ndarray and value.shape == c.shape):
                 value = c.row(value)
             c.rows[n] = value
             c.times[n] = t

@@ -337,7 +337,8 @@ class Loop:
         self.timing = {m.name: ModuleTiming() for m in self.modules}
         self.tick = 0
         self.command: Command = {}
-        self._bounds = np.cumsum([0] + [len(s) for s in self.stages]).tolist()
+        self._plan = self._stage_plan()
+        self._base_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
         self._now = [c for c in self.internal.values() if c.delay == 0]
         self._now_names = frozenset(c.name for c in self._now)
         self._later = {n: deque([c.default] * c.delay, maxlen=c.delay) for n, c in self.internal.items() if c.delay}
@@ -402,7 +403,7 @@ class Loop:
         self.held = [self.held[old[id(m)]] if id(m) in old else None for m in modules]
         self.timing = {m.name: self.timing[m.name] if id(m) in old else ModuleTiming() for m in modules}
         self.stages, self.modules, self.every = stages, modules, every
-        self._bounds = np.cumsum([0] + [len(s) for s in stages]).tolist()
+        self._plan = self._stage_plan()
         fresh = [m for m in modules if id(m) not in old]
         for m in fresh:
             m.attach(self.recorder)
@@ -411,27 +412,36 @@ class Loop:
             for m in fresh:
                 m.reset(snap)
 
-    def _combine(self, command: Command, lo: int, hi: int, set_writers: dict) -> list:
-        """Add the held contributions of modules ``lo``..``hi`` into ``command``; returns the channels they wrote."""
+    def _stage_plan(self) -> list[list[tuple[int, Module, int, ModuleTiming]]]:
+        """Per stage, (index, module, ticks per period, timing record) of each module: what a tick walks."""
+        plan, i = [], 0
+        for stage in self.stages:
+            plan.append([(i + k, m, self.every[i + k], self.timing[m.name]) for k, m in enumerate(stage)])
+            i += len(stage)
+        return plan
+
+    def _combine(self, command: Command, stage: list, set_writers: dict) -> list:
+        """Add the held contributions of the ``stage``'s modules into ``command``; returns the channels they wrote."""
         written = []
-        for i in range(lo, hi):
-            part = self.held[i]
+        channels, scalars, held = self.channels, self._body_scalars, self.held
+        for i, m, _, _ in stage:
+            part = held[i]
             if not part:
                 continue
             written += part
             for channel, value in part.items():
-                c = self.channels.get(channel)
+                c = channels.get(channel)
                 if c is None:
-                    self._channel(channel, f"module {self.modules[i].name!r}")
-                if type(value) is float and channel in self._body_scalars:  # a float stays one (no copy to make)
+                    self._channel(channel, f"module {m.name!r}")
+                if type(value) is float and channel in scalars:  # a float stays one (no copy to make)
                     command[channel] = command[channel] + value if channel in command else value
                     continue
                 value = np.asarray(value, dtype=float)
                 if c.kind == SET:
                     if channel in set_writers:
                         raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
-                                           f"{set_writers[channel]!r} and {self.modules[i].name!r}")
-                    set_writers[channel] = self.modules[i].name
+                                           f"{set_writers[channel]!r} and {m.name!r}")
+                    set_writers[channel] = m.name
                     command[channel] = value.copy()
                 elif channel in command:
                     command[channel] = command[channel] + value
@@ -446,22 +456,21 @@ class Loop:
             self.start()
         snap = self.view(self.body.snapshot())
         command = {k: v.copy() for k, v in self.base.items()}
-        set_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
+        set_writers = dict(self._base_writers)
         written = list(self.base)  # shown with what the first stage writes
-        for s in range(len(self.stages)):
-            lo, hi = self._bounds[s], self._bounds[s + 1]
-            for i in range(lo, hi):
-                if self.tick % self.every[i] == 0:
-                    m = self.modules[i]
-                    t0 = time.perf_counter()
-                    self.held[i] = m.update(snap)
-                    rec = self.timing[m.name]
-                    rec.total_s += time.perf_counter() - t0
+        tick, held, now, clock = self.tick, self.held, self._now_names, time.perf_counter
+        for stage in self._plan:
+            for i, m, every, rec in stage:
+                if tick % every == 0:
+                    t0 = clock()
+                    held[i] = m.update(snap)
+                    rec.total_s += clock() - t0
                     rec.calls += 1
-            written += self._combine(command, lo, hi, set_writers)
-            for name in written:
-                if name in self._now_names:  # what this stage wrote to an undelayed loop channel
-                    snap[name] = command[name]
+            written += self._combine(command, stage, set_writers)
+            if now:
+                for name in written:
+                    if name in now:  # what this stage wrote to an undelayed loop channel
+                        snap[name] = command[name]
             written = []
         self.command = command
         if self.internal:

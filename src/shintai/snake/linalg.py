@@ -38,4 +38,4 @@ def lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """``np.linalg.lstsq(a, b, rcond=None)[0]`` for a matrix a (m × n) and a vector b (m,)."""
     m, n = a.shape
     x = _umath_linalg.lstsq(a, b[:, None], _EPS * max(m, n), signature="ddd->ddid")[0]
-    return _checked(x[:, 0].copy(), "least squares")
+    return _checked(x[:, 0], "least squares")

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from itertools import accumulate
 
 import numpy as np
 
@@ -76,6 +77,23 @@ def _point_weights(n: int, k: int) -> np.ndarray:
 
 
 @lru_cache(maxsize=8)
+def _scaled_weights(n: int, k: int, l: float) -> tuple[np.ndarray, np.ndarray]:
+    """(−w_j l, w_j l) of :func:`_point_weights` (read-only, shared)."""
+    weight = _point_weights(n, k)
+    minus, plus = -weight * l, weight * l
+    minus.flags.writeable = plus.flags.writeable = False
+    return minus, plus
+
+
+@lru_cache(maxsize=8)
+def _first(n: int, k: int) -> np.ndarray:
+    """[j < k] over j = 0..n−1 as floats: the θ_k row of J_{k,2} (read-only, shared)."""
+    first = (np.arange(n) < k).astype(float)
+    first.flags.writeable = False
+    return first
+
+
+@lru_cache(maxsize=8)
 def _b_derivative_mask(n: int) -> np.ndarray:
     """[k < m ≤ i] over (m, i, k), the support of ∂B_{i,k}/∂φ_m (read-only, shared)."""
     m, i, k = np.ogrid[:n, :n, :n]
@@ -100,7 +118,7 @@ def configuration(w_h, phi, l: float) -> Configuration:
         raise ValueError(f"w_h must be [x_h, y_h, theta_h] (3 numbers), got shape {w_h.shape}")
     if phi.ndim != 1 or phi.shape[0] < 2:
         raise ValueError(f"phi must be a 1-D array of n >= 2 yaw angles, got shape {phi.shape}")
-    theta = w_h[2] + np.cumsum(phi)  # (2.5)
+    theta = w_h[2] + phi.cumsum()  # (2.5)
     diff = theta[:, None] - theta[None, :]
     return Configuration(w_h, phi, float(l), theta, np.cos(theta), np.sin(theta), np.cos(diff), np.sin(diff))
 
@@ -115,6 +133,19 @@ def wheel_poses(cfg: Configuration) -> np.ndarray:
     x = x_h + l * np.cos(th_h) + 2 * l * np.cumsum(cfg.cos) - l * cfg.cos  # 2l Σ_{j≤i} − l cos θ_i
     y = y_h + l * np.sin(th_h) + 2 * l * np.cumsum(cfg.sin) - l * cfg.sin
     return np.column_stack((x, y, cfg.theta))
+
+
+def tail_pose(cfg: Configuration) -> np.ndarray:
+    """Pose [x_n, y_n, θ_{y,n}] of wheel n alone: the last row of :func:`wheel_poses`, the same sums in order."""
+    x_h, y_h, th_h = cfg.w_h.tolist()
+    l = cfg.l
+    cos, sin = cfg.cos.tolist(), cfg.sin.tolist()
+    sum_c = sum_s = 0.0  # Σ_{j≤n} cos θ_j, sin θ_j, summed from the head as cumsum does
+    for c, s in zip(cos, sin):
+        sum_c += c
+        sum_s += s
+    return np.array((x_h + l * math.cos(th_h) + 2 * l * sum_c - l * cos[-1],
+                     y_h + l * math.sin(th_h) + 2 * l * sum_s - l * sin[-1], cfg.theta[-1]))
 
 
 def body_points(cfg: Configuration) -> np.ndarray:
@@ -134,35 +165,50 @@ def constraint_matrices(cfg: Configuration) -> tuple[np.ndarray, np.ndarray]:
     """
     l, n = cfg.l, cfg.n
     below = cfg.cos_rel * _strictly_lower(n)  # cos(θ_i − θ_j) for j < i
-    a3 = -l * (1.0 + np.cos(cfg.theta - cfg.w_h[2]) + 2.0 * below.sum(axis=1))
-    A = np.column_stack((cfg.sin, -cfg.cos, a3))
-    tail_sums = np.cumsum(below[:, ::-1], axis=1)[:, ::-1]  # Σ_{j≥k} (below)_{ij} = Σ_{j=k}^{i−1}
+    A = np.empty((n, 3))
+    A[:, 0] = cfg.sin
+    np.negative(cfg.cos, out=A[:, 1])
+    A[:, 2] = -l * (1.0 + np.cos(cfg.theta - cfg.w_h[2]) + 2.0 * below.sum(axis=1))
+    tail_sums = below[:, ::-1].cumsum(axis=1)[:, ::-1]  # Σ_{j≥k} (below)_{ij} = Σ_{j=k}^{i−1}
     B = l * _lower(n) + 2.0 * l * tail_sums
     return A, B
 
 
 def constraint_terms(theta_h: float, phi: np.ndarray, l: float, phi_dot: np.ndarray):
-    """A (2.8) and the product B φ̇ without forming B: one O(n) pass down the chain (the plant's fast path).
+    """A (2.8) and the product B φ̇ without forming B: the rows of :func:`constraint_rows` for all n wheels."""
+    rows = constraint_rows(theta_h, phi.tolist(), l, rate_sums(phi_dot), (True,) * len(phi))
+    return rows[:, :3], rows[:, 3]
 
+
+def rate_sums(phi_dot: np.ndarray) -> list[float]:
+    """Φ_j = Σ_{k≤j} φ̇_k (the rate of θ_j − θ_h by (2.5)) as plain floats, summed from the head."""
+    return list(accumulate(phi_dot.tolist(), initial=0.0))[1:]
+
+
+def constraint_rows(theta_h: float, phi: list, l: float, rates: list, grounded) -> np.ndarray:
+    """Rows [A_i, (B φ̇)_i] of the grounded wheels (A_σ and B_σ φ̇ of (2.10)–(2.11)), shape (n_σ, 4), without
+    forming B: one O(n) pass down the chain (the plant's fast path).
+
+    ``phi`` (the yaw angles), ``rates`` (Φ_j = Σ_{k≤j} φ̇_k) and ``grounded`` are plain sequences of length n.
     Running sums replace the double sums of :func:`constraint_matrices`: Σ_{j<i} cos(θ_i − θ_j) =
-    cos θ_i Σ_{j<i} cos θ_j + sin θ_i Σ_{j<i} sin θ_j, and with Φ_j = Σ_{k≤j} φ̇_k,
-    (B φ̇)_i = l Φ_i + 2l Σ_{j<i} cos(θ_i − θ_j) Φ_j. Plain floats: for n ≈ 10 this beats NumPy calls.
+    cos θ_i Σ_{j<i} cos θ_j + sin θ_i Σ_{j<i} sin θ_j, and (B φ̇)_i = l Φ_i + 2l Σ_{j<i} cos(θ_i − θ_j) Φ_j.
+    Plain floats: for n ≈ 10 this beats NumPy calls.
     """
     cos_h, sin_h = math.cos(theta_h), math.sin(theta_h)
-    theta, rate = theta_h, 0.0
+    theta = theta_h
     sum_c = sum_s = sum_c_rate = sum_s_rate = 0.0  # Σ_{j<i} cos θ_j, sin θ_j, cos θ_j Φ_j, sin θ_j Φ_j
-    A, b_phi_dot = [], []
-    for phi_i, phi_dot_i in zip(phi.tolist(), phi_dot.tolist()):
+    rows = []
+    for phi_i, rate, on in zip(phi, rates, grounded):
         theta += phi_i  # (2.5)
-        rate += phi_dot_i
         c, s = math.cos(theta), math.sin(theta)
-        A.append((s, -c, -l * (1.0 + c * cos_h + s * sin_h + 2.0 * (c * sum_c + s * sum_s))))
-        b_phi_dot.append(l * rate + 2.0 * l * (c * sum_c_rate + s * sum_s_rate))
+        if on:
+            rows.append((s, -c, -l * (1.0 + c * cos_h + s * sin_h + 2.0 * (c * sum_c + s * sum_s)),
+                         l * rate + 2.0 * l * (c * sum_c_rate + s * sum_s_rate)))
         sum_c += c
         sum_s += s
         sum_c_rate += c * rate
         sum_s_rate += s * rate
-    return np.array(A), np.array(b_phi_dot)
+    return np.array(rows) if rows else np.empty((0, 4))
 
 
 def lateral_velocities(cfg: Configuration, w_h_dot, phi_dot) -> np.ndarray:
@@ -211,9 +257,12 @@ def second_point_jacobians(cfg: Configuration, k: int) -> tuple[np.ndarray, np.n
     n, l = cfg.n, cfg.l
     if not (isinstance(k, (int, np.integer)) and 1 <= k <= n):
         raise ValueError(f"second control point must be a wheel 1..{n}, got {k!r}")
-    weight = _point_weights(n, k)
-    gx, gy = -weight * l * cfg.sin, weight * l * cfg.cos
-    J2 = np.vstack((np.cumsum(gx[::-1])[::-1], np.cumsum(gy[::-1])[::-1], np.arange(n) < k))
+    minus_wl, wl = _scaled_weights(n, k, l)
+    gx, gy = minus_wl * cfg.sin, wl * cfg.cos
+    J2 = np.empty((3, n))
+    gx[::-1].cumsum(out=J2[0, ::-1])
+    gy[::-1].cumsum(out=J2[1, ::-1])
+    J2[2] = _first(n, k)
     th_h = cfg.w_h[2]
     J1 = np.array([[1.0, 0.0, -l * np.sin(th_h) + gx.sum()],
                    [0.0, 1.0, l * np.cos(th_h) + gy.sum()],
@@ -256,7 +305,9 @@ def singular_configuration_II(B_c: np.ndarray, tol: float = 1e-9) -> bool:
 def _sin_prefix(cfg: Configuration) -> np.ndarray:
     """E[i, m] = Σ_{j<m} sin(θ_i − θ_j), shape (n, n)."""
     n = cfg.n
-    return np.concatenate((np.zeros((n, 1)), np.cumsum(cfg.sin_rel, axis=1)), axis=1)[:, :n]
+    E = np.zeros((n, n + 1))
+    cfg.sin_rel.cumsum(axis=1, out=E[:, 1:])
+    return E[:, :n]
 
 
 def a_matrix_derivative(cfg: Configuration) -> np.ndarray:
@@ -290,9 +341,10 @@ def second_point_jacobian_derivative(cfg: Configuration, k: int) -> np.ndarray:
     From :func:`second_point_jacobians`, ∂J_{k,2}[:, m]/∂φ_q = Σ_{j ≥ max(m, q)} w_j l [−cos θ_j, −sin θ_j, 0].
     """
     n, l = cfg.n, cfg.l
-    weight = _point_weights(n, k)
-    hx = np.append(np.cumsum((-weight * l * cfg.cos)[::-1])[::-1], 0.0)
-    hy = np.append(np.cumsum((-weight * l * cfg.sin)[::-1])[::-1], 0.0)
+    minus_wl, _ = _scaled_weights(n, k, l)
+    hx, hy = np.zeros(n + 1), np.zeros(n + 1)  # the sums from j = m, and 0 past the tail
+    (minus_wl * cfg.cos)[::-1].cumsum(out=hx[n - 1::-1])
+    (minus_wl * cfg.sin)[::-1].cumsum(out=hy[n - 1::-1])
     start = _max_index(n)  # [q, m] → max(m, q)
     dJ2 = np.zeros((n, 3, n))
     dJ2[:, 0, :] = hx[start]

@@ -18,11 +18,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from shintai.core.integrators import rk4_constant_rate
+import math
+
+from shintai.core.integrators import rk4_constant_rate_floats
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
 from shintai.snake.linalg import lstsq
-from shintai.snake.model import check_mode, configuration, constraint_terms
+from shintai.snake.model import check_mode, configuration, constraint_rows, rate_sums
 
 
 class KinematicSnake(Body):
@@ -46,7 +48,12 @@ class KinematicSnake(Body):
         self.phi = cfg.phi.copy()
         self.grounded = np.ones(geometry.n, dtype=bool)  # all wheels on the ground until commanded
         self.phi_dot = np.zeros(geometry.n)
+        self._held = self._plain_command()
         self.slip = 0.0
+
+    def _plain_command(self) -> tuple[list, list]:
+        """The held command as the O(n) pass reads it: Φ (``rate_sums`` of φ̇) and σ, as plain lists."""
+        return rate_sums(self.phi_dot), self.grounded.tolist()
 
     def snapshot(self) -> dict:
         psi = np.zeros(self.geometry.joints)
@@ -61,29 +68,33 @@ class KinematicSnake(Body):
         if phi_dot.shape != (self.geometry.n,):
             raise ValueError(f"phi_dot must have n = {self.geometry.n} entries, got shape {phi_dot.shape}")
         self.phi_dot = phi_dot
+        self._held = self._plain_command()
 
-    def head_velocity(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def head_velocity(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
         """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
-        A_s, rhs = self._grounded_terms(w_h, phi)
+        A_s, rhs = self._grounded_terms(float(w_h[2]), list(phi))
         w_dot = lstsq(A_s, rhs)
         return w_dot, A_s @ w_dot - rhs
 
-    def _grounded_terms(self, w_h: np.ndarray, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        A, b_phi_dot = constraint_terms(w_h[2], phi, self.geometry.l, self.phi_dot)
-        return A[self.grounded], b_phi_dot[self.grounded]
+    def _grounded_terms(self, theta_h: float, phi: list) -> tuple[np.ndarray, np.ndarray]:
+        """A_σ and B_σ φ̇ (2.10)–(2.11) at heading θ_{y,h} and yaw angles φ (floats) for the held command."""
+        rates, grounded = self._held
+        rows = constraint_rows(theta_h, phi, self.geometry.l, rates, grounded)
+        return rows[:, :3], rows[:, 3]
 
-    def _head_rate(self, w_h: np.ndarray, phi: np.ndarray) -> np.ndarray:
-        """ẇ̃_h of :meth:`head_velocity` alone (RK4's later stages do not need the residual)."""
-        return lstsq(*self._grounded_terms(w_h, phi))
+    def _head_rate(self, w_h: list, phi: list) -> list:
+        """ẇ̃_h of :meth:`head_velocity` alone, on floats (RK4's later stages do not need the residual)."""
+        return lstsq(*self._grounded_terms(w_h[2], phi)).tolist()
 
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
         k1, residual = self.head_velocity(self.w_h, self.phi)
         self.slip = float(np.max(np.abs(residual), initial=0.0))
-        w, phi = rk4_constant_rate(self._head_rate, self.w_h, self.phi,
-                                   self.phi_dot, self.dt / self.settings.rk4_steps, self.settings.rk4_steps, k1)
-        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(phi))):
+        steps = self.settings.rk4_steps
+        w, phi = rk4_constant_rate_floats(self._head_rate, self.w_h.tolist(), self.phi.tolist(),
+                                          self.phi_dot.tolist(), self.dt / steps, steps, k1.tolist())
+        if not all(map(math.isfinite, w + phi)):
             raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")
-        self.w_h, self.phi = w, phi
+        self.w_h, self.phi = np.array(w), np.array(phi)
         self.steps += 1
         self.t = self.steps * self.dt

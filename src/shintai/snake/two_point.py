@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -38,7 +39,7 @@ from shintai.snake.model import (
     constraint_matrices,
     second_point_jacobian_derivative,
     second_point_jacobians,
-    wheel_poses,
+    tail_pose,
 )
 
 
@@ -79,6 +80,14 @@ def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.nda
     return -float(excess @ excess), -2.0 * excess * np.sign(phi)
 
 
+@lru_cache(maxsize=8)
+def _diagonal(m: int) -> np.ndarray:
+    """I_m as booleans (read-only, shared)."""
+    eye = np.eye(m, dtype=bool)
+    eye.flags.writeable = False
+    return eye
+
+
 def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """det of the small Gram matrix of X (X^T X if tall, X X^T if wide) and its gradient w.r.t. X.
 
@@ -88,8 +97,8 @@ def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """
     U, s, Vt = thin_svd(X) if svd is None else svd
     s2 = s * s
-    others = np.prod(np.where(np.eye(len(s), dtype=bool), 1.0, s2), axis=1)
-    return float(np.prod(s2)), 2.0 * (U * (s * others)) @ Vt
+    others = np.multiply.reduce(np.where(_diagonal(len(s)), 1.0, s2), axis=1)  # np.prod without its wrapper
+    return float(np.multiply.reduce(s2)), 2.0 * (U * (s * others)) @ Vt
 
 
 @dataclass(frozen=True)
@@ -119,6 +128,9 @@ class TwoPointLaw:
             raise ValueError("no candidate mode satisfies (i), (ii') and (iii) for these n, n_g, n_l, n_c")
         # The rows of every candidate, grouped by n_σ so that all candidates of one size are evaluated by
         # one batched SVD (built once; §3.2.4's point is the cost of this search).
+        n = geometry.n
+        self._full = np.zeros((n + 3, 6)), np.empty((n + 3, n))  # _stacks' A_c, B_c of the all-grounded mode
+        self._full[0][n:, 3:] = _MINUS_I3
         self._rows: dict[bytes, np.ndarray] = {}  # two_point_rows per grounded pattern, built when first used
         sizes = self.candidates.sum(axis=1)
         self._groups = []
@@ -128,7 +140,7 @@ class TwoPointLaw:
 
     def controlled(self, cfg: Configuration) -> np.ndarray:
         """c_c = [w̃_h; w̃_t] (3.2); w̃_t from the forward kinematics (2.3)–(2.5)."""
-        return np.concatenate((cfg.w_h, wheel_poses(cfg)[-1]))
+        return np.concatenate((cfg.w_h, tail_pose(cfg)))
 
     def _stacks(self, cfg: Configuration):
         """A (2.8), J_{n,2} (2.13) and the stacked A_c, B_c of the all-grounded mode (2.15).
@@ -138,11 +150,12 @@ class TwoPointLaw:
         n = cfg.n
         A, B = constraint_matrices(cfg)
         J1, J2 = second_point_jacobians(cfg, n)
-        A_full = np.zeros((n + 3, 6))
+        A_full, B_full = self._full  # reused: callers take row selections (copies) of them
         A_full[:n, :3] = A
         A_full[n:, :3] = J1
-        A_full[n:, 3:] = _MINUS_I3
-        return A, J2, A_full, np.vstack((B, -J2))
+        B_full[:n] = B
+        np.negative(J2, out=B_full[n:])
+        return A, J2, A_full, B_full
 
     def mode_objectives(self, w_h, phi) -> np.ndarray:
         """V_m (3.19) of every candidate at the state (w̃_h, φ), shape (len(candidates),)."""
@@ -214,6 +227,10 @@ class TwoPointLaw:
         return float(V), eta
 
 
+_LOGGED = ("selected", "V_m_best", "c", "c_d", "mode", "grounded", "phi", "u_norm", "stopped", "sigma_a", "sigma_b",
+           "V_m", "V_u", "slip")  # the controller's signals, logged as <name>.<signal>
+
+
 class TwoPointController(Module):
     """The law of §3.2 as a :class:`~shintai.core.Module` running every δt (Fig. 3.2).
 
@@ -232,6 +249,7 @@ class TwoPointController(Module):
         self.mode = 0
         self.calls = 0
         self.selections = 0
+        self._keys = {k: f"{name}.{k}" for k in _LOGGED}  # signal names, built once
 
     def reset(self, snapshot) -> None:
         self.calls = 0
@@ -240,19 +258,19 @@ class TwoPointController(Module):
     def update(self, snapshot):
         t = float(snapshot["t"])
         w_h, phi = snapshot["w_h"], snapshot["phi"]
+        key = self._keys
         if self.calls == 0 or (self.select_every and self.calls % self.select_every == 0):
             self.mode, V_all = self.law.select_mode(w_h, phi)
             self.selections += 1
-            self.log(t, **{f"{self.name}.selected": self.mode, f"{self.name}.V_m_best": V_all[self.mode]})
+            self.log(t, **{key["selected"]: self.mode, key["V_m_best"]: V_all[self.mode]})
         self.calls += 1
         grounded = self.law.candidates[self.mode]
         c_d, c_d_dot = self.target(t)
         step = self.law.input(w_h, phi, grounded, c_d, c_d_dot)
-        p = self.name
-        self.log(t, **{f"{p}.c": step.c_c, f"{p}.c_d": c_d, f"{p}.mode": self.mode, f"{p}.grounded": grounded,
-                       f"{p}.phi": phi, f"{p}.u_norm": step.u_norm, f"{p}.stopped": step.stopped,
-                       f"{p}.sigma_a": step.sigma_a, f"{p}.sigma_b": step.sigma_b, f"{p}.V_m": step.V_m,
-                       f"{p}.V_u": step.V_u, f"{p}.slip": snapshot["slip"]})
+        self.log(t, **{key["c"]: step.c_c, key["c_d"]: c_d, key["mode"]: self.mode, key["grounded"]: grounded,
+                       key["phi"]: phi, key["u_norm"]: step.u_norm, key["stopped"]: step.stopped,
+                       key["sigma_a"]: step.sigma_a, key["sigma_b"]: step.sigma_b, key["V_m"]: step.V_m,
+                       key["V_u"]: step.V_u, key["slip"]: snapshot["slip"]})
         return {"phi_dot": step.u, "grounded": grounded.astype(float)}
 
 
