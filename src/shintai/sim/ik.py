@@ -81,7 +81,9 @@ class _Problem:
             ids = [self._joint_id(name) for name in joints]
         self.qadr = model.jnt_qposadr[ids]
         self.dadr = model.jnt_dofadr[ids]
-        self.columns = _as_slice(self.dadr)  # the moving dofs' Jacobian columns (a slice for one limb's chain)
+        # the moving joints' qpos entries and Jacobian columns (slices for one limb's chain: the same numbers as
+        # the index arrays give, without fancy indexing)
+        self.coords, self.columns = _as_slice(self.qadr), _as_slice(self.dadr)
         self._jacp, self._jacr = np.zeros((3, model.nv)), np.zeros((3, model.nv))
         self._sites: dict[str, int] = {}
         # views into the scratch data, taken once (each MjData attribute access builds a new array)
@@ -251,7 +253,8 @@ class _Site:
             j_r = self.j_r
             j_r[:] = jacr[:, cols]
             a = self.a
-            np.subtract(j_r, np.outer(a, a @ j_r), out=jac[r:r + 3])  # (I − a aᵀ) J_r: the axis error's rows
+            # (I − a aᵀ) J_r: the axis error's rows (a[:, None] * (aᵀ J_r) is np.outer's own product)
+            np.subtract(j_r, a[:, None] * (a @ j_r), out=jac[r:r + 3])
 
 
 class _Stack:
@@ -346,7 +349,7 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
     err = stack.err
     reg = problem.reg(len(err), damping)  # the DLS damping term, formed once
     rest = _posture_vector(problem, posture)
-    qadr = problem.qadr
+    qadr = problem.coords
     q = np.array(q0, dtype=float)
     q[qadr] = np.minimum(np.maximum(q[qadr], problem.lo), problem.hi)  # = np.clip
     best, converged, moved = (np.inf, q.copy(), (np.inf, np.inf)), None, np.inf
@@ -361,7 +364,7 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
         elif score < best[0]:
             best = (score, q.copy(), residual)
         jac = stack.jacobian()  # only when a step follows (not on the final check)
-        current = q[qadr]
+        current = q[qadr].copy()
         after = _limited_step(problem, current, jac, err, rest, damping, max_step, posture_gain, reg)
         if rest is not None:  # only a posture's search needs how far the joints moved
             moved = float(np.abs(after - current).max())

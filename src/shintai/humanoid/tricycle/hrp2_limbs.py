@@ -43,7 +43,6 @@ from shintai.humanoid.tricycle.switching import estimate_handle_angle
 from shintai.humanoid.tricycle.vehicle import steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
-from shintai.sim.spec import quat_axis
 
 KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
@@ -135,6 +134,7 @@ class Hrp2Limb:
         # One FK / F/T reading per snapshot (the laws and the logging ask several times a tick); the
         # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
         self._point = self._force = (None, None)
+        self._bar, self._turn = np.zeros(3), np.zeros(4)  # a hand's target: scratch vector and quaternion
 
     def point(self, snapshot) -> np.ndarray:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
@@ -158,9 +158,10 @@ class Hrp2Limb:
         rot = self.frame.pose()[1]
         if self.kind == "foot":
             return ik.Target(pos=self.frame.to_world(xi), rot=rot @ SOLE_IN_VEHICLE)
-        theta_h = estimate_handle_angle({self.side: np.asarray(xi, dtype=float)})
-        bar = np.zeros(3)  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
-        mujoco.mju_rotVecQuat(bar, _GRIP_Y, quat_axis(_STEER_AXIS, theta_h))
+        theta_h = estimate_handle_angle({self.side: xi})
+        bar, turn = self._bar, self._turn  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
+        mujoco.mju_axisAngle2Quat(turn, _STEER_AXIS, theta_h)  # = sim.spec.quat_axis, into a buffer
+        mujoco.mju_rotVecQuat(bar, _GRIP_Y, turn)
         return ik.Target(pos=self.frame.to_world(xi), axis=(BAR_IN_HAND, -SIDES[self.side[0]] * rot @ bar))
 
     def solve(self, xi) -> ik.IKResult:
