@@ -23,6 +23,7 @@ from typing import NamedTuple
 
 import mujoco
 import numpy as np
+from numpy.linalg import _umath_linalg
 
 from shintai.sim.body import MujocoBody
 
@@ -310,11 +311,12 @@ def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray
     """Damped-least-squares step on the free columns (``reg``: damping² I, if the caller has it)."""
     if reg is None:
         reg = damping**2 * np.eye(len(err))
+    solve = _solve_regular if damping > 0 else np.linalg.solve
     if free.all():
-        return jac.T @ np.linalg.solve(jac @ jac.T + reg, err)
+        return jac.T @ solve(jac @ jac.T + reg, err)
     j = jac[:, free]
     step = np.zeros(jac.shape[1])
-    step[free] = j.T @ np.linalg.solve(j @ j.T + reg, err)
+    step[free] = j.T @ solve(j @ j.T + reg, err)
     return step
 
 
@@ -327,6 +329,13 @@ def _null_step(jac: np.ndarray, pull: np.ndarray, free: np.ndarray) -> np.ndarra
 
 
 _MAX = np.maximum.reduce  # = ndarray.max of a vector (NaN propagating), without its Python wrapper
+
+
+def _solve_regular(system: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x of ``system`` x = b for the damped DLS system J Jᵀ + λ² I (λ > 0: symmetric positive definite, never
+    singular): the LAPACK gesv gufunc np.linalg.solve calls for a vector b (numpy is pinned, pyproject.toml),
+    without its argument checks and error-state context, which cost more than the 6×6 solve itself."""
+    return _umath_linalg.solve1(system, b, signature="dd->d")
 
 
 def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, TargetSpec], q0: np.ndarray | None = None,
@@ -397,7 +406,8 @@ def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max
     lo, hi = problem.lo, problem.hi
     at_limit = _at_limit(q, problem)
     if rest is None and not at_limit:  # the usual tick: one plain DLS step
-        step = jac.T @ np.linalg.solve(jac @ jac.T + (damping**2 * np.eye(len(err)) if reg is None else reg), err)
+        system = jac @ jac.T + (damping**2 * np.eye(len(err)) if reg is None else reg)
+        step = jac.T @ (_solve_regular(system, err) if damping > 0 else np.linalg.solve(system, err))
         biggest = float(_MAX(np.abs(step)))
         if biggest > max_step:
             step *= max_step / biggest
