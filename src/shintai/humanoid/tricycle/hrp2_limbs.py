@@ -116,6 +116,10 @@ class Hrp2Limb:
         self.joints = ARM[s] if kind == "hand" else LEG[s]
         self.q = np.array([body.joint_qpos(j) for j in self.joints])
         self.qadr = np.array([body.model.joint(j).qposadr[0] for j in self.joints])
+        # the same entries as a slice where they run consecutively (HRP2's limbs do): no fancy indexing a tick
+        first = int(self.qadr[0])
+        consecutive = np.array_equal(self.qadr, np.arange(first, first + len(self.qadr)))
+        self._coords = slice(first, first + len(self.qadr)) if consecutive else self.qadr
         self.unreachable = 0
         # the feet's closed-form IK works in the waist frame: ξ's transform (offset, flat rotation) and the
         # sole's target orientation there, as Python floats (formed once; the weld does not move)
@@ -180,7 +184,7 @@ class Hrp2Limb:
         if leg is None:
             return self.dls_solve(xi)
         q = self.body.data.qpos.copy()
-        q[self.qadr] = leg
+        q[self._coords] = leg
         return ik.IKResult(q, True, (0.0, 0.0))
 
     def closed_form(self, xi) -> np.ndarray | None:
@@ -199,7 +203,7 @@ class Hrp2Limb:
         """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
         (the rest of the body as measured; the tricycle's feet used it alone before issue 13)."""
         q0 = self.body.data.qpos.copy()
-        q0[self.qadr] = self.q
+        q0[self._coords] = self.q
         return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)
 
     def reachable(self, xi) -> bool:
@@ -215,7 +219,7 @@ class Hrp2Limb:
         else:
             result = self.dls_solve(xi)
             if result.ok:
-                self.q = result.q[self.qadr]
+                self.q = result.q[self._coords].copy()
             else:
                 self.unreachable += 1
         return dict(zip(self.joints, self.q.tolist()))
