@@ -94,8 +94,7 @@ def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
     return _fit(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
 
 
-_HANDLE_MODELS: dict = {}  # id(spec) -> (spec, its handle model), the last few specs (as the lru_cache was)
-_HANDLE_MODELS_MAX = 8
+_HANDLE_MODELS: dict = {}  # id(spec) -> (spec, its handle model), the last 8 specs (as the lru_cache was)
 
 
 def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
@@ -104,7 +103,7 @@ def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
     identity — :func:`estimate_handle_angle` runs several times a control tick, and hashing the spec cost more)."""
     hit = _HANDLE_MODELS.get(id(t))
     if hit is None or hit[0] is not t:
-        if len(_HANDLE_MODELS) >= _HANDLE_MODELS_MAX:
+        if len(_HANDLE_MODELS) >= 8:
             _HANDLE_MODELS.pop(next(iter(_HANDLE_MODELS)))
         axis_point = steer_point(t)
         a = steer_axis(t)
