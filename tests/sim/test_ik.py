@@ -156,3 +156,16 @@ def test_cached_problem_is_per_model_and_gives_the_same_answer():
     other = ik_module.solve(b, {"r_sole": target}, joints=joints)
     assert first.ok and np.array_equal(first.q, again.q) and np.array_equal(first.q, other.q)
     assert ik_module._problem(a.model, joints) is not ik_module._problem(b.model, joints)
+
+
+def test_reused_buffers_do_not_carry_over_between_solves(robot):
+    """The error and Jacobian buffers are kept per problem and set of target kinds: solving other targets on the
+    same problem in between (another site, another kind, a posture) leaves the answer to the first unchanged."""
+    pos = robot.site_pos("r_grasp") + [0.15, -0.05, 0.2]
+    axis_target = ik.Target(pos=pos, axis=([1, 0, 0], [0.0, 0.6, 0.8]))
+    first = ik.solve(robot, {"r_grasp": axis_target}, joints=ARM)
+    ik.solve(robot, {"r_grasp": (pos, np.eye(3))}, joints=ARM)
+    ik.solve(robot, {"r_grasp": pos + [0.05, 0.0, 0.0]}, joints=ARM, posture={"r_wrist_roll": 0.4})
+    ik.solve(robot, {"r_grasp": ik.Target(pos=pos + [0.0, 0.1, 0.0], axis=([1, 0, 0], [0.0, 1.0, 0.0]))}, joints=ARM)
+    again = ik.solve(robot, {"r_grasp": axis_target}, joints=ARM)
+    assert first.ok and np.array_equal(first.q, again.q) and first.residual == again.residual

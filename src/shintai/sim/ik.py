@@ -23,6 +23,7 @@ from typing import NamedTuple
 
 import mujoco
 import numpy as np
+from numpy.linalg import _umath_linalg
 
 from shintai.sim.body import MujocoBody
 
@@ -81,14 +82,19 @@ class _Problem:
             ids = [self._joint_id(name) for name in joints]
         self.qadr = model.jnt_qposadr[ids]
         self.dadr = model.jnt_dofadr[ids]
+        # the moving joints' qpos entries and Jacobian columns (slices for one limb's chain: the same numbers as
+        # the index arrays give, without fancy indexing)
+        self.coords, self.columns = _as_slice(self.qadr), _as_slice(self.dadr)
         self._jacp, self._jacr = np.zeros((3, model.nv)), np.zeros((3, model.nv))
         self._sites: dict[str, int] = {}
         # views into the scratch data, taken once (each MjData attribute access builds a new array)
         self.qpos, self.site_xpos, self.site_xmat = self.data.qpos, self.data.site_xpos, self.data.site_xmat
         self._regs: dict = {}
+        self._stacks: dict = {}
         limited = model.jnt_limited[ids].astype(bool)
         self.lo = np.where(limited, model.jnt_range[ids, 0], -np.inf)
         self.hi = np.where(limited, model.jnt_range[ids, 1], np.inf)
+        self.lo_list, self.hi_list = self.lo.tolist(), self.hi.tolist()
 
     def _joint_id(self, name: str) -> int:
         j = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, name)
@@ -124,11 +130,31 @@ class _Problem:
         return r
 
     def jacobian(self, site: int) -> tuple[np.ndarray, np.ndarray]:
-        """(3×n translational, 3×n rotational) Jacobian of ``site`` for the moving joints (``mj_jacSite``
-        into reused full-width buffers; measured faster than forming the columns from the joint axes
-        in NumPy)."""
+        """(3×nv translational, 3×nv rotational) Jacobian of ``site`` (``mj_jacSite`` into reused full-width
+        buffers; measured faster than forming the columns from the joint axes in NumPy); the moving joints'
+        columns are ``[:, self.columns]``."""
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, site)
-        return self._jacp[:, self.dadr], self._jacr[:, self.dadr]
+        return self._jacp, self._jacr
+
+    def stack(self, targets: Mapping[str, TargetSpec]) -> _Stack:
+        """The sites of ``targets`` with their error rows and Jacobian buffers (built once per set of sites and
+        target kinds, aimed at these targets)."""
+        aims = [(name, as_target(spec)) for name, spec in targets.items()]
+        key = tuple((name, t.pos is not None, t.rot is not None, t.axis is not None) for name, t in aims)
+        stack = self._stacks.get(key)
+        if stack is None:
+            stack = self._stacks[key] = _Stack(self, key)
+        for site, (_, target) in zip(stack.sites, aims):
+            site.aim(target)
+        return stack
+
+
+def _as_slice(index: np.ndarray) -> slice | np.ndarray:
+    """``index`` as a slice where it runs consecutively (a copy of those columns is the same numbers)."""
+    first = int(index[0]) if len(index) else 0
+    if np.array_equal(index, np.arange(first, first + len(index))):
+        return slice(first, first + len(index))
+    return index
 
 
 _PROBLEMS: dict = {}  # (id(model), joints) -> (model, _Problem): the scratch data and addresses, reused
@@ -150,109 +176,147 @@ def _problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays). The products are taken
-    on Python floats (``tolist``): the same IEEE double arithmetic as on NumPy scalars, without
+    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays)."""
+    return np.array(_cross(a, b))
+
+
+def _cross(a, b) -> tuple[float, float, float]:
+    """a × b as three Python floats (``tolist``): the same IEEE double arithmetic as on NumPy scalars, without
     their per-element boxing."""
     a0, a1, a2 = a.tolist() if isinstance(a, np.ndarray) else a
     b0, b1, b2 = b.tolist() if isinstance(b, np.ndarray) else b
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
 
 
-def _prepared(target: Target) -> Target:
-    """``target`` with its axis pair as unit float vectors (done once per solve, not per iteration)."""
-    if target.axis is None:
-        return target
-    local, world = (np.asarray(v, float) / math.sqrt(float(np.dot(v, v))) for v in target.axis)
-    return Target(target.pos, target.rot, (local, world))
+def _unit(v) -> np.ndarray:
+    return np.asarray(v, float) / math.sqrt(float(np.dot(v, v)))
 
 
 class _Site:
-    """One target of a solve, prepared once: its site id, the :class:`Target` (axis pair as unit
-    vectors), the target orientation as a quaternion, and scratch quaternions."""
+    """One target site of a solve: its id, its rows of the data and of the stacked error (from ``row``), and
+    what it is aimed at (:meth:`aim`: the position, the target orientation as a quaternion, the axis pair as
+    unit vectors), with scratch quaternions."""
 
-    __slots__ = ("site", "target", "pos", "q_t", "axis", "q_c", "q_d", "rows", "xpos", "xmat", "xmat33")
+    __slots__ = ("site", "row", "rows", "pos", "q_t", "axis", "a", "q_c", "q_d", "j_r", "xpos", "xmat", "xmat33")
 
-    def __init__(self, site: int, target: Target, problem: _Problem):
-        self.site, self.target, self.pos, self.axis = site, target, target.pos, target.axis
+    def __init__(self, problem: _Problem, site: int, kinds: tuple[bool, bool, bool], row: int):
+        self.site, self.row, self.rows = site, row, 3 * sum(kinds)
         # the site's rows of the scratch data (views, valid for the problem's lifetime)
         self.xpos, self.xmat = problem.site_xpos[site], problem.site_xmat[site]
         self.xmat33 = self.xmat.reshape(3, 3)
-        self.q_t = None
-        if target.rot is not None:
-            self.q_t = np.zeros(4)
-            mujoco.mju_mat2Quat(self.q_t, np.ascontiguousarray(target.rot).ravel())
+        self.pos = self.axis = self.a = None
+        self.q_t = np.zeros(4) if kinds[1] else None
         self.q_c, self.q_d = np.zeros(4), np.zeros(4)
-        self.rows = 3 * ((target.pos is not None) + (target.rot is not None) + (target.axis is not None))
+        # J_r's moving columns for the axis rows, column-major as a fancy-indexed copy is (the layout decides
+        # which BLAS kernel forms a J_r, and so its last bits)
+        self.j_r = np.zeros((len(problem.dadr), 3)).T if kinds[2] else None
+
+    def aim(self, target: Target) -> None:
+        self.pos = target.pos
+        if target.rot is not None:
+            mujoco.mju_mat2Quat(self.q_t, np.ascontiguousarray(target.rot).ravel())
+        if target.axis is not None:
+            self.axis = (_unit(target.axis[0]), _unit(target.axis[1]))
+
+    def errors(self, err: np.ndarray) -> tuple[float, float]:
+        """Write this site's error rows into ``err``; (position error, rotation error). The axis error is
+        the cross product of the site's axis a and the target direction (its size sin of the angle)."""
+        r, pos_err, rot_err = self.row, 0.0, 0.0
+        if self.pos is not None:
+            e = err[r:r + 3]
+            np.subtract(self.pos, self.xpos, out=e)
+            pos_err = math.sqrt(float(e @ e))
+            r += 3
+        if self.q_t is not None:
+            e = _rotation_error_q(self.q_t, self.xmat, self.q_c, self.q_d, err[r:r + 3])
+            rot_err = math.sqrt(float(e @ e))
+            r += 3
+        if self.axis is not None:
+            local, world = self.axis
+            a = self.a = self.xmat33 @ local
+            across = err[r:r + 3]
+            across[:] = _cross(a, world)
+            rot_err = max(rot_err, math.atan2(math.sqrt(float(across @ across)), float(a @ world)))
+        return pos_err, rot_err
+
+    def jacobian(self, problem: _Problem, jac: np.ndarray) -> None:
+        """Write the Jacobian rows (moving dofs) matching :meth:`errors`' rows into ``jac`` (after
+        :meth:`errors` at the same kinematics, whose axis a it uses)."""
+        jacp, jacr = problem.jacobian(self.site)
+        cols, r = problem.columns, self.row
+        if self.pos is not None:
+            jac[r:r + 3] = jacp[:, cols]
+            r += 3
+        if self.q_t is not None:
+            jac[r:r + 3] = jacr[:, cols]
+            r += 3
+        if self.axis is not None:
+            j_r = self.j_r
+            j_r[:] = jacr[:, cols]
+            a = self.a
+            # (I − a aᵀ) J_r: the axis error's rows (a[:, None] * (aᵀ J_r) is np.outer's own product)
+            np.subtract(j_r, a[:, None] * (a @ j_r), out=jac[r:r + 3])
 
 
-def _errors(problem: _Problem, site: int, target: Target):
-    """Error rows and (position error, rotation error) of one target (its axis pair unit vectors,
-    :func:`_prepared`)."""
-    return _site_errors(problem, _Site(site, target, problem))
+class _Stack:
+    """The sites of one solve and their stacked error vector and Jacobian (buffers reused from solve to solve)."""
 
+    def __init__(self, problem: _Problem, key: tuple):
+        self.problem, self.sites, rows = problem, [], 0
+        for name, *kinds in key:
+            site = _Site(problem, problem.site_id(name), tuple(kinds), rows)
+            self.sites.append(site)
+            rows += site.rows
+        # the stacked Jacobian in the memory order np.concatenate gave its column-major blocks (row-major once
+        # an axis block, formed row-major, is among them): the order picks the BLAS kernels of the DLS step
+        order = "C" if any(kinds[2] for _, *kinds in key) else "F"
+        self.err, self.jac = np.zeros(rows), np.zeros((rows, len(problem.dadr)), order=order)
 
-def _site_errors(problem: _Problem, s: _Site):
-    errors, pos_err, rot_err = [], 0.0, 0.0
-    if s.pos is not None:
-        e = s.pos - s.xpos
-        errors.append(e)
-        pos_err = math.sqrt(float(e @ e))
-    if s.q_t is not None:
-        e = _rotation_error_q(s.q_t, s.xmat, s.q_c, s.q_d)
-        errors.append(e)
-        rot_err = math.sqrt(float(e @ e))
-    if s.axis is not None:
-        local, world = s.axis
-        a = s.xmat33 @ local
-        across = cross(a, world)
-        errors.append(across)
-        rot_err = max(rot_err, math.atan2(math.sqrt(float(across @ across)), float(a @ world)))
-    return errors, pos_err, rot_err
+    def errors(self) -> tuple[float, float]:
+        """Fill ``err``; the largest position and orientation errors over the sites."""
+        if len(self.sites) == 1:  # one limb: no running maxima to take
+            return self.sites[0].errors(self.err)
+        pos_err = rot_err = 0.0
+        for s in self.sites:
+            p, r = s.errors(self.err)
+            pos_err, rot_err = max(pos_err, p), max(rot_err, r)
+        return pos_err, rot_err
 
-
-def _jacobian_rows(problem: _Problem, site: int, target: Target, xmat33: np.ndarray | None = None) -> list:
-    """The Jacobian rows (moving dofs) matching :func:`_errors`' rows of one target (``xmat33``: the
-    site's orientation in the scratch data, if the caller holds the view)."""
-    jacp, jacr = problem.jacobian(site)
-    jacs = []
-    if target.pos is not None:
-        jacs.append(jacp)
-    if target.rot is not None:
-        jacs.append(jacr)
-    if target.axis is not None:
-        rot = problem.data.site_xmat[site].reshape(3, 3) if xmat33 is None else xmat33
-        a = rot @ target.axis[0]
-        jacs.append(jacr - np.outer(a, a @ jacr))  # (I − a aᵀ) J_r: the axis error's rows
-    return jacs
+    def jacobian(self) -> np.ndarray:
+        mujoco.mj_comPos(self.problem.model, self.problem.data)  # cdof and subtree CoMs, which mj_jacSite needs
+        for s in self.sites:
+            s.jacobian(self.problem, self.jac)
+        return self.jac
 
 
 def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     """World rotation vector taking orientation ``current`` to ``target`` (both 3×3)."""
     q_t = np.zeros(4)
     mujoco.mju_mat2Quat(q_t, np.ascontiguousarray(target).ravel())
-    return _rotation_error_q(q_t, np.ascontiguousarray(current).ravel(), np.zeros(4), np.zeros(4))
+    return _rotation_error_q(q_t, np.ascontiguousarray(current).ravel(), np.zeros(4), np.zeros(4), np.zeros(3))
 
 
-def _rotation_error_q(q_t: np.ndarray, current: np.ndarray, q_c: np.ndarray, q_d: np.ndarray) -> np.ndarray:
-    """:func:`rotation_error` with the target already a quaternion ``q_t`` and ``current`` the flat
-    (9,) matrix; ``q_c``, ``q_d`` scratch (4,) buffers (the target's quaternion is formed once per solve)."""
+def _rotation_error_q(q_t: np.ndarray, current: np.ndarray, q_c: np.ndarray, q_d: np.ndarray,
+                      out: np.ndarray) -> np.ndarray:
+    """:func:`rotation_error` into ``out`` (3,) with the target already a quaternion ``q_t`` and ``current`` the
+    flat (9,) matrix; ``q_c``, ``q_d`` scratch (4,) buffers (the target's quaternion is formed once per solve)."""
     mujoco.mju_mat2Quat(q_c, current)
     mujoco.mju_negQuat(q_c, q_c)
     mujoco.mju_mulQuat(q_d, q_t, q_c)
-    vel = np.zeros(3)
-    mujoco.mju_quat2Vel(vel, q_d, 1.0)
-    return vel
+    mujoco.mju_quat2Vel(out, q_d, 1.0)
+    return out
 
 
 def _dls_step(jac: np.ndarray, err: np.ndarray, damping: float, free: np.ndarray, reg: np.ndarray | None = None) -> np.ndarray:
     """Damped-least-squares step on the free columns (``reg``: damping² I, if the caller has it)."""
     if reg is None:
         reg = damping**2 * np.eye(len(err))
+    solve = _solve_regular if damping > 0 else np.linalg.solve
     if free.all():
-        return jac.T @ np.linalg.solve(jac @ jac.T + reg, err)
+        return jac.T @ solve(jac @ jac.T + reg, err)
     j = jac[:, free]
     step = np.zeros(jac.shape[1])
-    step[free] = j.T @ np.linalg.solve(j @ j.T + reg, err)
+    step[free] = j.T @ solve(j @ j.T + reg, err)
     return step
 
 
@@ -262,6 +326,16 @@ def _null_step(jac: np.ndarray, pull: np.ndarray, free: np.ndarray) -> np.ndarra
     step = np.zeros(jac.shape[1])
     step[free] = pull[free] - np.linalg.pinv(j, rcond=1e-6) @ (j @ pull[free])
     return step
+
+
+_MAX = np.maximum.reduce  # = ndarray.max of a vector (NaN propagating), without its Python wrapper
+
+
+def _solve_regular(system: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x of ``system`` x = b for the damped DLS system J Jᵀ + λ² I (λ > 0: symmetric positive definite, never
+    singular): the LAPACK gesv gufunc np.linalg.solve calls for a vector b (numpy is pinned, pyproject.toml),
+    without its argument checks and error-state context, which cost more than the 6×6 solve itself."""
+    return _umath_linalg.solve1(system, b, signature="dd->d")
 
 
 def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, TargetSpec], q0: np.ndarray | None = None,
@@ -280,16 +354,17 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
     if q0 is None:
         q0 = body_or_model.data.qpos if isinstance(body_or_model, MujocoBody) else model.qpos0
     problem = _problem(model, joints)
-    sites = [_Site(problem.site_id(name), _prepared(as_target(spec)), problem) for name, spec in targets.items()]
-    reg = problem.reg(sum(s.rows for s in sites), damping)  # the DLS damping term, formed once
+    stack = problem.stack(targets)
+    err = stack.err
+    reg = problem.reg(len(err), damping)  # the DLS damping term, formed once
     rest = _posture_vector(problem, posture)
-    qadr = problem.qadr
+    qadr = problem.coords
     q = np.array(q0, dtype=float)
     q[qadr] = np.minimum(np.maximum(q[qadr], problem.lo), problem.hi)  # = np.clip
     best, converged, moved = (np.inf, q.copy(), (np.inf, np.inf)), None, np.inf
     for _ in range(max_iter):
         problem.kinematics(q)
-        err, residual = _stack_errors(problem, sites)
+        residual = stack.errors()
         score = max(residual[0] / tol, residual[1] / rot_tol)
         if score <= 1.0:
             converged = (q.copy(), residual)
@@ -297,8 +372,8 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
                 break
         elif score < best[0]:
             best = (score, q.copy(), residual)
-        jac = _stack_jacobian(problem, sites)  # only when a step follows (not on the final check)
-        current = q[qadr]
+        jac = stack.jacobian()  # only when a step follows (not on the final check)
+        current = q[qadr].copy()
         after = _limited_step(problem, current, jac, err, rest, damping, max_step, posture_gain, reg)
         if rest is not None:  # only a posture's search needs how far the joints moved
             moved = float(np.abs(after - current).max())
@@ -319,24 +394,9 @@ def _posture_vector(problem: _Problem, posture: Mapping[str, float] | None) -> n
     return np.array([posture.get(n, np.nan) for n in names])
 
 
-def _stack_errors(problem: _Problem, sites: list[_Site]):
-    if len(sites) == 1:  # one limb: no running maxima to take
-        errors, pos_err, rot_err = _site_errors(problem, sites[0])
-        return np.concatenate(errors), (pos_err, rot_err)
-    errors, pos_err, rot_err = [], 0.0, 0.0
-    for s in sites:
-        e, p, r = _site_errors(problem, s)
-        errors += e
-        pos_err, rot_err = max(pos_err, p), max(rot_err, r)
-    return np.concatenate(errors), (pos_err, rot_err)
-
-
-def _stack_jacobian(problem: _Problem, sites: list[_Site]) -> np.ndarray:
-    mujoco.mj_comPos(problem.model, problem.data)  # cdof and subtree CoMs, which mj_jacSite needs
-    jacs = []
-    for s in sites:
-        jacs += _jacobian_rows(problem, s.site, s.target, s.xmat33)
-    return np.concatenate(jacs)  # = np.vstack of these 2-D blocks
+def _at_limit(q: np.ndarray, problem: _Problem) -> bool:
+    """Some moving joint sits at (or beyond) a limit (= (q <= lo).any() or (q >= hi).any(), on Python floats)."""
+    return any(v <= lo or v >= hi for v, lo, hi in zip(q.tolist(), problem.lo_list, problem.hi_list))
 
 
 def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max_step, posture_gain,
@@ -344,15 +404,16 @@ def _limited_step(problem: _Problem, q: np.ndarray, jac, err, rest, damping, max
     """The moving joints after one DLS step (+ null-space posture pull), inside their limits: a joint
     at a limit that the step pushes further is frozen and the step recomputed without it."""
     lo, hi = problem.lo, problem.hi
-    at_lo, at_hi = q <= lo, q >= hi
-    if rest is None and not (at_lo.any() or at_hi.any()):  # the usual tick: one plain DLS step
-        step = jac.T @ np.linalg.solve(jac @ jac.T + (damping**2 * np.eye(len(err)) if reg is None else reg), err)
-        biggest = float(np.abs(step).max())
+    at_limit = _at_limit(q, problem)
+    if rest is None and not at_limit:  # the usual tick: one plain DLS step
+        system = jac @ jac.T + (damping**2 * np.eye(len(err)) if reg is None else reg)
+        step = jac.T @ (_solve_regular(system, err) if damping > 0 else np.linalg.solve(system, err))
+        biggest = float(_MAX(np.abs(step)))
         if biggest > max_step:
             step *= max_step / biggest
         return np.minimum(np.maximum(q + step, lo), hi)  # = np.clip, without its dispatch
+    at_lo, at_hi = q <= lo, q >= hi
     free = np.ones(len(q), dtype=bool)
-    at_limit = bool(at_lo.any() or at_hi.any())
     for _ in range(len(q)):
         step = _dls_step(jac, err, damping, free, reg)
         if rest is not None:

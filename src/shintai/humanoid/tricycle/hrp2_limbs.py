@@ -43,7 +43,6 @@ from shintai.humanoid.tricycle.switching import estimate_handle_angle
 from shintai.humanoid.tricycle.vehicle import steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
-from shintai.sim.spec import quat_axis
 
 KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
@@ -117,6 +116,10 @@ class Hrp2Limb:
         self.joints = ARM[s] if kind == "hand" else LEG[s]
         self.q = np.array([body.joint_qpos(j) for j in self.joints])
         self.qadr = np.array([body.model.joint(j).qposadr[0] for j in self.joints])
+        # the same entries as a slice where they run consecutively (HRP2's limbs do): no fancy indexing a tick
+        first = int(self.qadr[0])
+        consecutive = np.array_equal(self.qadr, np.arange(first, first + len(self.qadr)))
+        self._coords = slice(first, first + len(self.qadr)) if consecutive else self.qadr
         self.unreachable = 0
         # the feet's closed-form IK works in the waist frame: ξ's transform (offset, flat rotation) and the
         # sole's target orientation there, as Python floats (formed once; the weld does not move)
@@ -135,6 +138,7 @@ class Hrp2Limb:
         # One FK / F/T reading per snapshot (the laws and the logging ask several times a tick); the
         # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
         self._point = self._force = (None, None)
+        self._bar, self._turn = np.zeros(3), np.zeros(4)  # a hand's target: scratch vector and quaternion
 
     def point(self, snapshot) -> np.ndarray:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
@@ -158,9 +162,10 @@ class Hrp2Limb:
         rot = self.frame.pose()[1]
         if self.kind == "foot":
             return ik.Target(pos=self.frame.to_world(xi), rot=rot @ SOLE_IN_VEHICLE)
-        theta_h = estimate_handle_angle({self.side: np.asarray(xi, dtype=float)})
-        bar = np.zeros(3)  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
-        mujoco.mju_rotVecQuat(bar, _GRIP_Y, quat_axis(_STEER_AXIS, theta_h))
+        theta_h = estimate_handle_angle({self.side: xi})
+        bar, turn = self._bar, self._turn  # the grip's bar (y of grip site) turned with the handle, pointing to the stem
+        mujoco.mju_axisAngle2Quat(turn, _STEER_AXIS, theta_h)  # = sim.spec.quat_axis, into a buffer
+        mujoco.mju_rotVecQuat(bar, _GRIP_Y, turn)
         return ik.Target(pos=self.frame.to_world(xi), axis=(BAR_IN_HAND, -SIDES[self.side[0]] * rot @ bar))
 
     def solve(self, xi) -> ik.IKResult:
@@ -179,7 +184,7 @@ class Hrp2Limb:
         if leg is None:
             return self.dls_solve(xi)
         q = self.body.data.qpos.copy()
-        q[self.qadr] = leg
+        q[self._coords] = leg
         return ik.IKResult(q, True, (0.0, 0.0))
 
     def closed_form(self, xi) -> np.ndarray | None:
@@ -198,7 +203,7 @@ class Hrp2Limb:
         """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
         (the rest of the body as measured; the tricycle's feet used it alone before issue 13)."""
         q0 = self.body.data.qpos.copy()
-        q0[self.qadr] = self.q
+        q0[self._coords] = self.q
         return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)
 
     def reachable(self, xi) -> bool:
@@ -214,7 +219,7 @@ class Hrp2Limb:
         else:
             result = self.dls_solve(xi)
             if result.ok:
-                self.q = result.q[self.qadr]
+                self.q = result.q[self._coords].copy()
             else:
                 self.unreachable += 1
         return dict(zip(self.joints, self.q.tolist()))

@@ -167,9 +167,8 @@ class LimbPair(Module):
         now = self.schedule.at(t)
         starts = now is not None and now != self._phase and self.device in self.schedule.samples[now[0]].moves
         self._phase = now
-        command = {}
+        command, logged = {}, {}
         dt = t - self._t
-        recorder = self.recorder
         for side, role in self.roles.items():
             limb, player = self.limbs[side], self.players[side]
             f_msr = limb.force(snapshot)
@@ -185,10 +184,11 @@ class LimbPair(Module):
                     self._move(player, law.xi_ref, t)
                 x_ref = player.advance(dt)
                 xi = x_ref + law.displacement
-            if recorder is not None:  # = self.log(...), the keys formed once
-                k_ref, k_xi = self._keys[side]
-                recorder.record(t, **{k_ref: x_ref, k_xi: xi})
+            k_ref, k_xi = self._keys[side]
+            logged[k_ref], logged[k_xi] = x_ref, xi
             command.update(limb.command(xi, snapshot))
+        if self.recorder is not None:  # = self.log(...): both limbs' signals in one record, the keys formed once
+            self.recorder.record(t, **logged)
         self._t = t
         return command
 

@@ -23,9 +23,9 @@ from shintai.humanoid.tricycle.rig import (
     ARM_GAINS,
     F_TRG,
     LEG_GAINS,
-    hand_forces,
     hand_plan,
     handle_diagnostic,
+    internal_force,
     legs_switcher,
     settled,
 )
@@ -90,7 +90,7 @@ class Ride:
                    "x": pos[0], "y": pos[1], "yaw": np.arctan2(rot[1, 0], rot[0, 0]),
                    "tilt": np.arccos(min(max(rot[2, 2], -1.0), 1.0)),  # = np.clip, without its dispatch
                    "wheel_x": wheel_pos[0], "wheel_y": wheel_pos[1],
-                   "internal": hand_forces(self.hands, snap)["internal"]}
+                   "internal": internal_force(self.hands, snap)}
             for side in SIDES:
                 k_fz, k_leg, k_arm, legs_active, arms_active = side_keys[side]
                 out[k_fz] = self.feet[side].force(snap)[2]

@@ -190,6 +190,12 @@ def hand_forces(hands: dict, snapshot) -> dict:
             "net": float(np.sqrt(net.dot(net)))}
 
 
+def internal_force(hands: dict, snapshot) -> float:
+    """:func:`hand_forces`' ``internal`` alone (a ride records it every tick)."""
+    half = (hands["left"].force(snapshot) - hands["right"].force(snapshot)) / 2
+    return float(np.sqrt(half.dot(half)))
+
+
 def steer_rig(body, module, hands, schedule, active_of, diag=None, view=None) -> Rig:
     """Steer through ``schedule`` (plus one sample to settle), recording every tick: handle angle
     (true and estimated), the forces between the hands, which arm is active and each hand's ‖f‖."""

@@ -14,7 +14,6 @@ right active on π/2 + δ_c ≤ θ_c < 3π/2 + δ_c (mod 2π), left otherwise.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -53,10 +52,10 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
     (constant per model: the per-tick estimates take them from a cache)."""
     num = den = 0.0
     for p, z in zip(points, zs):
-        w = np.asarray(p, dtype=float) - axis_point
-        w = w - a * (a @ w)
-        num += a @ cross(z, w)
-        den += z @ w
+        w = np.subtract(p, axis_point)  # = np.asarray(p, dtype=float) - axis_point
+        w -= a * float(a @ w)  # on the plane normal to the axis
+        num += float(a @ cross(z, w))
+        den += float(z @ w)
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
@@ -95,15 +94,23 @@ def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
     return _fit(list(hands.values()), [zero[side[0]] for side in hands], axis_point, axis)
 
 
-@functools.lru_cache(maxsize=8)
+_HANDLE_MODELS: dict = {}  # id(spec) -> (spec, its handle model), the last 8 specs (as the lru_cache was)
+
+
 def _handle_model(t: TricycleSpec) -> tuple[np.ndarray, dict, np.ndarray]:
     """The nominal steering axis point, each grip's θ_h = 0 direction from it projected on the plane
-    normal to the axis, and the unit axis (constant: computed once per tricycle model;
-    :func:`estimate_handle_angle` runs every control tick)."""
-    axis_point = steer_point(t)
-    a = steer_axis(t)
-    a = a / np.linalg.norm(a)
-    return axis_point, {s: _on_plane(grip_position(0.0, s, t) - axis_point, a) for s in ("l", "r")}, a
+    normal to the axis, and the unit axis (constant: computed once per tricycle model, found by the spec's
+    identity — :func:`estimate_handle_angle` runs several times a control tick, and hashing the spec cost more)."""
+    hit = _HANDLE_MODELS.get(id(t))
+    if hit is None or hit[0] is not t:
+        if len(_HANDLE_MODELS) >= 8:
+            _HANDLE_MODELS.pop(next(iter(_HANDLE_MODELS)))
+        axis_point = steer_point(t)
+        a = steer_axis(t)
+        a = a / np.linalg.norm(a)
+        hit = _HANDLE_MODELS[id(t)] = (t, (axis_point, {s: _on_plane(grip_position(0.0, s, t) - axis_point, a)
+                                                        for s in ("l", "r")}, a))
+    return hit[1]
 
 
 def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:
