@@ -19,19 +19,6 @@ from shintai.humanoid.balance.standing import LegIKModule
 from shintai.humanoid.constants import HRP2_LINKS
 
 
-class _SoleRef:
-    """A snapshot read through, with ``sole_ref`` replaced."""
-
-    def __init__(self, snapshot, sole_ref: np.ndarray):
-        self._snapshot, self._sole_ref = snapshot, sole_ref
-
-    def __getitem__(self, key):
-        return self._sole_ref if key == "sole_ref" else self._snapshot[key]
-
-    def get(self, key, default=None):
-        return self._sole_ref if key == "sole_ref" else self._snapshot.get(key, default)
-
-
 def pivot_soles(sole_ref, pitch, pitch0, h: float = HRP2_LINKS.ankle_height) -> np.ndarray:
     """The sole targets (left, right rows) of feet turned from ``pitch0`` to ``pitch`` (each (R, L), rad) about their
     ankles: the ankle p_s + R_y(θ0)(0, 0, h) kept, the sole at ankle − R_y(θ)(0, 0, h)."""
@@ -56,4 +43,6 @@ class AnklePivotIK(LegIKModule):
         ref = snapshot.get("foot_pitch_ref")
         if ref is None:
             return super().update(snapshot)
-        return super().update(_SoleRef(snapshot, pivot_soles(snapshot["sole_ref"], ref, self.pitch0)))
+        snapshot = dict(snapshot)  # the stage's view, with the pivoted sole targets (as unicycle.ride's ZMP shift)
+        snapshot["sole_ref"] = pivot_soles(snapshot["sole_ref"], ref, self.pitch0)
+        return super().update(snapshot)
