@@ -7,6 +7,7 @@ Exit status: 0 every check holds, 1 a check fails or a run errs, 2 a usage or pa
 from __future__ import annotations
 
 import argparse
+import contextlib
 import fnmatch
 import json
 import os
@@ -79,14 +80,20 @@ def print_result(result: dict, out: Path, filmed: bool = False) -> None:
 
 def cmd_run(args) -> int:
     from shintai.scenarios.runner import run_scenario
+    from shintai.scenarios.sampling import line, sampled
 
     if args.seed < 0:
         raise ParameterError(f"--seed {args.seed}: expected a non-negative integer")
     registry.get(args.id)  # unknown id: exit 2 before anything runs
     out = Path(args.out) if args.out else Path("out") / args.id
-    result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video, quiet=args.quiet,
-                          view=args.view)
+    with sampled() if args.profile else contextlib.nullcontext() as samples:
+        result = run_scenario(args.id, out, parse_sets(args.set), seed=args.seed, video=args.video,
+                              quiet=args.quiet, view=args.view)
     print_result(result, out, filmed=args.video)
+    if samples is not None:  # --profile: where the run's CPU time went, by layer (scenarios/sampling.py)
+        profile = samples.summary(top=10)
+        (out / "profile.json").write_text(json.dumps(profile, indent=2) + "\n")
+        print(f"  profile: {line(profile)} -> {out}/profile.json")
     return 0 if result["ok"] else 1
 
 
@@ -208,7 +215,7 @@ def cmd_reproduce(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    ids = [sid for sid in sorted(registry.SCENARIOS) if registry.SCENARIOS[sid].demo]
+    ids = registry.demo_ids()
     return reproduce(ids, Path(args.out), args.executor, 0, video=not args.no_video, title="shintai demo",
                      checks_only_ran=True, quiet=args.quiet, demo=True)
 
@@ -230,7 +237,7 @@ def cmd_bench(args) -> int:
                 results[bid] = {"error": f"{type(exc).__name__}: {exc}".splitlines()[0]}
         results[bid]["bench_wall_s"] = time.perf_counter() - t0
         print(f"  {bid}: " + ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
-                                       for k, v in results[bid].items()))
+                                       for k, v in results[bid].items() if not isinstance(v, dict)))
         results[bid]["profile"] = profile = samples.summary()
         print(f"    profile: {line(profile)}")
         (out / "bench.json").write_text(json.dumps(results, indent=2) + "\n")
@@ -267,6 +274,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--video", action="store_true", help="render video.mp4 (MuJoCo scenarios)")
     r.add_argument("--view", action="store_true", help="show the run live in MuJoCo's viewer (needs a display)")
     r.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    r.add_argument("--profile", action="store_true",
+                   help="sample where the CPU time goes (physics, control, recording, …) into profile.json")
     r.set_defaults(fn=cmd_run)
 
     executors = ("serial", "process", "ray")

@@ -137,6 +137,15 @@ def test_report_carries_each_scenarios_account(tmp_path):
     assert 'id="notes-core.minjerk"' in page and to_html(notes) in page  # rendered as HTML
 
 
+def test_run_profile_writes_where_the_time_went(tmp_path, capsys):
+    assert main(["run", "core.minjerk", "--out", str(tmp_path), "--quiet", "--profile"]) == 0
+    profile = json.loads((tmp_path / "profile.json").read_text())
+    assert profile["samples"] > 0 and sum(profile["layers"].values()) == pytest.approx(1.0, abs=0.01)
+    assert profile["layers"]["plotting"] > 0  # its figure, drawn after the run
+    assert "profile: " in capsys.readouterr().out
+    assert "profile" not in json.loads((tmp_path / "metrics.json").read_text())  # the contract's file unchanged
+
+
 def test_bench_writes_json(tmp_path):
     assert main(["bench", "--only", "core.loop-overhead", "--out", str(tmp_path)]) == 0
     bench = json.loads((tmp_path / "bench.json").read_text())

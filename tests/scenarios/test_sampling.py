@@ -56,3 +56,34 @@ def test_sampling_stops_and_restores_the_handler():
     n = samples.count
     burn(0.02)
     assert samples.count == n and samples.layers["other"] == n
+
+
+def test_nested_sampling_feeds_the_outer_and_gives_it_back_its_timer():
+    before = signal.getsignal(signal.SIGPROF)
+    with sampled(0.001) as outer:
+        burn(0.03)
+        with sampled(0.001) as inner:
+            burn(0.05)
+        n_inner, n_outer = inner.count, outer.count
+        assert signal.getitimer(signal.ITIMER_PROF)[1] == pytest.approx(0.001)  # the outer's timer runs again
+        burn(0.03)
+    assert n_inner > 10 and n_outer >= n_inner  # the inner block's samples reached the outer too
+    assert outer.count > n_outer and inner.count == n_inner  # after the inner block only the outer samples
+    assert signal.getsignal(signal.SIGPROF) == before and signal.getitimer(signal.ITIMER_PROF) == (0.0, 0.0)
+
+
+def test_figures_drawn_outside_the_loop_count_as_plotting():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    with sampled(0.001) as samples:
+        end = time.process_time() + 0.15
+        while time.process_time() < end:
+            fig, ax = plt.subplots()
+            ax.plot(np.arange(2000.0), np.sin(np.arange(2000.0)))
+            fig.canvas.draw()
+            plt.close(fig)
+    shares = samples.summary()["layers"]
+    assert shares["plotting"] > 0.8 and shares["control"] == 0

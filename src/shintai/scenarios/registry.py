@@ -333,6 +333,12 @@ def load_all() -> None:
     _LOADED = True
 
 
+def demo_ids() -> list[str]:
+    """The scenarios ``shintai demo`` runs: one headline scenario per body (``demo=True``), sorted."""
+    load_all()
+    return [sid for sid in sorted(SCENARIOS) if SCENARIOS[sid].demo]
+
+
 def get(scenario_id: str) -> Scenario:
     load_all()
     if scenario_id not in SCENARIOS:

@@ -1,4 +1,5 @@
-"""Where a benchmark's CPU time goes: a sampling profiler, summarised by layer, for ``shintai bench``.
+"""Where a benchmark's or a scenario's CPU time goes: a sampling profiler, summarised by layer, for ``shintai bench``
+and ``shintai run --profile``.
 
 Every ``interval_s`` of the process's CPU time (``ITIMER_PROF``) the main thread's Python stack is sampled. A
 signal is handled between bytecodes, so a sample taken during a C call (``mj_step``, a LAPACK kernel) lands
@@ -6,8 +7,9 @@ on the Python frame that made it. Each sample is charged to
 
 * a **layer**, the first class met walking out from the innermost frame: a body's ``step`` → ``physics``,
   its other methods (snapshot, apply) → ``body_io``, a module → ``control``, the
-  :class:`~shintai.core.runtime.Loop` → ``runtime``, a recorder (signals, films) → ``recording``; ``other``
-  when none is on the stack (a benchmark's own harness, NumPy called directly);
+  :class:`~shintai.core.runtime.Loop` → ``runtime``, a recorder (signals, films) → ``recording``; when none is on
+  the stack, ``plotting`` if Matplotlib or a scenario's plots are (a run's figures after its simulation), else
+  ``other`` (a benchmark's own harness, NumPy called directly);
 * a **function**, the innermost frame in shintai's source (``spine/control.py:duty``).
 
 The shares are of samples, so of CPU time in the main thread; at 5 ms they cost well under 1 % of it
@@ -27,7 +29,7 @@ from shintai.core.recorder import Recorder
 from shintai.core.runtime import Body, Loop, Module
 
 ROOT = str(Path(shintai.__file__).parent) + "/"
-LAYERS = ("physics", "body_io", "control", "runtime", "recording", "other")
+LAYERS = ("physics", "body_io", "control", "runtime", "recording", "plotting", "other")
 
 
 _KINDS: dict = {}  # code object → kind, filled as samples meet them
@@ -58,6 +60,7 @@ def layer_of(frame) -> str:
     """The layer a sampled stack belongs to (module docstring): the kind of the first method met walking
     out from the innermost frame; a body's method (or a function it called) counts as ``physics`` if its ``step``
     is further out, before any other kind."""
+    plotting = False
     while frame is not None:
         kind = _kind(frame.f_code, frame.f_globals)
         if kind == "body":
@@ -71,8 +74,16 @@ def layer_of(frame) -> str:
             return "body_io"
         if kind is not None:
             return kind
+        plotting = plotting or _is_plotting(frame.f_code)
         frame = frame.f_back
-    return "other"
+    return "plotting" if plotting else "other"
+
+
+def _is_plotting(code) -> bool:
+    """Matplotlib's code, or a function of a shintai ``plots`` module or of the runner's figure context."""
+    name = code.co_filename
+    return ("/matplotlib/" in name or (name.startswith(ROOT) and Path(name).stem.startswith("plots"))
+            or (name.endswith("scenarios/runner.py") and code.co_name == "figure"))
 
 
 def function_of(frame) -> str | None:
@@ -120,15 +131,25 @@ def line(summary: dict) -> str:
 @contextlib.contextmanager
 def sampled(interval_s: float = 0.005):
     """Sample the main thread's stack every ``interval_s`` of CPU time while the block runs; yields the
-    :class:`Samples`."""
+    :class:`Samples`. Nested inside another :func:`sampled` (a benchmark profiling each scenario it runs), each
+    sample also reaches the outer one, which gets its handler and interval back on exit."""
     samples = Samples(interval_s)
     if not hasattr(signal, "SIGPROF") or threading.current_thread() is not threading.main_thread():
         yield samples
         return
-    previous = signal.signal(signal.SIGPROF, lambda _signum, frame: samples.take(frame))
-    signal.setitimer(signal.ITIMER_PROF, interval_s, interval_s)
+    outer = signal.getsignal(signal.SIGPROF)
+
+    def take(signum, frame):
+        samples.take(frame)
+        if callable(outer):
+            outer(signum, frame)
+
+    previous = signal.signal(signal.SIGPROF, take)
+    timer = signal.setitimer(signal.ITIMER_PROF, interval_s, interval_s)
     try:
         yield samples
     finally:
         signal.setitimer(signal.ITIMER_PROF, 0.0, 0.0)
         signal.signal(signal.SIGPROF, previous)
+        if timer[1] > 0:
+            signal.setitimer(signal.ITIMER_PROF, timer[1], timer[1])
