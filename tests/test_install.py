@@ -2,6 +2,7 @@
 3.11, and 3.12 where the machine has it) and runs from a folder outside the checkout, with its data files
 (notes, trained networks, models) inside."""
 
+import os
 import shutil
 import subprocess
 import sys
@@ -12,6 +13,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ("shintai/quadruped/trained/action_fixed.npz", "shintai/core/notes/minjerk.md")
+# the installed copy runs without the caller's PYTHONPATH (a worktree's src on it would shadow the wheel)
+CLEAN_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
 
 
 @pytest.fixture(scope="module")
@@ -29,13 +32,14 @@ def install(wheel, python, where):
     venv = where / "venv"
     subprocess.run([python, "-m", "venv", str(venv)], check=True, timeout=300)
     done = subprocess.run([str(venv / "bin" / "pip"), "install", "--quiet", str(wheel)], capture_output=True,
-                          text=True, timeout=1200)
+                          text=True, timeout=1200, env=CLEAN_ENV)
     assert done.returncode == 0, done.stderr[-3000:]
     return venv / "bin"
 
 
 def run(bin_dir, *args, cwd):
-    return subprocess.run([str(bin_dir / "shintai"), *args], capture_output=True, text=True, timeout=600, cwd=cwd)
+    return subprocess.run([str(bin_dir / "shintai"), *args], capture_output=True, text=True, timeout=600, cwd=cwd,
+                          env=CLEAN_ENV)
 
 
 def test_the_wheel_carries_the_data_files(wheel):
@@ -54,7 +58,7 @@ def test_the_wheel_installs_and_runs_outside_the_checkout(wheel, tmp_path):
     assert ran.returncode == 0, ran.stderr
     assert (elsewhere / "m" / "metrics.json").exists() and "minimum-jerk" in (elsewhere / "m" / "metrics.json").read_text()
     where = subprocess.run([str(bin_dir / "python"), "-c", "import shintai; print(shintai.__file__)"],
-                           capture_output=True, text=True, cwd=elsewhere)
+                           capture_output=True, text=True, cwd=elsewhere, env=CLEAN_ENV)
     assert str(ROOT) not in where.stdout  # the installed copy, not the checkout
 
 
