@@ -84,7 +84,7 @@ class KinematicSnake(Body):
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
         k1, residual = self.head_velocity(self.w_h, self.phi)
-        self.slip = float(np.max(np.abs(residual), initial=0.0))
+        self.slip = float(np.abs(residual).max(initial=0.0))
         steps = self.settings.rk4_steps
         w, phi = self.w_h.copy(), self.phi.copy()
         status = _advance(DGELSD, w, phi, self.phi_dot, self.dt / steps, steps, k1, self.geometry.l, self._rates,
