@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from shintai.snake.linalg import lstsq, singular_values, thin_svd
+from shintai.snake.linalg import DGELSD, least_squares_workspace, lstsq, singular_values, solve_rows, thin_svd
 
 
 def test_the_kernels_give_numpys_numbers_bit_for_bit():
@@ -32,3 +32,21 @@ def test_a_failed_kernel_raises_linalg_error():
         lstsq(bad, np.ones(4))
     with pytest.raises(np.linalg.LinAlgError), np.errstate(invalid="ignore"):
         singular_values(np.stack([np.eye(3), np.full((3, 3), np.nan)]))
+
+
+def test_the_compiled_least_squares_gives_numpys_numbers_bit_for_bit():
+    """solve_rows (the plant's RK4 stages) calls NumPy's own dgelsd as its gufunc does: the same bits, for
+    overdetermined, square, underdetermined and rank-deficient systems; no rows gives the minimum-norm 0."""
+    rng = np.random.default_rng(1)
+    workspace = least_squares_workspace(12, 3)
+    x = np.empty(3)
+    for trial in range(300):
+        m = int(rng.integers(1, 13))
+        rows = rng.normal(size=(12, 4))
+        if trial % 5 == 0:
+            rows[:, 1] = 2.0 * rows[:, 0]  # rank 2
+        assert solve_rows(DGELSD, rows, m, x, *workspace)
+        assert np.array_equal(x, np.linalg.lstsq(rows[:m, :3], rows[:m, 3], rcond=None)[0])
+    assert solve_rows(DGELSD, np.ones((12, 4)), 0, x, *workspace) and not x.any()
+    with np.errstate(invalid="ignore"):
+        assert not solve_rows(DGELSD, np.full((12, 4), np.nan), 5, x, *workspace)

@@ -3,13 +3,15 @@
 import numpy as np
 import pytest
 
-from shintai.core.runtime import ADD, SET, ChannelError, FunctionModule, Loop
-from shintai.snake.constants import CH3_GAINS, TRACKING, PlantSettings
-from shintai.snake.model import configuration, lateral_velocities
+from shintai.core.integrators import rk4_constant_rate_floats
+from shintai.core.runtime import ADD, SET, ChannelError, FunctionModule, Loop, SimulationDiverged
+from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, TRACKING, PlantSettings
+from shintai.snake.model import configuration, constraint_terms, lateral_velocities
 from shintai.snake.plant import KinematicSnake
 from shintai.snake.two_point import candidate_modes
 
 MODES = candidate_modes(9, 4, 4, 2)
+L = CH3_ROBOT.l
 
 
 def stepped(phi, u, grounded, rk4_steps):
@@ -30,6 +32,36 @@ def test_rk4_steps_are_converged_at_the_input_limit():
         g = MODES[rng.integers(len(MODES))]
         worst = max(worst, np.abs(stepped(phi, u, g, 2).w_h - stepped(phi, u, g, 200).w_h).max())
     assert worst < 1e-5
+
+
+def reference_step(w_h, phi, u, grounded, dt, steps):
+    """One δt of (2.10) written with the shared helpers: the closed-form rows, np.linalg.lstsq, the float RK4."""
+    def head_rate(w, q):
+        A, b = constraint_terms(w[2], np.array(q), L, u)
+        return np.linalg.lstsq(A[grounded], b[grounded], rcond=None)[0].tolist()
+
+    w, q = rk4_constant_rate_floats(head_rate, list(w_h), list(phi), list(u), dt / steps, steps)
+    return np.array(w), np.array(q)
+
+
+@pytest.mark.parametrize("rk4_steps", [1, 2, 3])
+def test_the_compiled_step_is_the_rk4_of_the_model_bit_for_bit(rk4_steps):
+    """KinematicSnake.step (a compiled loop) gives the bits of the RK4 of A_σ^† B_σ φ̇ written in NumPy."""
+    rng = np.random.default_rng(rk4_steps)
+    body = KinematicSnake([0.1, -0.2, 2.0], rng.uniform(-1, 1, 9), settings=PlantSettings(rk4_steps))
+    for k in range(10):
+        u, g = rng.normal(size=9), MODES[rng.integers(len(MODES))] if k % 3 else rng.random(9) < 0.5
+        expected = reference_step(body.w_h, body.phi, u, g, body.dt, rk4_steps)
+        body.apply({"phi_dot": u, "grounded": g.astype(float)})
+        body.step()
+        assert np.array_equal(body.w_h, expected[0]) and np.array_equal(body.phi, expected[1])
+
+
+def test_a_non_finite_state_is_an_error():
+    body = KinematicSnake([0.0, 0.0, 1.0], np.zeros(9))
+    body.apply({"phi_dot": np.full(9, 1e308)})
+    with pytest.raises((SimulationDiverged, np.linalg.LinAlgError)):
+        body.step()
 
 
 def test_zero_input_leaves_the_state_unchanged():

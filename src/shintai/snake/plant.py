@@ -16,15 +16,17 @@ yaw angles at the odd joints and zeros at the pitch joints.
 
 from __future__ import annotations
 
-import numpy as np
-
 import math
 
-from shintai.core.integrators import rk4_constant_rate_floats
+import numpy as np
+from numba import njit
+
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
-from shintai.snake.linalg import lstsq
+from shintai.snake.linalg import DGELSD, least_squares_workspace, solve_rows
 from shintai.snake.model import check_mode, configuration, constraint_rows, rate_sums
+
+_DIVERGED, _SOLVE_FAILED = 1, 2  # statuses of _advance (0: stepped)
 
 
 class KinematicSnake(Body):
@@ -48,12 +50,12 @@ class KinematicSnake(Body):
         self.phi = cfg.phi.copy()
         self.grounded = np.ones(geometry.n, dtype=bool)  # all wheels on the ground until commanded
         self.phi_dot = np.zeros(geometry.n)
-        self._held = self._plain_command()
+        self._rates = rate_sums(self.phi_dot)  # Φ of the held φ̇, as the O(n) pass reads it
         self.slip = 0.0
-
-    def _plain_command(self) -> tuple[list, list]:
-        """The held command as the O(n) pass reads it: Φ (``rate_sums`` of φ̇) and σ, as plain lists."""
-        return rate_sums(self.phi_dot), self.grounded.tolist()
+        n = geometry.n
+        self._rows = np.empty((n, 4))  # [A_σ, B_σ φ̇] of one RK4 stage
+        self._lapack = least_squares_workspace(n, 3)
+        self._stages = np.empty((6, max(n, 3)))  # _advance's scratch: k1..k4, the stage's w̃_h and φ
 
     def snapshot(self) -> dict:
         psi = np.zeros(self.geometry.joints)
@@ -68,33 +70,77 @@ class KinematicSnake(Body):
         if phi_dot.shape != (self.geometry.n,):
             raise ValueError(f"phi_dot must have n = {self.geometry.n} entries, got shape {phi_dot.shape}")
         self.phi_dot = phi_dot
-        self._held = self._plain_command()
+        self._rates = rate_sums(phi_dot)
 
     def head_velocity(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
         """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) and the grounded wheels' residual lateral speeds A_σ ẇ̃_h − B_σ φ̇."""
-        A_s, rhs = self._grounded_terms(float(w_h[2]), list(phi))
-        w_dot = lstsq(A_s, rhs)
-        return w_dot, A_s @ w_dot - rhs
-
-    def _grounded_terms(self, theta_h: float, phi: list) -> tuple[np.ndarray, np.ndarray]:
-        """A_σ and B_σ φ̇ (2.10)–(2.11) at heading θ_{y,h} and yaw angles φ (floats) for the held command."""
-        rates, grounded = self._held
-        rows = constraint_rows(theta_h, phi, self.geometry.l, rates, grounded)
-        return rows[:, :3], rows[:, 3]
-
-    def _head_rate(self, w_h: list, phi: list) -> list:
-        """ẇ̃_h of :meth:`head_velocity` alone, on floats (RK4's later stages do not need the residual)."""
-        return lstsq(*self._grounded_terms(w_h[2], phi)).tolist()
+        rows, w_dot = self._rows, np.empty(3)
+        m = constraint_rows(float(w_h[2]), np.asarray(phi, dtype=float), self.geometry.l, self._rates, self.grounded,
+                            rows)
+        if not solve_rows(DGELSD, rows, m, w_dot, *self._lapack):
+            raise np.linalg.LinAlgError("least squares did not converge")
+        return w_dot, rows[:m, :3] @ w_dot - rows[:m, 3]
 
     def step(self) -> None:
         """Advance by δt with RK4 (``settings.rk4_steps`` steps); φ(t) = φ + φ̇ t is exact."""
         k1, residual = self.head_velocity(self.w_h, self.phi)
-        self.slip = float(np.max(np.abs(residual), initial=0.0))
+        self.slip = float(np.abs(residual).max(initial=0.0))
         steps = self.settings.rk4_steps
-        w, phi = rk4_constant_rate_floats(self._head_rate, self.w_h.tolist(), self.phi.tolist(),
-                                          self.phi_dot.tolist(), self.dt / steps, steps, k1.tolist())
-        if not all(map(math.isfinite, w + phi)):
+        w, phi = self.w_h.copy(), self.phi.copy()
+        status = _advance(DGELSD, w, phi, self.phi_dot, self.dt / steps, steps, k1, self.geometry.l, self._rates,
+                          self.grounded, self._rows, *self._lapack, self._stages)
+        if status == _SOLVE_FAILED:
+            raise np.linalg.LinAlgError("least squares did not converge")
+        if status == _DIVERGED:
             raise SimulationDiverged(f"kinematic snake: non-finite state at t = {self.t + self.dt:.3f} s")
-        self.w_h, self.phi = np.array(w), np.array(phi)
+        self.w_h, self.phi = w, phi
         self.steps += 1
         self.t = self.steps * self.dt
+
+
+@njit(cache=True)
+def _advance(lapack, w, phi, u, h, steps, k1, l, rates, grounded, rows, ints, reals, stages) -> int:
+    """RK4 of ẇ̃_h = A_σ^† B_σ φ̇ (2.10) over ``steps`` steps of ``h`` with φ(t) = φ + u t exact, in place on
+    ``w`` (w̃_h) and ``phi``; ``k1`` is the rate at the start. The operations, element by element and in order,
+    of :func:`shintai.core.integrators.rk4_constant_rate_floats` with :func:`constraint_rows` and dgelsd
+    (:func:`solve_rows`) as the rate, so the bits of the plant written with them; compiled because its eight
+    stages per δt are sequential and each is a few dozen flops, where Python's and NumPy's per-call cost was
+    the plant's time. Returns 0, or _SOLVE_FAILED (dgelsd failed) or _DIVERGED (a non-finite state)."""
+    n = phi.shape[0]
+    k, k2, k3, k4, x, mid = stages[0, :3], stages[1, :3], stages[2, :3], stages[3, :3], stages[4, :3], stages[5, :n]
+    k[:] = k1
+    half, sixth = 0.5 * h, h / 6.0
+    for i in range(steps):
+        if i and not _head_rate(lapack, w, phi, l, rates, grounded, rows, ints, reals, k):
+            return _SOLVE_FAILED
+        for j in range(n):
+            mid[j] = phi[j] + half * u[j]
+        for j in range(3):
+            x[j] = w[j] + half * k[j]
+        if not _head_rate(lapack, x, mid, l, rates, grounded, rows, ints, reals, k2):
+            return _SOLVE_FAILED
+        for j in range(3):
+            x[j] = w[j] + half * k2[j]
+        if not _head_rate(lapack, x, mid, l, rates, grounded, rows, ints, reals, k3):
+            return _SOLVE_FAILED
+        for j in range(n):
+            phi[j] = phi[j] + h * u[j]  # the step's end, φ + h u
+        for j in range(3):
+            x[j] = w[j] + h * k3[j]
+        if not _head_rate(lapack, x, phi, l, rates, grounded, rows, ints, reals, k4):
+            return _SOLVE_FAILED
+        for j in range(3):
+            w[j] = w[j] + sixth * (k[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+    for j in range(3):
+        if not math.isfinite(w[j]):
+            return _DIVERGED
+    for j in range(n):
+        if not math.isfinite(phi[j]):
+            return _DIVERGED
+    return 0
+
+
+@njit(cache=True)
+def _head_rate(lapack, w, phi, l, rates, grounded, rows, ints, reals, out) -> bool:
+    """ẇ̃_h = A_σ^† B_σ φ̇ (2.10) at head pose ``w`` and yaw angles ``phi`` into ``out``; False if dgelsd failed."""
+    return solve_rows(lapack, rows, constraint_rows(w[2], phi, l, rates, grounded, rows), out, ints, reals)

@@ -13,6 +13,7 @@ moved to the 2π-branch nearest the same angle of the waypoint before it, θ_k �
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,6 +55,6 @@ class PiecewiseLinear:
     def __call__(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         if t >= self.times[-1]:
             return self.poses[-1].copy(), np.zeros(self.poses.shape[1])
-        k = int(np.searchsorted(self.times, t, side="right")) - 1
+        k = bisect_right(self.times, t) - 1  # np.searchsorted(side="right") on the tuple, without converting it
         rate = (self.poses[k + 1] - self.poses[k]) / (self.times[k + 1] - self.times[k])
         return self.poses[k] + rate * (t - self.times[k]), rate

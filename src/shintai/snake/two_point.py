@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
@@ -80,14 +79,6 @@ def joint_limit_objective(phi: np.ndarray, phi_th: float) -> tuple[float, np.nda
     return -float(excess @ excess), -2.0 * excess * np.sign(phi)
 
 
-@lru_cache(maxsize=8)
-def _diagonal(m: int) -> np.ndarray:
-    """I_m as booleans (read-only, shared)."""
-    eye = np.eye(m, dtype=bool)
-    eye.flags.writeable = False
-    return eye
-
-
 def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     """det of the small Gram matrix of X (X^T X if tall, X X^T if wide) and its gradient w.r.t. X.
 
@@ -96,9 +87,10 @@ def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     finite at rank loss.
     """
     U, s, Vt = thin_svd(X) if svd is None else svd
-    s2 = s * s
-    others = np.multiply.reduce(np.where(_diagonal(len(s)), 1.0, s2), axis=1)  # np.prod without its wrapper
-    return float(np.multiply.reduce(s2)), 2.0 * (U * (s * others)) @ Vt
+    s2 = (s * s).tolist()
+    # Π_{j≠i} s_j² and Π s_j² multiplied from j = 0 in order, as np.prod does (on floats: a few singular values)
+    others = [math.prod(s2[:i] + s2[i + 1:]) for i in range(len(s2))]
+    return math.prod(s2), 2.0 * (U * (s * others)) @ Vt
 
 
 @dataclass(frozen=True)
