@@ -124,3 +124,26 @@ def test_bad_construction_is_one_clear_error():
         KinematicSnake(TRACKING.w_h0, np.zeros(8))
     with pytest.raises(ValueError, match="rk4_steps"):
         PlantSettings(0)
+
+
+def test_without_numpys_lapack_the_plant_steps_in_numpy_to_the_same_bits(monkeypatch):
+    """Where NumPy's LAPACK is not reachable from compiled code (linalg.DGELSD None: Accelerate, a distribution's
+    LAPACK) the plant steps by the Python RK4 and np.linalg's gufunc — the same numbers as the compiled loop."""
+    import shintai.snake.plant as plant
+    from shintai.snake.linalg import DGELSD
+
+    if DGELSD is None:
+        pytest.skip("this NumPy's LAPACK is not reachable from compiled code: the plant steps in NumPy already")
+    rng = np.random.default_rng(7)
+    phi0 = rng.uniform(-1, 1, 9)
+    compiled = KinematicSnake([0.1, -0.2, 2.0], phi0, settings=PlantSettings(2))
+    monkeypatch.setattr(plant, "DGELSD", None)
+    fallback = KinematicSnake([0.1, -0.2, 2.0], phi0, settings=PlantSettings(2))
+    for k in range(10):
+        command = {"phi_dot": rng.normal(size=9), "grounded": MODES[k % len(MODES)].astype(float)}
+        for body, lapack in ((fallback, None), (compiled, DGELSD)):
+            monkeypatch.setattr(plant, "DGELSD", lapack)
+            body.apply(command)
+            body.step()
+        assert np.array_equal(compiled.w_h, fallback.w_h) and np.array_equal(compiled.phi, fallback.phi)
+        assert compiled.slip == fallback.slip

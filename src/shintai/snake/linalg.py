@@ -51,16 +51,17 @@ def lstsq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 # -- the same dgelsd called from compiled loops (the kinematic plant's RK4 stages, plant.py) --------------------
 
-def _numpys_lapack(routine: str) -> int:
+def _numpys_lapack(routine: str) -> int | None:
     """Address of LAPACK ``routine`` in the library NumPy's linalg gufuncs are linked against (NumPy 2.4's wheel:
     scipy-openblas, ILP64, symbols ``scipy_<routine>_64_``). dlsym on the gufunc module searches its dependencies,
     so this is the very function ``np.linalg.lstsq`` calls. An address, not a constant of compiled code: it
-    changes per process, so it is passed as an argument (compiled code is cached on disk)."""
-    module = ctypes.CDLL(_umath_linalg.__file__)
+    changes per process, so it is passed as an argument (compiled code is cached on disk). None where NumPy is
+    linked otherwise (Accelerate on macOS, a distribution's LAPACK): the plant then steps in NumPy (plant.py)."""
     try:
+        module = ctypes.CDLL(_umath_linalg.__file__)
         return ctypes.cast(getattr(module, f"scipy_{routine}_64_"), ctypes.c_void_p).value
-    except AttributeError:
-        raise ImportError(f"NumPy's LAPACK has no scipy_{routine}_64_ (pyproject pins numpy 2.4.6's wheel)") from None
+    except (AttributeError, OSError):
+        return None
 
 
 DGELSD = _numpys_lapack("dgelsd")

@@ -21,9 +21,10 @@ import math
 import numpy as np
 from numba import njit
 
+from shintai.core.integrators import rk4_constant_rate_floats
 from shintai.core.runtime import SET, Body, SimulationDiverged, declare
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, PLANT, PlantSettings, SnakeGeometry
-from shintai.snake.linalg import DGELSD, least_squares_workspace, solve_rows
+from shintai.snake.linalg import DGELSD, least_squares_workspace, lstsq, solve_rows
 from shintai.snake.model import check_mode, configuration, constraint_rows, rate_sums
 
 _DIVERGED, _SOLVE_FAILED = 1, 2  # statuses of _advance (0: stepped)
@@ -54,7 +55,7 @@ class KinematicSnake(Body):
         self.slip = 0.0
         n = geometry.n
         self._rows = np.empty((n, 4))  # [A_σ, B_σ φ̇] of one RK4 stage
-        self._lapack = least_squares_workspace(n, 3)
+        self._lapack = least_squares_workspace(n, 3) if DGELSD is not None else None
         self._stages = np.empty((6, max(n, 3)))  # _advance's scratch: k1..k4, the stage's w̃_h and φ
 
     def snapshot(self) -> dict:
@@ -77,7 +78,9 @@ class KinematicSnake(Body):
         rows, w_dot = self._rows, np.empty(3)
         m = constraint_rows(float(w_h[2]), np.asarray(phi, dtype=float), self.geometry.l, self._rates, self.grounded,
                             rows)
-        if not solve_rows(DGELSD, rows, m, w_dot, *self._lapack):
+        if DGELSD is None:  # NumPy's LAPACK not reachable from compiled code: the same solve through its gufunc
+            w_dot = lstsq(rows[:m, :3], rows[:m, 3]) if m else np.zeros(3)
+        elif not solve_rows(DGELSD, rows, m, w_dot, *self._lapack):
             raise np.linalg.LinAlgError("least squares did not converge")
         return w_dot, rows[:m, :3] @ w_dot - rows[:m, 3]
 
@@ -86,9 +89,16 @@ class KinematicSnake(Body):
         k1, residual = self.head_velocity(self.w_h, self.phi)
         self.slip = float(np.abs(residual).max(initial=0.0))
         steps = self.settings.rk4_steps
-        w, phi = self.w_h.copy(), self.phi.copy()
-        status = _advance(DGELSD, w, phi, self.phi_dot, self.dt / steps, steps, k1, self.geometry.l, self._rates,
-                          self.grounded, self._rows, *self._lapack, self._stages)
+        if DGELSD is None:  # the same RK4 in Python (what _advance compiles), the rate by NumPy's lstsq
+            w, phi = rk4_constant_rate_floats(lambda x, q: self.head_velocity(x, q)[0].tolist(), self.w_h.tolist(),
+                                              self.phi.tolist(), self.phi_dot.tolist(), self.dt / steps, steps,
+                                              k1.tolist())
+            w, phi = np.array(w), np.array(phi)
+            status = 0 if np.isfinite(w).all() and np.isfinite(phi).all() else _DIVERGED
+        else:
+            w, phi = self.w_h.copy(), self.phi.copy()
+            status = _advance(DGELSD, w, phi, self.phi_dot, self.dt / steps, steps, k1, self.geometry.l, self._rates,
+                              self.grounded, self._rows, *self._lapack, self._stages)
         if status == _SOLVE_FAILED:
             raise np.linalg.LinAlgError("least squares did not converge")
         if status == _DIVERGED:
