@@ -436,17 +436,16 @@ class Loop:
                 if type(value) is float and channel in scalars:  # a float stays one (no copy to make)
                     command[channel] = command[channel] + value if channel in command else value
                     continue
-                value = np.asarray(value, dtype=float)
                 if c.kind == SET:
                     if channel in set_writers:
                         raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
                                            f"{set_writers[channel]!r} and {m.name!r}")
                     set_writers[channel] = m.name
-                    command[channel] = value.copy()
+                    command[channel] = np.array(value, dtype=float, order="C")  # a copy: the module keeps its own
                 elif channel in command:
-                    command[channel] = command[channel] + value
+                    command[channel] = command[channel] + np.asarray(value, dtype=float)
                 else:
-                    command[channel] = value.copy()
+                    command[channel] = np.array(value, dtype=float, order="C")
         return written
 
     def step(self) -> Snapshot:
