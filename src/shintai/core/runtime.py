@@ -372,7 +372,7 @@ class Loop:
         (delayed) value is due and those with a default."""
         if not self.internal:
             return snapshot
-        view = dict(snapshot)
+        view = snapshot.copy()  # a MujocoBody's Snapshot stays a lazy one (sim.body)
         for c in self._now:
             if c.default is not None:
                 view[c.name] = c.default
