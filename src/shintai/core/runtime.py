@@ -41,6 +41,7 @@ import numpy as np
 from shintai.core.recorder import Recorder
 
 Snapshot = dict  # name -> np.ndarray (or float); always holds "t", the body time in seconds
+_F64 = np.dtype(float)
 Command = dict  # channel name -> np.ndarray
 
 ADD, SET = "add", "set"
@@ -171,6 +172,14 @@ def whole_multiple(span: float, dt: float, what: str) -> int:
     if not is_multiple(span, dt):
         raise ValueError(f"{what} {span} s is not a whole multiple of the body step {dt} s")
     return int(round(span / dt))
+
+
+def fresh_array(value) -> np.ndarray:
+    """``value`` as a new float array (C order) the caller owns: ``np.asarray(value, float).copy()``; a float64
+    array is copied by its own method (the Loop's case each tick: NumPy's constructor parses its arguments first)."""
+    if type(value) is np.ndarray and value.dtype is _F64:
+        return value.copy()
+    return np.array(value, dtype=float, order="C")
 
 
 def add_into(total: Command, part: Mapping | None) -> None:
@@ -441,11 +450,11 @@ class Loop:
                         raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
                                            f"{set_writers[channel]!r} and {m.name!r}")
                     set_writers[channel] = m.name
-                    command[channel] = np.array(value, dtype=float, order="C")  # a copy: the module keeps its own
+                    command[channel] = fresh_array(value)  # a copy: the module keeps its own
                 elif channel in command:
                     command[channel] = command[channel] + np.asarray(value, dtype=float)
                 else:
-                    command[channel] = np.array(value, dtype=float, order="C")
+                    command[channel] = fresh_array(value)
         return written
 
     def step(self) -> Snapshot:
@@ -454,7 +463,7 @@ class Loop:
         if not self._started:
             self.start()
         snap = self.view(self.body.snapshot())
-        command = {k: v.copy() for k, v in self.base.items()}
+        command = {k: v.copy() for k, v in self.base.items()} if self.base else {}
         set_writers = dict(self._base_writers)
         written = list(self.base)  # shown with what the first stage writes
         tick, held, now, clock = self.tick, self.held, self._now_names, time.perf_counter

@@ -96,7 +96,10 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
 
 def mean_yaw(yaws: list[float]) -> float:
     """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
-    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws[1:]) / len(yaws)  # the first's own term is 0
+    first, turn = yaws[0], 0  # the first's own term is 0 (an int, as sum's start)
+    for y in yaws[1:]:
+        turn += wrap_pi(y - first)
+    return first + turn / len(yaws)
 
 
 def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
@@ -368,8 +371,9 @@ class StabilizerModule(Module):
         dt = self.period
         com = self._com_now.tolist()
         prev, v = self.com, self.com_vel
-        a = 1.0 - COM_VEL_FILTER
-        self.com_vel = [COM_VEL_FILTER * v[i] + a * (com[i] - prev[i]) / dt for i in range(3)]
+        f, a = COM_VEL_FILTER, 1.0 - COM_VEL_FILTER  # ẋ ← 0.9 ẋ + 0.1 Δx/Δt per axis
+        self.com_vel = [f * v[0] + a * (com[0] - prev[0]) / dt, f * v[1] + a * (com[1] - prev[1]) / dt,
+                        f * v[2] + a * (com[2] - prev[2]) / dt]
         self.com = com
         cr = snapshot["com_ref"].tolist()
         zr = snapshot["zmp_ref"].tolist()
