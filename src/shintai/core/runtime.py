@@ -174,14 +174,6 @@ def whole_multiple(span: float, dt: float, what: str) -> int:
     return int(round(span / dt))
 
 
-def fresh_array(value) -> np.ndarray:
-    """``value`` as a new float array (C order) the caller owns: ``np.asarray(value, float).copy()``; a float64
-    array is copied by its own method (the Loop's case each tick: NumPy's constructor parses its arguments first)."""
-    if type(value) is np.ndarray and value.dtype is _F64:
-        return value.copy()
-    return np.array(value, dtype=float, order="C")
-
-
 def add_into(total: Command, part: Mapping | None) -> None:
     """Add a contribution into the running command total (parallel processing: contributions add)."""
     if not part:
@@ -350,6 +342,7 @@ class Loop:
         self._base_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
         self._now = [c for c in self.internal.values() if c.delay == 0]
         self._now_names = frozenset(c.name for c in self._now)
+        self._now_defaults = [(c.name, c.default) for c in self._now if c.default is not None]  # what view() shows
         self._later = {n: deque([c.default] * c.delay, maxlen=c.delay) for n, c in self.internal.items() if c.delay}
         self._started = False
         for m in self.modules:
@@ -382,9 +375,8 @@ class Loop:
         if not self.internal:
             return snapshot
         view = snapshot.copy()  # a MujocoBody's Snapshot stays a lazy one (sim.body)
-        for c in self._now:
-            if c.default is not None:
-                view[c.name] = c.default
+        for name, default in self._now_defaults:
+            view[name] = default
         for name, queue in self._later.items():
             value = queue[0]
             if value is not None:
@@ -432,7 +424,7 @@ class Loop:
     def _combine(self, command: Command, stage: list, set_writers: dict) -> list:
         """Add the held contributions of the ``stage``'s modules into ``command``; returns the channels they wrote."""
         written = []
-        channels, scalars, held = self.channels, self._body_scalars, self.held
+        channels, scalars, held, ndarray = self.channels, self._body_scalars, self.held, np.ndarray
         for i, m, _, _ in stage:
             part = held[i]
             if not part:
@@ -450,11 +442,13 @@ class Loop:
                         raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
                                            f"{set_writers[channel]!r} and {m.name!r}")
                     set_writers[channel] = m.name
-                    command[channel] = fresh_array(value)  # a copy: the module keeps its own
                 elif channel in command:
                     command[channel] = command[channel] + np.asarray(value, dtype=float)
-                else:
-                    command[channel] = fresh_array(value)
+                    continue
+                # a float array the loop owns (the module keeps its own): np.asarray(value, float).copy(), a float64
+                # array copied by its own method (NumPy's constructor parses its arguments first)
+                command[channel] = (value.copy() if type(value) is ndarray and value.dtype is _F64
+                                    else np.array(value, dtype=float, order="C"))
         return written
 
     def step(self) -> Snapshot:

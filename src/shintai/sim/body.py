@@ -106,7 +106,7 @@ class Snapshot(dict):
     __slots__ = ("_values", "_layout")
 
     def __init__(self, t: float, values: np.ndarray, layout: SnapshotLayout | None):
-        super().__init__(t=t)
+        self["t"] = t  # (a dict is made empty; dict's own __init__ only fills one)
         self._values, self._layout = values, layout
 
     def __missing__(self, key):
@@ -321,6 +321,8 @@ class MujocoBody(Body):
             if value.shape != ctrl.shape:
                 raise ValueError(f"command 'ctrl' has shape {value.shape}, the model has {ctrl.shape} actuators")
             ctrl[:] = value
+            if len(command) == 1:  # the whole vector only (a stack's leg IK)
+                return
         actuators = self.ids["actuator"]
         for channel, value in command.items():
             if channel == "ctrl":
@@ -357,7 +359,7 @@ class MujocoBody(Body):
         # MuJoCo checked qpos/qvel/qacc at the start of each physics step (the warnings above);
         # the state its last integration produced is checked here, NaN failing the comparison.
         q, v = self._qpos, self._qvel
-        if not q @ q + v @ v < _HUGE_SQ:
+        if not q.dot(q) + v.dot(v) < _HUGE_SQ:  # (the method: @ on two vectors goes through matmul's ufunc machinery)
             raise SimulationDiverged(self._state_message(t0))
 
     def _state_message(self, t0: float) -> str:
