@@ -95,6 +95,50 @@ def test_snapshot_is_a_copy():
     assert snap["qpos"][0] == 0.0 and snap["ctrl"][0] == 0.0 and snap["angle"][0] == 0.0
 
 
+def eager_snapshot(body: MujocoBody) -> dict:
+    """The snapshot as it was formed before its entries were read lazily: every entry at once."""
+    values = np.concatenate((body.data.qpos, body.data.qvel, body.data.ctrl, body.data.sensordata))
+    snap = {"t": body.data.time}
+    snap.update((k, values[w]) for k, w in body._views)
+    snap.update((k, values[i:i + 1].tolist()[0]) for k, i in body._scalars)
+    return snap
+
+
+def same_entries(a: dict, b: dict) -> bool:
+    return list(a) == list(b) and all(np.array_equal(a[k], b[k]) and type(a[k]) is type(b[k]) for k in a)
+
+
+def test_a_lazy_snapshot_reads_as_the_eager_dict():
+    body = MujocoBody(PENDULUM)
+    body.apply({"servo": 0.5})
+    settle(body, 0.05)
+    eager = eager_snapshot(body)
+    snap = body.snapshot()
+    assert len(snap) == len(eager) and "q:hinge" in snap and "nothing" not in snap and 3 not in snap
+    assert snap.get("q:hinge") == eager["q:hinge"] and snap.get("nothing", 7) == 7
+    assert snap["qpos"] is snap["qpos"]  # formed once, then kept
+    with pytest.raises(KeyError):
+        snap["nothing"]
+    view = snap.copy()  # the Loop's view: unread entries stay unread, written ones stay in this copy
+    view["ref"] = np.ones(2)
+    assert "ref" not in snap and np.array_equal(view["qvel"], eager["qvel"])
+    assert same_entries(dict(snap), eager) and same_entries({**view}, {**eager, "ref": np.ones(2)})
+    assert list(body.snapshot()) == list(eager) and same_entries(dict(body.snapshot().items()), eager)
+    import pickle
+    assert same_entries(pickle.loads(pickle.dumps(body.snapshot())), eager)
+
+
+def test_a_lazy_snapshot_keeps_an_overwritten_entry_in_its_place():
+    body = MujocoBody(PENDULUM)
+    snap = body.snapshot()
+    snap["qvel"] = np.full(2, 9.0)
+    snap["extra"] = 1.0
+    keys = list(snap)
+    assert keys[:2] == ["t", "qpos"] and keys[2] == "qvel" and keys[-1] == "extra" and snap["qvel"][0] == 9.0
+    del snap["qpos"]
+    assert "qpos" not in snap and snap.get("qpos") is None
+
+
 def test_free_joint_keys_are_vectors():
     snap = MujocoBody(BOX).snapshot()
     assert snap["q:free"].shape == (7,) and snap["dq:free"].shape == (6,)

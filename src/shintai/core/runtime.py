@@ -41,6 +41,7 @@ import numpy as np
 from shintai.core.recorder import Recorder
 
 Snapshot = dict  # name -> np.ndarray (or float); always holds "t", the body time in seconds
+_F64 = np.dtype(float)
 Command = dict  # channel name -> np.ndarray
 
 ADD, SET = "add", "set"
@@ -341,6 +342,7 @@ class Loop:
         self._base_writers = {k: "base" for k in self.base if self.channels[k].kind == SET}
         self._now = [c for c in self.internal.values() if c.delay == 0]
         self._now_names = frozenset(c.name for c in self._now)
+        self._now_defaults = [(c.name, c.default) for c in self._now if c.default is not None]  # what view() shows
         self._later = {n: deque([c.default] * c.delay, maxlen=c.delay) for n, c in self.internal.items() if c.delay}
         self._started = False
         for m in self.modules:
@@ -372,10 +374,9 @@ class Loop:
         (delayed) value is due and those with a default."""
         if not self.internal:
             return snapshot
-        view = dict(snapshot)
-        for c in self._now:
-            if c.default is not None:
-                view[c.name] = c.default
+        view = snapshot.copy()  # a MujocoBody's Snapshot stays a lazy one (sim.body)
+        for name, default in self._now_defaults:
+            view[name] = default
         for name, queue in self._later.items():
             value = queue[0]
             if value is not None:
@@ -423,7 +424,7 @@ class Loop:
     def _combine(self, command: Command, stage: list, set_writers: dict) -> list:
         """Add the held contributions of the ``stage``'s modules into ``command``; returns the channels they wrote."""
         written = []
-        channels, scalars, held = self.channels, self._body_scalars, self.held
+        channels, scalars, held, ndarray = self.channels, self._body_scalars, self.held, np.ndarray
         for i, m, _, _ in stage:
             part = held[i]
             if not part:
@@ -436,17 +437,18 @@ class Loop:
                 if type(value) is float and channel in scalars:  # a float stays one (no copy to make)
                     command[channel] = command[channel] + value if channel in command else value
                     continue
-                value = np.asarray(value, dtype=float)
                 if c.kind == SET:
                     if channel in set_writers:
                         raise ChannelError(f"set channel {channel!r} has two writers in one tick: "
                                            f"{set_writers[channel]!r} and {m.name!r}")
                     set_writers[channel] = m.name
-                    command[channel] = value.copy()
                 elif channel in command:
-                    command[channel] = command[channel] + value
-                else:
-                    command[channel] = value.copy()
+                    command[channel] = command[channel] + np.asarray(value, dtype=float)
+                    continue
+                # a float array the loop owns (the module keeps its own): np.asarray(value, float).copy(), a float64
+                # array copied by its own method (NumPy's constructor parses its arguments first)
+                command[channel] = (value.copy() if type(value) is ndarray and value.dtype is _F64
+                                    else np.array(value, dtype=float, order="C"))
         return written
 
     def step(self) -> Snapshot:
@@ -455,7 +457,7 @@ class Loop:
         if not self._started:
             self.start()
         snap = self.view(self.body.snapshot())
-        command = {k: v.copy() for k, v in self.base.items()}
+        command = {k: v.copy() for k, v in self.base.items()} if self.base else {}
         set_writers = dict(self._base_writers)
         written = list(self.base)  # shown with what the first stage writes
         tick, held, now, clock = self.tick, self.held, self._now_names, time.perf_counter

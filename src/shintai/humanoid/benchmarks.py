@@ -11,7 +11,7 @@
 
 The tricycle and standing benches also say where the tick went (:func:`tick_shares`): physics (the run's own
 mj_step calls, and their ratio to bare mj_step), control (the modules) and the rest (snapshot, combining,
-recording, the loop).
+recording, the loop); the standing bench splits that rest too (:func:`standing_anatomy`).
 
 Measured histories are in git (this docstring's earlier versions) and the benchmarks' ``bench.json``.
 """
@@ -164,6 +164,73 @@ def leg_ik_cost(ticks: int = 500) -> dict:
             "max_joint_difference_rad": float(np.abs(np.array(q_dls) - np.array(q_analytic)).max())}
 
 
+class CallClock:
+    """The wall time spent in one method of ``owner`` during a run (``seconds``), the method wrapped on the instance
+    (as :class:`PhysicsClock` wraps a body's step); ``calls`` counts them."""
+
+    def __init__(self, owner, name: str):
+        self.seconds, self.calls, method = 0.0, 0, getattr(owner, name)
+        clock = time.perf_counter
+
+        def timed(*args):
+            t0 = clock()
+            out = method(*args)
+            self.seconds += clock() - t0
+            self.calls += 1
+            return out
+
+        setattr(owner, name, timed)
+
+
+def wrapper_cost(calls: int = 20000) -> float:
+    """Seconds one :class:`CallClock` adds to a call (a wrapped no-op against the bare one): what
+    :func:`standing_anatomy` takes off the loop's own share for each timed call."""
+
+    class Noop:
+        def f(self):
+            return None
+
+    bare, wrapped = Noop(), Noop()
+    CallClock(wrapped, "f")
+
+    def loop(obj):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            obj.f()
+        return time.perf_counter() - t0
+
+    return max(0.0, min(loop(wrapped) for _ in range(3)) - min(loop(bare) for _ in range(3))) / calls
+
+
+def standing_anatomy(seconds: float) -> dict:
+    """One more standing run with the rest of the tick timed piece by piece (us per tick): the body's
+    ``snapshot`` and the Loop's ``view`` of it, the Loop's combining of the contributions (``_combine``, every
+    stage), the body's ``apply``; inside the physics share, MuJoCo's steps and the divergence check; the loop's own
+    share (its stage walk, the modules' timing, the dicts of the tick, freeing the last tick's objects) is what is
+    left, the timers' own cost (:func:`wrapper_cost`) taken off. The timers slow this run: it is not one of the
+    ratio's pairs."""
+    from shintai.humanoid.balance.standing import Standing
+
+    st = Standing(hold=seconds + 1.0)
+    loop, body = st.loop, st.body
+    parts = {"snapshot": CallClock(body, "snapshot"), "view": CallClock(loop, "view"),
+             "combine": CallClock(loop, "_combine"), "apply": CallClock(body, "apply"),
+             "check": CallClock(body, "_check_divergence")}
+    physics = PhysicsClock(body)
+    t0 = time.perf_counter()
+    st.run(seconds)
+    wall = time.perf_counter() - t0
+    ticks = loop.tick
+    control = sum(t.total_s for t in loop.timing.values())
+    timed_calls = sum(c.calls for c in parts.values()) + ticks  # and the physics clock's
+    own = wall - physics.seconds - control - sum(c.seconds for k, c in parts.items() if k != "check")
+    own -= timed_calls * wrapper_cost()
+    out = {f"rest_{k}_us": 1e6 * c.seconds / ticks for k, c in parts.items() if k != "check"}
+    out.update(rest_loop_us=1e6 * own / ticks, physics_check_us=1e6 * parts["check"].seconds / ticks,
+               physics_mj_step_us=1e6 * (physics.seconds - parts["check"].seconds) / ticks)
+    return out
+
+
 @benchmark("humanoid.standing-overhead",
            "HRP2 standing on the stabilizer stack (LIP tracking, distributor, foot damping, leg IK): the 4 ms Loop tick vs bare mj_step")
 def standing_overhead(seconds: float = 4.0, pairs: int = 5) -> dict:
@@ -172,7 +239,8 @@ def standing_overhead(seconds: float = 4.0, pairs: int = 5) -> dict:
     interleaved pairs (a stack run, then a bare run): ``overhead_ratio`` is the median of the pairs' ratios (a
     shared machine's load changes between pairs far more than within one), ``overhead_ratio_cpu`` the same on the
     process's CPU time (what other processes' load leaves out); the tick's shares and each module's mean time per
-    call (the Loop's ``timing``) are the fastest stack run's."""
+    call (the Loop's ``timing``) are the fastest stack run's; ``rest_*`` and ``physics_*`` split the rest of the tick
+    and its physics in one more run (:func:`standing_anatomy`)."""
     from shintai.humanoid.balance.standing import Standing
 
     def run():
@@ -203,4 +271,5 @@ def standing_overhead(seconds: float = 4.0, pairs: int = 5) -> dict:
             "overhead_ratio": float(np.median(ratios)), "overhead_ratio_min": min(ratios),
             "overhead_ratio_max": max(ratios), "overhead_ratio_cpu": float(np.median(cpu_ratios)), "pairs": pairs,
             "tick_us": 1e6 * wall / ticks, "bare_tick_us": 1e6 * bare / ticks,
-            **modules, "physics_and_loop_us": rest, **tick_shares("", wall, physics, st.loop, bare)}
+            **modules, "physics_and_loop_us": rest, **tick_shares("", wall, physics, st.loop, bare),
+            **standing_anatomy(seconds)}

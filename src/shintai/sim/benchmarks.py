@@ -3,7 +3,8 @@ rendered after the run against rendering during it.
 
 The model is a mid-size chain (hinge links with position servos and an IMU/force sensor set), the
 kind of body the humanoids and snakes are. All variants take the same physics steps; times are
-per physics step except ``snapshot_us`` (per call).
+per physics step except ``snapshot_us`` and ``snapshot_whole_us`` (per call: a snapshot as a Loop takes it, its
+entries formed when read, and one with every entry formed, what the snapshot cost before issue 30 made it lazy).
 """
 
 from __future__ import annotations
@@ -59,6 +60,11 @@ def snapshots(model: mujoco.MjModel, steps: int) -> float:
     return timed(MujocoBody(model).snapshot, steps)
 
 
+def whole_snapshots(model: mujoco.MjModel, steps: int) -> float:
+    body = MujocoBody(model)
+    return timed(lambda: body.snapshot().keys(), steps)  # keys() forms every entry
+
+
 def in_loop(model: mujoco.MjModel, steps: int, substeps: int = 1) -> float:
     """``steps`` physics steps as ``steps / substeps`` Loop steps with one module holding a posture."""
     body = MujocoBody(model, substeps)
@@ -77,13 +83,15 @@ def timed(fn, calls: int) -> float:
 
 @benchmark("sim.body-overhead", "MujocoBody step + snapshot + Loop vs bare mj_step, same physics steps")
 def body_overhead(steps: int = 4000, links: int = 15, repeats: int = 5) -> dict:
-    """Per physics step (us): bare mj_step, MujocoBody.step, snapshot, a Loop at 1 and 4 substeps.
+    """Per physics step (us): bare mj_step, MujocoBody.step, snapshot (lazy, and with every entry read), a Loop at
+    1 and 4 substeps.
 
     Variants are interleaved and the best of ``repeats`` kept, to damp noise from other processes.
     """
     model = mujoco.MjModel.from_xml_string(chain_xml(links))
     variants = {"bare_mj_step": lambda: bare(model, steps), "body_step": lambda: body_only(model, steps),
-                "snapshot": lambda: snapshots(model, steps), "loop_step": lambda: in_loop(model, steps),
+                "snapshot": lambda: snapshots(model, steps), "snapshot_whole": lambda: whole_snapshots(model, steps),
+                "loop_step": lambda: in_loop(model, steps),
                 "loop_4_substeps": lambda: in_loop(model, steps, 4)}
     bare(model, 500)  # warm-up
     best = dict.fromkeys(variants, float("inf"))

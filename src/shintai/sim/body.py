@@ -12,9 +12,11 @@ Conventions
   MuJoCo sensor under its own name as an array of shape ``(sensor dim,)`` (force/torque at sites,
   framequat/gyro/accelerometer of an IMU, jointpos, ...). Per-joint keys are also there:
   ``"q:<joint>"`` and ``"dq:<joint>"`` for every named joint (a float for hinge and slide joints,
-  an array for ball and free joints); at about 1 us for 30 joints they are always there.
+  an array for ball and free joints).
   Values do not change as the simulation runs on: a snapshot makes one copy of
-  ``[qpos, qvel, ctrl, sensordata]`` and its arrays are views of that copy. MuJoCo computes
+  ``[qpos, qvel, ctrl, sensordata]`` and its arrays are views of that copy. The entries are formed from
+  that copy when first read (:class:`Snapshot`, a dict): a 4 ms humanoid tick reads a handful of its ~80
+  keys, and forming them all cost 7 % of HRP2's standing tick (issue 30, sampled). MuJoCo computes
   sensors at the *start* of a physics step, so sensor values (and ``site_pos`` etc.) lag
   ``qpos``/``qvel`` by one physics timestep; call :meth:`MujocoBody.forward` when that matters.
 * **Command.** A channel is an actuator name (a scalar) or ``"ctrl"`` (the whole vector); values go
@@ -40,7 +42,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from shintai.core.runtime import Body, SimulationDiverged, Snapshot, declare
+from shintai.core.runtime import Body, SimulationDiverged, declare
 
 ModelSource = str | os.PathLike | mujoco.MjSpec | mujoco.MjModel
 
@@ -66,6 +68,148 @@ _BAD_FIRST = int(_BAD_WARNINGS[0][0])
 assert [int(w) for w, _, _ in _BAD_WARNINGS] == list(range(_BAD_FIRST, _BAD_FIRST + len(_BAD_WARNINGS)))
 _HUGE = 1e10
 _HUGE_SQ = _HUGE**2
+
+
+_ABSENT = object()
+
+
+class SnapshotLayout:
+    """Where each snapshot entry sits in the concatenation ``[qpos, qvel, ctrl, sensordata]`` (built once per body):
+    ``where`` (key → a slice for an array entry, an index for a float one), and the same as the sequences that form
+    every entry at once (:meth:`Snapshot.whole`)."""
+
+    def __init__(self, views: list[tuple[str, slice]], scalars: list[tuple[str, int]]):
+        self.where = {**dict(views), **dict(scalars)}
+        self.view_keys, self.view_slices = [k for k, _ in views], [w for _, w in views]
+        self.scalar_keys = [k for k, _ in scalars]
+        self.scalar_items = operator.itemgetter(*[i for _, i in scalars], 0, 0)  # ≥ 2 indices: a tuple
+        self.scalar_end = 1 + max((i for _, i in scalars), default=-1)
+
+    def entries(self, values: np.ndarray) -> dict:
+        """Every body entry of ``values``, in order."""
+        out = dict(zip(self.view_keys, map(values.__getitem__, self.view_slices)))
+        if self.scalar_keys:
+            out.update(zip(self.scalar_keys, self.scalar_items(values[:self.scalar_end].tolist())))
+        return out
+
+
+class Snapshot(dict):
+    """A :class:`MujocoBody` snapshot: ``{"t": time}`` and the body's entries, each formed from ``values`` (the
+    snapshot's one copy of ``[qpos, qvel, ctrl, sensordata]``, read through a :class:`SnapshotLayout`) on its first
+    read and kept, so every read gives the same object.
+
+    It is the eager dict to its readers: ``get``, ``in`` and ``len`` count the unread entries; iterating, comparing,
+    copying it into a plain dict (``dict(s)``, ``{**s}``), printing or pickling it forms every entry first, in the
+    order the eager dict had (``t``, the body's entries in layout order, then what was written into it);
+    :meth:`copy` keeps the unread entries unread (the :class:`~shintai.core.runtime.Loop`'s per-tick view)."""
+
+    __slots__ = ("_values", "_layout")
+
+    def __init__(self, t: float, values: np.ndarray, layout: SnapshotLayout | None):
+        self["t"] = t  # (a dict is made empty; dict's own __init__ only fills one)
+        self._values, self._layout = values, layout
+
+    def __missing__(self, key):
+        where = self._layout.where.get(key) if self._layout is not None and type(key) is str else None
+        if where is None:
+            raise KeyError(key)
+        # a float as tolist gives it (.item), or a view of the copy
+        value = self._values.item(where) if type(where) is int else self._values[where]
+        dict.__setitem__(self, key, value)
+        return value
+
+    def _unread(self, key) -> bool:
+        return self._layout is not None and type(key) is str and key in self._layout.where
+
+    def get(self, key, default=None):
+        value = dict.get(self, key, _ABSENT)
+        if value is _ABSENT:
+            return self.__missing__(key) if self._unread(key) else default
+        return value
+
+    def __contains__(self, key) -> bool:
+        return dict.__contains__(self, key) or self._unread(key)
+
+    def __len__(self) -> int:
+        if self._layout is None:
+            return dict.__len__(self)
+        return dict.__len__(self) + sum(1 for k in self._layout.where if not dict.__contains__(self, k))
+
+    def copy(self) -> Snapshot:
+        twin = Snapshot(0.0, self._values, self._layout)
+        dict.update(twin, dict.items(self))
+        return twin
+
+    def whole(self) -> dict:
+        """Every entry, as the plain dict the eager snapshot was (this one's entries all formed, in its order)."""
+        self._form_all()
+        return dict(dict.items(self))
+
+    def _form_all(self) -> None:
+        if self._layout is None:
+            return
+        body = self._layout.entries(self._values)
+        if dict.__len__(self) > 1:  # entries read (the same objects kept) or written: in their places
+            own = dict(dict.items(self))
+            t = own.pop("t", _ABSENT)
+            for k in own.keys() & body.keys():
+                body[k] = own.pop(k)
+            dict.clear(self)
+            if t is not _ABSENT:
+                dict.__setitem__(self, "t", t)
+            dict.update(self, body)
+            dict.update(self, own)
+        else:
+            dict.update(self, body)
+        self._layout = None  # all formed: a plain dict from here on
+
+    def keys(self):
+        self._form_all()
+        return dict.keys(self)
+
+    def values(self):
+        self._form_all()
+        return dict.values(self)
+
+    def items(self):
+        self._form_all()
+        return dict.items(self)
+
+    def __iter__(self):
+        self._form_all()
+        return dict.__iter__(self)
+
+    def __eq__(self, other) -> bool:
+        return self.whole() == (other.whole() if isinstance(other, Snapshot) else other)
+
+    def __ne__(self, other) -> bool:
+        return not self == other
+
+    __hash__ = None  # a dict's
+
+    def __repr__(self) -> str:
+        return repr(self.whole())
+
+    def __or__(self, other):
+        return self.whole() | other
+
+    def __reduce__(self):
+        return dict, (self.whole(),)
+
+    def __delitem__(self, key) -> None:
+        self._form_all()
+        dict.__delitem__(self, key)
+
+    def pop(self, key, *default):
+        self._form_all()
+        return dict.pop(self, key, *default)
+
+    def popitem(self):
+        self._form_all()
+        return dict.popitem(self)
+
+    def setdefault(self, key, default=None):
+        return self[key] if key in self else dict.setdefault(self, key, default)
 
 
 def load_model(source: ModelSource) -> mujoco.MjModel:
@@ -116,11 +260,7 @@ class MujocoBody(Body):
         self.before_physics: list[Callable[[], None]] = []
         self._contact_saved: dict[int, tuple[int, int]] = {}
         self._views, self._scalars = self._snapshot_layout()
-        # the layout as the key and index sequences snapshot() zips (built once)
-        self._view_keys, self._view_slices = [k for k, _ in self._views], [w for _, w in self._views]
-        self._scalar_keys = [k for k, _ in self._scalars]
-        self._scalar_items = operator.itemgetter(*[i for _, i in self._scalars], 0, 0)  # ≥ 2 indices: a tuple
-        self._nqv = self.model.nq + self.model.nv
+        self._layout = SnapshotLayout(self._views, self._scalars)  # what a Snapshot reads its entries through
         # live views into MjData, read after every step
         self._bad_counts = self.data.warning.number[_BAD_FIRST:_BAD_FIRST + len(_BAD_WARNINGS)]
         self._qpos, self._qvel = self.data.qpos, self.data.qvel
@@ -171,12 +311,7 @@ class MujocoBody(Body):
         return self.data.time
 
     def snapshot(self) -> Snapshot:
-        values = np.concatenate(self._state)  # the one copy
-        snap = {"t": self.data.time}
-        snap.update(zip(self._view_keys, map(values.__getitem__, self._view_slices)))
-        if self._scalars:
-            snap.update(zip(self._scalar_keys, self._scalar_items(values[:self._nqv].tolist())))
-        return snap
+        return Snapshot(self.data.time, np.concatenate(self._state), self._layout)  # the one copy, read when read
 
     def apply(self, command: Mapping[str, np.ndarray | float]) -> None:
         ctrl = self.data.ctrl
@@ -186,6 +321,8 @@ class MujocoBody(Body):
             if value.shape != ctrl.shape:
                 raise ValueError(f"command 'ctrl' has shape {value.shape}, the model has {ctrl.shape} actuators")
             ctrl[:] = value
+            if len(command) == 1:  # the whole vector only (a stack's leg IK)
+                return
         actuators = self.ids["actuator"]
         for channel, value in command.items():
             if channel == "ctrl":
@@ -222,7 +359,7 @@ class MujocoBody(Body):
         # MuJoCo checked qpos/qvel/qacc at the start of each physics step (the warnings above);
         # the state its last integration produced is checked here, NaN failing the comparison.
         q, v = self._qpos, self._qvel
-        if not q @ q + v @ v < _HUGE_SQ:
+        if not q.dot(q) + v.dot(v) < _HUGE_SQ:  # (the method: @ on two vectors goes through matmul's ufunc machinery)
             raise SimulationDiverged(self._state_message(t0))
 
     def _state_message(self, t0: float) -> str:

@@ -189,13 +189,16 @@ class PreviewController:
         without a dozen tiny arrays a tick)."""
         g = self.gains
         x = self.x
-        (px, py), (rx, ry) = self.c.dot(x).tolist(), window[0].tolist()
-        e = self.err_sum
-        e[0], e[1] = e[0] + (px - rx), e[1] + (py - ry)  # Σ e += c x(k) − p_ref(k)
-        (ex, ey), (fx, fy), (wx, wy) = e.tolist(), g.gx.dot(x).tolist(), g.gp.dot(window[1:]).tolist()
+        (px, py), (rx, ry), (ex, ey) = self.c.dot(x).tolist(), window[0].tolist(), self.err_sum.tolist()
+        ex, ey = ex + (px - rx), ey + (py - ry)  # Σ e += c x(k) − p_ref(k)
+        self.err_sum[0], self.err_sum[1] = ex, ey
+        (fx, fy), (wx, wy) = g.gx.dot(x).tolist(), g.gp.dot(window[1:]).tolist()
         ux, uy = -g.gi * ex - fx - wx, -g.gi * ey - fy - wy  # u(k) = −G_i Σ e − G_x x(k) − Σ G_p(j) p_ref(k+j)
-        # x(k+1) = A x(k) + b u(k)
-        self.x = np.array([[a0 + bi * ux, a1 + bi * uy] for (a0, a1), bi in zip(self.A.dot(x).tolist(), self._b)])
+        # x(k+1) = A x(k) + b u(k), row by row (position, velocity, acceleration) × (x, y)
+        (a0, a1), (a2, a3), (a4, a5) = self.A.dot(x).tolist()
+        b0, b1, b2 = self._b
+        self.x = np.array([a0 + b0 * ux, a1 + b0 * uy, a2 + b1 * ux, a3 + b1 * uy, a4 + b2 * ux,
+                           a5 + b2 * uy]).reshape(3, 2)
         return self.x
 
 

@@ -96,7 +96,10 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
 
 def mean_yaw(yaws: list[float]) -> float:
     """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
-    return yaws[0] + sum(wrap_pi(y - yaws[0]) for y in yaws[1:]) / len(yaws)  # the first's own term is 0
+    first, turn = yaws[0], 0  # the first's own term is 0 (an int, as sum's start)
+    for y in yaws[1:]:
+        turn += wrap_pi(y - first)
+    return first + turn / len(yaws)
 
 
 def into_yawed(x: float, y: float, psi: float) -> tuple[float, float]:
@@ -238,19 +241,24 @@ class FootSensors:
             f_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_force")])
             t_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_torque")])
             self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
-        self._xmat, self._xpos, self._com, self._sensors = d.site_xmat, d.site_xpos, d.subtree_com, d.sensordata
+        self._sensors = d.sensordata
+        # per side, its rows of MjData as views formed once: sensor site attitude and position, the foot's mass centre,
+        # sole point and sole attitude
+        self._views = {s: (d.site_xmat[site], d.site_xpos[site], d.subtree_com[link], d.site_xpos[sole], d.site_xmat[sole])
+                       for s, (site, sole, link, *_) in self.rows.items()}
 
     def read_floats(self) -> dict[str, tuple[float, ...]]:
         """:meth:`read` on Python floats: side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw), the yaw
         the angle of the sole's x axis projected on the floor (rad, world)."""
         sensors = self._sensors.tolist()
         out = {}
-        for s, (site, sole, link, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
-            r = self._xmat[site].tolist()
+        for s, (_, _, _, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
+            site_rot, site_pos, foot_com, sole_pos, sole_rot = self._views[s]
+            r = site_rot.tolist()
             fx, fy, fz = sensors[f_adr:f_adr + 3]
             tx, ty, tz = sensors[t_adr:t_adr + 3]
-            px, py, pz = self._xpos[site].tolist()
-            cx, cy, cz = self._com[link].tolist()
+            px, py, pz = site_pos.tolist()
+            cx, cy, cz = foot_com.tolist()
             cx, cy, cz = cx - px, cy - py, cz - pz
             # reaction about the sensor: f = −R f_s − m g, τ = −R τ_s − (c × m g)
             Fx = -(r[0] * fx + r[1] * fy + r[2] * fz) - gx
@@ -258,11 +266,11 @@ class FootSensors:
             Fz = -(r[6] * fx + r[7] * fy + r[8] * fz) - gz
             Tx = -(r[0] * tx + r[1] * ty + r[2] * tz) - (cy * gz - cz * gy)
             Ty = -(r[3] * tx + r[4] * ty + r[5] * tz) - (cz * gx - cx * gz)
-            sx, sy, sz = self._xpos[sole].tolist()
+            sx, sy, sz = sole_pos.tolist()
             lx, ly, lz = px - sx, py - sy, pz - sz  # sensor − sole point
             tau_x = Tx + ly * Fz - lz * Fy  # the reaction torque about the sole point
             tau_y = Ty + lz * Fx - lx * Fz
-            q = self._xmat[sole].tolist()
+            q = sole_rot.tolist()
             out[s] = (Fz, -tau_x, -tau_y, sx, sy, sz, math.atan2(q[3], q[0]))
         return out
 
@@ -332,6 +340,7 @@ class StabilizerModule(Module):
         self._root = body.id("body", "waist")
         self.force_difference = ForceDifferenceControl(dt=period)
         self.sensors = FootSensors(body)
+        self._com_now = body.data.subtree_com[self._root]  # the whole-body CoM, a live view of MjData
         self.com = [0.0, 0.0, 0.0]
         self.com_vel = [0.0, 0.0, 0.0]
         self._prev_ref = None
@@ -360,10 +369,11 @@ class StabilizerModule(Module):
 
     def update(self, snapshot):
         dt = self.period
-        com = self.body.data.subtree_com[self._root].tolist()
+        com = self._com_now.tolist()
         prev, v = self.com, self.com_vel
-        a = 1.0 - COM_VEL_FILTER
-        self.com_vel = [COM_VEL_FILTER * v[i] + a * (com[i] - prev[i]) / dt for i in range(3)]
+        f, a = COM_VEL_FILTER, 1.0 - COM_VEL_FILTER  # ẋ ← 0.9 ẋ + 0.1 Δx/Δt per axis
+        self.com_vel = [f * v[0] + a * (com[0] - prev[0]) / dt, f * v[1] + a * (com[1] - prev[1]) / dt,
+                        f * v[2] + a * (com[2] - prev[2]) / dt]
         self.com = com
         cr = snapshot["com_ref"].tolist()
         zr = snapshot["zmp_ref"].tolist()
@@ -390,8 +400,13 @@ class StabilizerModule(Module):
             ay = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][1]) for i in stance) / n
             rx += self._ref_ankle_dx(snapshot, stance)
 
+        c, s = math.cos(psi), math.sin(psi)
+
+        def turn(x, y):  # into_yawed(x, y, ψ), its cosine and sine formed once a tick
+            return c * x + s * y, -s * x + c * y
+
         def to_ref(x, y):  # a world point into the reference stance frame: Rz(−ψ)(p − a) + r
-            x, y = into_yawed(x - ax, y - ay, psi)
+            x, y = turn(x - ax, y - ay)
             return x + rx, y + ry
 
         # measured ZMP of the feet in contact (the sole points on the floor plane): Σ(a f + (τ_y, −τ_x)) / Σ f
@@ -407,13 +422,13 @@ class StabilizerModule(Module):
             err = self.tilt.update(snapshot)
         if self.lip and total > 0:
             cx, cy = to_ref(com[0], com[1])
-            vx, vy = into_yawed(self.com_vel[0], self.com_vel[1], psi)
+            vx, vy = turn(self.com_vel[0], self.com_vel[1])
             if self.com_reading != "world":  # the offset from the stance feet ("imu": through the estimated attitude)
                 ex, ey = com[0] - ax, com[1] - ay
                 if self.tilt is not None:
                     az = sum(feet_z) / n
                     ex, ey, _ = (err @ np.array([ex, ey, com[2] - az])).tolist()
-                cx, cy = into_yawed(ex, ey, psi)
+                cx, cy = turn(ex, ey)
                 cx, cy = cx + rx, cy + ry
                 if self._read_prev is not None and self._read_support == support:
                     f = COM_VEL_FILTER
@@ -423,22 +438,23 @@ class StabilizerModule(Module):
                 vx, vy = self._read_vel
             self.read_com = (cx, vx)
             # [55] Eq. 26 (lip_feedback, on floats)
-            zmp_d = np.array([zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act_x),
-                              zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act_y)])
+            pd_x = zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act_x)
+            pd_y = zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act_y)
         else:
-            zmp_d = np.array(zr[:2])
+            pd_x, pd_y = zr[0], zr[1]
         if self.truncate:
-            zmp_d = truncate_zmp(zmp_d, support_polygon(soles, support))
+            pd_x, pd_y = truncate_zmp(np.array([pd_x, pd_y]), support_polygon(soles, support)).tolist()
+        zmp_d = np.array([pd_x, pd_y])
         (lx, ly, _), (rx_, ry_, _) = soles
         if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
-            (lx, ly), (rx_, ry_) = (to_ref(*w[s][3:5]) for s in SIDES)
-        alpha, fz_l, fz_r, dx, dy = distribution(*zmp_d.tolist(), lx, ly, rx_, ry_, support, self.weight)
+            (lx, ly), (rx_, ry_) = (to_ref(*w[side][3:5]) for side in SIDES)
+        alpha, fz_l, fz_r, dx, dy = distribution(pd_x, pd_y, lx, ly, rx_, ry_, support, self.weight)
         act = np.array([act_x, act_y])
         out = {"zmp_d": zmp_d, "zmp_act": act}
-        for s, fd in (("l", fz_l), ("r", fz_r)):
-            on = s in support
-            fz, tau_x, tau_y, *_, yaw = w[s]
-            tau_d_key, tau_key, fz_key = FOOT_KEYS[s]
+        for side, fd in (("l", fz_l), ("r", fz_r)):
+            on = side in support
+            fz, tau_x, tau_y, *_, yaw = w[side]
+            tau_d_key, tau_key, fz_key = FOOT_KEYS[side]
             # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j
             out[tau_d_key] = np.array([-dy * fd, dx * fd]) if on else self._zero
             # τ about the foot's own roll and pitch axes, the axes δ turns it about

@@ -231,6 +231,8 @@ class LegIKModule(Module):
         dz = snapshot.get("sole_dz")
         if delta is not None:
             delta = delta.tolist()
+        if dz is not None:
+            dz = dz.tolist()
         q = []
         for i, s in enumerate(SIDES):
             x, y, z = soles[i]
@@ -238,7 +240,7 @@ class LegIKModule(Module):
             if delta is not None:
                 rot = rot_xy_flat(delta[2 * i], delta[2 * i + 1])
             if dz is not None:
-                z += float(dz[i])
+                z += dz[i]
             angles, reach_error = leg_angles(s, waist, _EYE9, (x, y, z), rot)
             if reach_error != 0.0:
                 self.unreachable += 1
