@@ -188,7 +188,7 @@ def hand_forces(hands: dict, snapshot) -> dict:
     u = hands["left"].point(snapshot) - hands["right"].point(snapshot)
     half, net = (f_l - f_r) / 2, f_l + f_r
     # ‖x‖ as np.linalg.norm forms it for a vector (√(x·x)), without its dispatch
-    return {"internal": float(np.sqrt(half.dot(half))), "squeeze": float(half @ u / np.sqrt(u.dot(u))),
+    return {"internal": float(np.sqrt(half.dot(half))), "squeeze": float(half.dot(u) / np.sqrt(u.dot(u))),
             "net": float(np.sqrt(net.dot(net)))}
 
 
