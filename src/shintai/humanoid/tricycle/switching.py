@@ -23,7 +23,6 @@ from shintai.core.geometry import wrap_pi
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
 from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
-from shintai.sim.ik import cross
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
 
@@ -61,9 +60,10 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
         w = np.subtract(p, axis_point)  # = np.asarray(p, dtype=float) - axis_point
         s = float(a.dot(w))
         w0, w1, w2 = w.tolist()
-        w = np.array([w0 - a0 * s, w1 - a1 * s, w2 - a2 * s])  # on the plane normal to the axis: w − a (a·w)
-        num += float(a.dot(cross(z, w)))  # a·(z × w)
-        den += float(z.dot(w))
+        w0, w1, w2 = w0 - a0 * s, w1 - a1 * s, w2 - a2 * s  # on the plane normal to the axis: w − a (a·w)
+        z0, z1, z2 = z.tolist()
+        num += float(a.dot(np.array([z1 * w2 - z2 * w1, z2 * w0 - z0 * w2, z0 * w1 - z1 * w0])))  # a·(z × w)
+        den += float(z.dot(np.array([w0, w1, w2])))
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
