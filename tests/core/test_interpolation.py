@@ -44,6 +44,30 @@ def test_queue_runs_in_order_and_arrives_on_time():
     assert p.v[0] == 0.0  # minjerk: zero velocity at every posture
 
 
+def test_an_idle_player_holds_at_rest_without_allocating_and_restarts_from_rest():
+    p = SequencePlayer([0.0, 2.0])
+    p.push([1.0, 1.0], 0.5)
+    p.advance(0.3)
+    assert p.v.any()  # moving
+    held = p.advance(0.3)  # arrives, then idles
+    assert np.array_equal(held, [1.0, 1.0]) and not p.busy
+    rest_v, rest_a = p.v, p.a
+    for _ in range(3):
+        out = p.advance(0.004)
+        out[0] = 99.0  # the position handed out is the caller's copy
+        assert p.v is rest_v and p.a is rest_a  # the same held zeros every idle tick
+    assert not rest_v.any() and not rest_a.any() and np.array_equal(p.x, [1.0, 1.0])
+    with pytest.raises(ValueError):
+        rest_v[0] = 1.0  # shared, so read-only
+    x, v, a = p.state
+    v[0] = 1.0  # state is a copy, writable
+    p.push([0.0, 0.0], 1.0)  # re-planned from rest: the textbook rest-to-rest quintic
+    x0, v0, a0 = p.segment.state(0.0)
+    assert np.array_equal(x0, [1.0, 1.0]) and not v0.any() and not a0.any()
+    p.advance(0.5)
+    assert np.allclose(p.x, [0.5, 0.5])
+
+
 def test_clear_replans_from_the_current_state():
     p = SequencePlayer([0.0, 0.0])
     p.push([1.0, 1.0], 1.0)

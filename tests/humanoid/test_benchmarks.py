@@ -6,12 +6,18 @@ from shintai.humanoid.benchmarks import tricycle_overhead
 
 
 def test_tricycle_overhead_runs_both_configurations_for_the_same_simulated_time():
-    out = tricycle_overhead(seconds=0.4)
+    out = tricycle_overhead(seconds=0.4, pairs=2)
     for name in ("pedaling", "driving"):
         assert out[f"{name}_physics_steps"] > 0
         assert out[f"{name}_sim_time_s"] > 0.0
         assert math.isfinite(out[f"{name}_overhead_ratio"]) and out[f"{name}_overhead_ratio"] > 0.0
         assert out[f"{name}_physics_us"] > 0.0 and out[f"{name}_control_us"] > 0.0  # where the tick went
+        assert out[f"{name}_overhead_ratio_min"] <= out[f"{name}_overhead_ratio"] <= out[f"{name}_overhead_ratio_max"]
+        assert math.isfinite(out[f"{name}_overhead_ratio_cpu"]) and out[f"{name}_overhead_ratio_cpu"] > 0.0
+        assert out[f"{name}_leg_ik_us"] > 0.0  # the feet solve every tick
+        split = out[f"{name}_arm_ik_us"] + out[f"{name}_leg_ik_us"] + out[f"{name}_control_other_us"]
+        assert math.isclose(split, out[f"{name}_control_us"], rel_tol=1e-9)
+    assert out["pedaling_arm_ik_us"] == 0.0 and out["driving_arm_ik_us"] > 0.0  # only the ride has hands
 
 
 def test_leg_ik_benchmark_times_both_solvers_on_the_same_targets():

@@ -151,6 +151,8 @@ class SequencePlayer(Module):
         self.via = via  # minjerksequence's velocity rule at an intermediate posture (see via_velocity)
         self.x = np.atleast_1d(np.asarray(x0, dtype=float)).copy()
         self._due = None  # (segment, time) whose velocity and acceleration are not formed yet
+        self._rest = np.zeros_like(self.x)  # v and a while the posture is held: read-only, shared (never mutated)
+        self._rest.setflags(write=False)
         self.v = np.zeros_like(self.x)
         self.a = np.zeros_like(self.x)
         self.queue: deque[QueueEntry] = deque()
@@ -278,9 +280,13 @@ class SequencePlayer(Module):
             self.segment = None
             if self.queue:
                 self._start_next()
-        self.v = np.zeros_like(self.x)  # idle: the posture is held
-        self.a = np.zeros_like(self.x)
+        self._hold()
         return self.x.copy()
+
+    def _hold(self) -> None:
+        """Idle: the posture is held, at rest (v = a = 0, the shared read-only zeros: an idle tick allocates none)."""
+        self._due = None
+        self._v = self._a = self._rest
 
     # -- as a module --
 

@@ -3,7 +3,11 @@
 * ``humanoid.tricycle-overhead`` — the tricycle controllers on top of bare ``mujoco.mj_step`` on the same model
   and physics steps: ``pedaling`` (the legs' role switcher, Fig. 3.16, Eqs. 3.7, 3.13–3.14, 3.19, with the
   experiment's recording; :func:`~shintai.humanoid.tricycle.rig.pedal_rig`) and ``driving`` (arms and legs on the
-  E3 slalom script, :class:`~shintai.humanoid.tricycle.ride.Ride`); ``sim_per_wall`` is simulated seconds per wall second;
+  E3 slalom script, :class:`~shintai.humanoid.tricycle.ride.Ride`), each in interleaved pairs (a run, then bare
+  mj_step for its steps; the ratio is the pairs' median); ``sim_per_wall`` is simulated seconds per wall second;
+  the control share is split further into the limbs' IK (``arm_ik_us``: the hands' DLS solves,
+  :func:`shintai.sim.ik.solve` with their targets; ``leg_ik_us``: the feet's closed form,
+  :mod:`shintai.humanoid.robots.leg_ik`, and any DLS fallback) and ``control_other_us`` (diagnostics, laws, players);
 * ``humanoid.leg-ik`` — the analytic leg IK (:mod:`shintai.humanoid.robots.leg_ik`) against the DLS IK per call on
   the same 500 sole targets of a pedalling-like foot path;
 * ``humanoid.standing-overhead`` — the standing stack's 4 ms tick (:class:`~shintai.humanoid.balance.standing.Standing`)
@@ -47,46 +51,66 @@ def bare_steps(model: mujoco.MjModel, keyframe: str, steps: int) -> float:
     return time.perf_counter() - t0
 
 
-class PhysicsClock:
+class Clock:
+    """The wall time spent in ``method`` of each of ``objects`` during a run (``seconds``), the method wrapped
+    on the instances."""
+
+    def __init__(self, objects, method: str):
+        self.seconds = 0.0
+        for obj in objects:
+            self._wrap(obj, method)
+
+    def _wrap(self, obj, method: str) -> None:
+        call = getattr(obj, method)
+
+        def timed(*args):
+            t0 = time.perf_counter()
+            value = call(*args)
+            self.seconds += time.perf_counter() - t0
+            return value
+
+        setattr(obj, method, timed)
+
+
+class PhysicsClock(Clock):
     """The wall time a body spends in its steps during a run (``seconds``): the physics share of a tick."""
 
     def __init__(self, body):
-        self.seconds, step = 0.0, body.step
-
-        def timed_step():
-            t0 = time.perf_counter()
-            step()
-            self.seconds += time.perf_counter() - t0
-
-        body.step = timed_step
+        super().__init__([body], "step")
 
 
-def timed_rig(rig):
-    """Run ``rig`` (:func:`~shintai.scenarios.experiment.run_rig`); (wall time, the run, its physics seconds)."""
-    clock = PhysicsClock(rig.body)
-    t0 = time.perf_counter()
+def timed_rig(rig, limbs=()):
+    """Run ``rig`` (:func:`~shintai.scenarios.experiment.run_rig`); (wall time, the run, its physics seconds, the
+    seconds in the IK of ``limbs``: ``{"arm_ik": the hands' DLS solves, "leg_ik": the feet's closed form and DLS
+    fallbacks}``, the process's CPU time in the run)."""
+    physics = PhysicsClock(rig.body)
+    hands, feet = [lb for lb in limbs if lb.kind == "hand"], [lb for lb in limbs if lb.kind == "foot"]
+    arm_ik, leg_ik, fallback = Clock(hands, "dls_solve"), Clock(feet, "closed_form"), Clock(feet, "dls_solve")
+    t0, c0 = time.perf_counter(), time.process_time()
     run = run_rig(rig)
-    return time.perf_counter() - t0, run, clock.seconds
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return wall, run, physics.seconds, {"arm_ik": arm_ik.seconds, "leg_ik": leg_ik.seconds + fallback.seconds}, cpu
 
 
 def pedaling_run(seconds: float):
-    """The E2 controller for ``seconds`` of simulated time; returns (body, wall time, run, physics seconds)."""
+    """The E2 controller for ``seconds`` of simulated time; returns (body, wall time, run, physics seconds,
+    IK seconds, CPU seconds: :func:`timed_rig`)."""
     dt = DELTA_T * 0.25
     schedule = crank_schedule(seconds / (2 * dt) * D_THETA_C / (2 * 3.141592653589793), dt)
     body = riding.build_riding(crank_error=(0.01, 0.0))
     feet = riding_limbs(body, "foot")
     legs, diag = legs_switcher(feet, schedule)
     rig = pedal_rig(body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag)
-    return body, *timed_rig(rig)
+    return body, *timed_rig(rig, feet.values())
 
 
 def driving_run(seconds: float):
     """Arms and legs on the slalom script (Δt = 0.2 s) for about ``seconds``; (body, wall time, run,
-    physics seconds)."""
+    physics seconds, IK seconds, CPU seconds)."""
     schedule = OperationSchedule(0.0, 0.0, slalom_goals(30 * DEG, 10 * DEG, 60 * DEG), DELTA_T * 0.25, D_THETA_H, D_THETA_C)
     schedule.samples = schedule.samples[:max(1, int(seconds / (2 * schedule.phase)) - 1)]
     ride = Ride(schedule)
-    return ride.body, *timed_rig(ride.rig())
+    return ride.body, *timed_rig(ride.rig(), (*ride.feet.values(), *ride.hands.values()))
 
 
 def tick_shares(prefix: str, wall: float, physics: float, loop, bare: float) -> dict:
@@ -99,19 +123,40 @@ def tick_shares(prefix: str, wall: float, physics: float, loop, bare: float) -> 
             f"{prefix}rest_us": 1e6 * (wall - physics - control) / ticks, f"{prefix}physics_vs_bare": physics / bare}
 
 
+def control_split(prefix: str, shares: dict, ik_seconds: dict, ticks: int) -> dict:
+    """The control share split (us per control tick): each limb group's IK (:func:`timed_rig`) and the rest of the
+    modules' time (``control_other``: the switching diagnostics, impedance laws, players, logging in the modules)."""
+    out = {f"{prefix}{k}_us": 1e6 * v / ticks for k, v in ik_seconds.items()}
+    out[f"{prefix}control_other_us"] = shares[f"{prefix}control_us"] - sum(out.values())
+    return out
+
+
 @benchmark("humanoid.tricycle-overhead",
            "HRP2 on the tricycle: pedalling / steering+pedalling controllers (IK, laws, logging) vs bare mj_step")
-def tricycle_overhead(seconds: float = 6.0) -> dict:
+def tricycle_overhead(seconds: float = 6.0, pairs: int = 3) -> dict:
+    """Each configuration in ``pairs`` interleaved pairs (a run, then bare mj_step for its physics steps from the
+    ``ride`` keyframe): ``overhead_ratio`` is the median of the pairs' ratios (a shared machine's load changes
+    between pairs far more than within one), its range beside it, ``overhead_ratio_cpu`` the median on the
+    process's CPU time (what other processes' load leaves out); the tick's shares are the fastest run's."""
     out = {}
     for name, run in (("pedaling", pedaling_run), ("driving", driving_run)):
-        # the faster of two runs, as for bare mj_step (the machine is shared; the runs are identical)
-        body, wall, done, physics = min((run(seconds) for _ in range(2)), key=lambda r: r[1])
+        done, cpu_ratios = [], []  # (body, wall, run, physics seconds, IK seconds, the bare run right after)
+        for _ in range(pairs):
+            body, wall, result, physics, ik_s, cpu = run(seconds)
+            steps = int(round(body.t / body.model.opt.timestep))
+            c0 = time.process_time()
+            done.append((body, wall, result, physics, ik_s, bare_steps(body.model, "ride", steps)))
+            cpu_ratios.append(cpu / (time.process_time() - c0))
+        ratios = [wall / bare for _, wall, *_, bare in done]
+        body, wall, result, physics, ik_s, bare = min(done, key=lambda r: r[1])
         steps = int(round(body.t / body.model.opt.timestep))
-        bare = min(bare_steps(body.model, "ride", steps) for _ in range(2))
+        shares = tick_shares(f"{name}_", wall, physics, result.loop, bare)
         out.update({f"{name}_sim_time_s": body.t, f"{name}_physics_steps": steps, f"{name}_wall_s": wall,
-                    f"{name}_bare_mj_step_s": bare, f"{name}_overhead_ratio": wall / bare,
+                    f"{name}_bare_mj_step_s": bare, f"{name}_overhead_ratio": float(np.median(ratios)),
+                    f"{name}_overhead_ratio_min": min(ratios), f"{name}_overhead_ratio_max": max(ratios),
+                    f"{name}_overhead_ratio_cpu": float(np.median(cpu_ratios)),
                     f"{name}_sim_per_wall": body.t / wall, f"{name}_bare_sim_per_wall": body.t / bare,
-                    **tick_shares(f"{name}_", wall, physics, done.loop, bare)})
+                    **shares, **control_split(f"{name}_", shares, ik_s, result.loop.tick)})
     return out
 
 

@@ -266,6 +266,28 @@ def test_handle_angle_from_hand_points_on_the_raked_axis():
         fit_angle([steer_point()], [[1.0, 0, 0]], steer_point(), steer_axis())
 
 
+def test_method_a_fit_and_role_table_are_their_numpy_formulas_bit_for_bit():
+    """fit_angle (scalar steps on Python floats, dots as ndarray.dot) gives atan2(Σ a·(z × w), Σ z·w) exactly as
+    the NumPy expressions do, and active_leg's modulo is np.mod's (the estimates feed the role switches)."""
+    rng = np.random.default_rng(7)
+    for _ in range(500):
+        axis = rng.normal(size=3)
+        a = axis / np.linalg.norm(axis)
+        centre, points, zeros = rng.normal(size=3), rng.normal(size=(2, 3)), rng.normal(size=(2, 3))
+        zs = [z - a * (a @ z) for z in zeros]
+        num = den = 0.0
+        for p, z in zip(points, zs):
+            w = p - centre
+            w = w - a * float(a @ w)
+            num += float(a @ np.cross(z, w))
+            den += float(z @ w)
+        assert fit_angle(list(points), list(zeros), centre, axis) == float(np.arctan2(num, den))
+    for theta in np.concatenate([rng.uniform(-20, 20, 2000), np.arange(-8, 9) * np.pi / 2 + DELTA_C]):
+        phase = np.mod(theta, 2 * np.pi)
+        expected = "right" if np.pi / 2 + DELTA_C <= phase < 3 * np.pi / 2 + DELTA_C else "left"
+        assert active_leg(float(theta), DELTA_C) == expected
+
+
 # --- operation loop ------------------------------------------------------------------------------
 
 

@@ -69,12 +69,14 @@ def pedal_axles(feet: dict, snapshot) -> dict:
     """Each foot's pedal-axle point: the sole point less the platform's half thickness along the
     sole normal (vehicle frame), so that method (a) sees points on the crank circle."""
     axles = {}
+    h = PEDAL_HALF_THICKNESS
     for leg, limb in feet.items():
         xmat = getattr(limb, "site_rot", None)  # an Hrp2Limb's view of its site's orientation
         if xmat is None:
             xmat = limb.body.site_xmat(limb.site)
-        normal = limb.frame.rotate_to_vehicle(xmat[:, 2])
-        axles[leg] = limb.point(snapshot) - PEDAL_HALF_THICKNESS * normal
+        n0, n1, n2 = limb.frame.rotate_to_vehicle(xmat[:, 2]).tolist()
+        p0, p1, p2 = limb.point(snapshot).tolist()
+        axles[leg] = np.array([p0 - h * n0, p1 - h * n1, p2 - h * n2])  # p − h n, elementwise on Python floats
     return axles
 
 
@@ -186,7 +188,7 @@ def hand_forces(hands: dict, snapshot) -> dict:
     u = hands["left"].point(snapshot) - hands["right"].point(snapshot)
     half, net = (f_l - f_r) / 2, f_l + f_r
     # ‖x‖ as np.linalg.norm forms it for a vector (√(x·x)), without its dispatch
-    return {"internal": float(np.sqrt(half.dot(half))), "squeeze": float(half @ u / np.sqrt(u.dot(u))),
+    return {"internal": float(np.sqrt(half.dot(half))), "squeeze": float(half.dot(u) / np.sqrt(u.dot(u))),
             "net": float(np.sqrt(net.dot(net)))}
 
 

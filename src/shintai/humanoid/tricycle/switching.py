@@ -14,6 +14,7 @@ right active on π/2 + δ_c ≤ θ_c < 3π/2 + δ_c (mod 2π), left otherwise.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -22,7 +23,6 @@ from shintai.core.geometry import wrap_pi
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
 from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
-from shintai.sim.ik import cross
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
 
@@ -49,13 +49,21 @@ def _on_plane(z: np.ndarray, a: np.ndarray) -> np.ndarray:
 
 def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) -> float:
     """:func:`fit_angle` with the unit axis ``a`` and the projected θ = 0 directions ``zs`` given
-    (constant per model: the per-tick estimates take them from a cache)."""
+    (constant per model: the per-tick estimates take them from a cache).
+
+    The three dot products per point stay NumPy's (``ndarray.dot``: the same BLAS call as ``@``, without the
+    ufunc machinery); the elementwise steps (the projection, the cross product) run on Python floats, the same
+    IEEE operations one by one."""
     num = den = 0.0
+    a0, a1, a2 = a.tolist()
     for p, z in zip(points, zs):
         w = np.subtract(p, axis_point)  # = np.asarray(p, dtype=float) - axis_point
-        w -= a * float(a @ w)  # on the plane normal to the axis
-        num += float(a @ cross(z, w))
-        den += float(z @ w)
+        s = float(a.dot(w))
+        w0, w1, w2 = w.tolist()
+        w0, w1, w2 = w0 - a0 * s, w1 - a1 * s, w2 - a2 * s  # on the plane normal to the axis: w − a (a·w)
+        z0, z1, z2 = z.tolist()
+        num += float(a.dot(np.array([z1 * w2 - z2 * w1, z2 * w0 - z0 * w2, z0 * w1 - z1 * w0])))  # a·(z × w)
+        den += float(z.dot(np.array([w0, w1, w2])))
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
@@ -84,7 +92,7 @@ def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
     if not zero:
         raise ValueError("estimate_crank_angle: no foot points")
     angle = _fit(list(feet.values()), [z for _, z in zero], np.asarray(crank_centre, dtype=float), zero[0][0])
-    return float(np.mod(angle, 2 * np.pi))
+    return angle % (2 * math.pi)  # = float(np.mod(angle, 2π)): Python's float % is NumPy's floored modulo
 
 
 def estimate_handle_angle(hands: dict, t: TricycleSpec = TRICYCLE) -> float:
@@ -121,7 +129,8 @@ def switching_angles(theta_init: float, lo: float, hi: float) -> np.ndarray:
 
 def active_leg(theta_c: float, delta_c: float) -> str:
     """The stepping (active) leg at general crank angle θ_c (§3.5.2 role table)."""
-    return "right" if np.pi / 2 + delta_c <= np.mod(theta_c, 2 * np.pi) < 3 * np.pi / 2 + delta_c else "left"
+    phase = float(theta_c) % (2 * math.pi)  # = np.mod(θ_c, 2π) (the floored modulo), on a Python float
+    return "right" if np.pi / 2 + delta_c <= phase < 3 * np.pi / 2 + delta_c else "left"
 
 
 def active_arm(theta_h: float, heading: float = 0.0) -> str:
