@@ -169,3 +169,17 @@ def test_reused_buffers_do_not_carry_over_between_solves(robot):
     ik.solve(robot, {"r_grasp": ik.Target(pos=pos + [0.0, 0.1, 0.0], axis=([1, 0, 0], [0.0, 1.0, 0.0]))}, joints=ARM)
     again = ik.solve(robot, {"r_grasp": axis_target}, joints=ARM)
     assert first.ok and np.array_equal(first.q, again.q) and first.residual == again.residual
+
+
+def test_a_site_axis_changed_in_place_is_honoured(robot):
+    """The site's unit axis is kept from solve to solve while its bits stay the same: an axis array changed in
+    place between solves is aimed with its new value, as a fresh array would be."""
+    pos = robot.site_pos("r_grasp") + [0.15, -0.05, 0.2]
+    world = np.array([0.0, 0.6, 0.8])
+    local = np.array([1.0, 0.0, 0.0])
+    ik.solve(robot, {"r_grasp": ik.Target(pos=pos, axis=(local, world))}, joints=ARM)
+    local[:] = [0.0, 0.0, 2.0]  # the z axis, not unit length
+    q, ok, _ = ik.solve(robot, {"r_grasp": ik.Target(pos=pos, axis=(local, world))}, joints=ARM)
+    fresh = ik.solve(robot, {"r_grasp": ik.Target(pos=pos, axis=(np.array([0.0, 0.0, 1.0]), world))}, joints=ARM)
+    assert ok and np.array_equal(q, fresh.q)
+    assert _fk(robot, q)[1][:, 2] @ world == pytest.approx(1.0, abs=1e-6)
