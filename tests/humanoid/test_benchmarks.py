@@ -42,19 +42,3 @@ def test_standing_overhead_times_the_stack_against_bare_mj_step():
         assert out[f"rest_{part}_us"] > 0.0
     assert out["physics_check_us"] > 0.0 and out["physics_mj_step_us"] > out["physics_check_us"]
     assert math.isfinite(out["rest_loop_us"])
-
-
-def test_call_clock_times_and_counts_a_wrapped_method():
-    from shintai.humanoid.benchmarks import CallClock
-
-    class Counter:
-        def __init__(self):
-            self.n = 0
-
-        def add(self, k):
-            self.n += k
-            return self.n
-
-    c = Counter()
-    clock = CallClock(c, "add")
-    assert [c.add(2), c.add(3)] == [2, 5] and clock.calls == 2 and clock.seconds > 0.0

@@ -87,3 +87,19 @@ def test_figures_drawn_outside_the_loop_count_as_plotting():
             plt.close(fig)
     shares = samples.summary()["layers"]
     assert shares["plotting"] > 0.8 and shares["control"] == 0
+
+
+def test_a_clock_times_and_counts_a_wrapped_method():
+    from shintai.scenarios.sampling import Clock
+
+    class Counter:
+        def __init__(self):
+            self.n = 0
+
+        def add(self, k):
+            self.n += k
+            return self.n
+
+    c = Counter()
+    clock = Clock([c], "add")
+    assert [c.add(2), c.add(3)] == [2, 5] and clock.calls == 2 and clock.seconds > 0.0

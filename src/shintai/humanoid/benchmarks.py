@@ -38,6 +38,7 @@ from shintai.humanoid.tricycle.ride import Ride, slalom_goals
 from shintai.humanoid.tricycle.rig import crank_schedule, legs_switcher, pedal_rig
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
+from shintai.scenarios.sampling import Clock
 from shintai.sim import ik
 
 
@@ -49,27 +50,6 @@ def bare_steps(model: mujoco.MjModel, keyframe: str, steps: int) -> float:
     for _ in range(steps):
         mujoco.mj_step(model, data)
     return time.perf_counter() - t0
-
-
-class Clock:
-    """The wall time spent in ``method`` of each of ``objects`` during a run (``seconds``), the method wrapped
-    on the instances."""
-
-    def __init__(self, objects, method: str):
-        self.seconds = 0.0
-        for obj in objects:
-            self._wrap(obj, method)
-
-    def _wrap(self, obj, method: str) -> None:
-        call = getattr(obj, method)
-
-        def timed(*args):
-            t0 = time.perf_counter()
-            value = call(*args)
-            self.seconds += time.perf_counter() - t0
-            return value
-
-        setattr(obj, method, timed)
 
 
 class PhysicsClock(Clock):
@@ -209,34 +189,16 @@ def leg_ik_cost(ticks: int = 500) -> dict:
             "max_joint_difference_rad": float(np.abs(np.array(q_dls) - np.array(q_analytic)).max())}
 
 
-class CallClock:
-    """The wall time spent in one method of ``owner`` during a run (``seconds``), the method wrapped on the instance
-    (as :class:`PhysicsClock` wraps a body's step); ``calls`` counts them."""
-
-    def __init__(self, owner, name: str):
-        self.seconds, self.calls, method = 0.0, 0, getattr(owner, name)
-        clock = time.perf_counter
-
-        def timed(*args):
-            t0 = clock()
-            out = method(*args)
-            self.seconds += clock() - t0
-            self.calls += 1
-            return out
-
-        setattr(owner, name, timed)
-
-
 def wrapper_cost(calls: int = 20000) -> float:
-    """Seconds one :class:`CallClock` adds to a call (a wrapped no-op against the bare one): what
-    :func:`standing_anatomy` takes off the loop's own share for each timed call."""
+    """Seconds one :class:`~shintai.scenarios.sampling.Clock` adds to a call (a wrapped no-op against the bare
+    one): what :func:`standing_anatomy` takes off the loop's own share for each timed call."""
 
     class Noop:
         def f(self):
             return None
 
     bare, wrapped = Noop(), Noop()
-    CallClock(wrapped, "f")
+    Clock([wrapped], "f")
 
     def loop(obj):
         t0 = time.perf_counter()
@@ -258,9 +220,9 @@ def standing_anatomy(seconds: float) -> dict:
 
     st = Standing(hold=seconds + 1.0)
     loop, body = st.loop, st.body
-    parts = {"snapshot": CallClock(body, "snapshot"), "view": CallClock(loop, "view"),
-             "combine": CallClock(loop, "_combine"), "apply": CallClock(body, "apply"),
-             "check": CallClock(body, "_check_divergence")}
+    parts = {"snapshot": Clock([body], "snapshot"), "view": Clock([loop], "view"),
+             "combine": Clock([loop], "_combine"), "apply": Clock([body], "apply"),
+             "check": Clock([body], "_check_divergence")}
     physics = PhysicsClock(body)
     t0 = time.perf_counter()
     st.run(seconds)

@@ -21,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import signal
 import threading
+import time
 from collections import Counter
 from pathlib import Path
 
@@ -153,3 +154,27 @@ def sampled(interval_s: float = 0.005):
         signal.signal(signal.SIGPROF, previous)
         if timer[1] > 0:
             signal.setitimer(signal.ITIMER_PROF, timer[1], timer[1])
+
+
+class Clock:
+    """The wall time spent in ``method`` of each of ``objects`` during a run (``seconds``) and how often it was
+    called (``calls``), the method wrapped on the instances: a benchmark's split of a tick into named parts
+    (the sampler above says where the time goes; a clock measures one part exactly, at ≈0.3 µs a call)."""
+
+    def __init__(self, objects, method: str):
+        self.seconds, self.calls = 0.0, 0
+        for obj in objects:
+            self._wrap(obj, method)
+
+    def _wrap(self, obj, method: str) -> None:
+        call, clock = getattr(obj, method), time.perf_counter
+
+        def timed(*args, **kwargs):
+            t0 = clock()
+            try:
+                return call(*args, **kwargs)
+            finally:
+                self.seconds += clock() - t0
+                self.calls += 1
+
+        setattr(obj, method, timed)

@@ -13,6 +13,7 @@ import numpy as np
 
 from shintai.scenarios.experiment import run_rig
 from shintai.scenarios.registry import benchmark
+from shintai.scenarios.sampling import Clock
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, TRACKING
 from shintai.snake.model import (
     configuration,
@@ -48,20 +49,6 @@ def _per_call_us(fn, states, repeat: int) -> float:
     return 1e6 * (time.perf_counter() - t0) / (repeat * len(states))
 
 
-def _timed(parts: dict, name: str, fn):
-    """``fn`` adding its wall time to ``parts[name]`` (the tick's breakdown; ~0.3 µs per call of overhead)."""
-    parts[name] = 0.0
-
-    def call(*args, **kwargs):
-        t0 = time.perf_counter()
-        try:
-            return fn(*args, **kwargs)
-        finally:
-            parts[name] += time.perf_counter() - t0
-
-    return call
-
-
 def _tick_breakdown_run(duration: float) -> tuple[TrackingRun, float, dict]:
     """The tracking run with its tick split: the plant's step (RK4 of (2.10), eight dgelsd), the controller's
     input (3.3)–(3.6) (three SVDs) and mode selection (3.19), and the rest (runtime, recording, snapshots)."""
@@ -69,16 +56,14 @@ def _tick_breakdown_run(duration: float) -> tuple[TrackingRun, float, dict]:
     run_rig(tracking_rig(CH3_GAINS.dt))  # one tick first: loads the plant's compiled loop (compiles it if not cached)
     first_tick = time.perf_counter() - t0
     rig = tracking_rig(duration)
-    controller, law, parts = rig.state["controller"], rig.state["law"], {}
-    rig.body.step = _timed(parts, "plant_step", rig.body.step)
-    law.input = _timed(parts, "control_input", law.input)
-    law.select_mode = _timed(parts, "mode_selection", law.select_mode)
-    controller.update = _timed(parts, "controller", controller.update)
+    controller, law = rig.state["controller"], rig.state["law"]
+    parts = {"plant_step": Clock([rig.body], "step"), "control_input": Clock([law], "input"),
+             "mode_selection": Clock([law], "select_mode"), "controller": Clock([controller], "update")}
     t0 = time.perf_counter()
     run = TrackingRun.of(run_rig(rig))
     wall = time.perf_counter() - t0
     ticks = len(run.mode)
-    us = {k: 1e6 * v / ticks for k, v in parts.items()}
+    us = {k: 1e6 * clock.seconds / ticks for k, clock in parts.items()}
     breakdown = {"first_tick_s": first_tick, "tick_us": 1e6 * wall / ticks, "plant_step_us": us["plant_step"],
                  "control_input_us": us["control_input"], "mode_selection_us_per_tick": us["mode_selection"],
                  "controller_other_us": us["controller"] - us["control_input"] - us["mode_selection"]}
