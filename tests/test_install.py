@@ -31,8 +31,10 @@ def wheel(tmp_path_factory):
 def install(wheel, python, where):
     venv = where / "venv"
     subprocess.run([python, "-m", "venv", str(venv)], check=True, timeout=300)
-    done = subprocess.run([str(venv / "bin" / "pip"), "install", "--quiet", str(wheel)], capture_output=True,
-                          text=True, timeout=1200, env=CLEAN_ENV)
+    # --no-compile: pip's byte-compiling of every installed dependency is half the install's time and not what
+    # this tests (Python compiles what the run imports)
+    done = subprocess.run([str(venv / "bin" / "pip"), "install", "--quiet", "--no-compile", str(wheel)],
+                          capture_output=True, text=True, timeout=1200, env=CLEAN_ENV)
     assert done.returncode == 0, done.stderr[-3000:]
     return venv / "bin"
 
