@@ -10,7 +10,8 @@ import pytest
 from shintai.humanoid.constants import NAVIGATION, SCENE, THETA_H_MAX, TRICYCLE, WHEELBASE
 from shintai.humanoid.tricycle.constants import OBSTACLE_GROUP
 from shintai.humanoid.tricycle.navigation import (Costmap, DepthSensor, DynamicWindow, crank_rate, crank_reference,
-    footprint_points, global_path, handle_reference, integrate_pose, osi_references, tricycle_rates)
+    footprint_points, global_path, handle_reference, integrate_pose, osi_references, trajectory_footprints,
+    tricycle_rates)
 from shintai.sim.spec import scene_spec
 
 D_C = TRICYCLE.travel_per_rev
@@ -53,6 +54,21 @@ def test_integrate_pose_arc():
     """A quarter circle of radius v/ω."""
     end = integrate_pose([0.0, 0.0, 0.0], 1.0, 1.0, math.pi / 2)
     assert end == pytest.approx([1.0, 1.0, math.pi / 2])
+
+
+def test_rollout_and_footprints_are_the_per_pose_steps_bit_for_bit():
+    """The planner's float rollout is integrate_pose step by step, and trajectory_footprints is footprint_points
+    of each pose stacked: equal to the last bit (the planner's choices depend on them)."""
+    rng = np.random.default_rng(0)
+    dwa = DynamicWindow()
+    for v, w in [(0.3, 0.0), (0.25, 1e-10), *rng.uniform([0.0, -0.5], [0.4, 0.5], (20, 2))]:
+        pose = rng.uniform([-2.0, -2.0, -math.pi], [2.0, 2.0, math.pi])
+        traj = dwa.rollout(pose, v, w)
+        chain = [pose]
+        for _ in range(10):
+            chain.append(integrate_pose(chain[-1], v, w, NAVIGATION.horizon / 10))
+        assert np.array_equal(traj, np.array(chain))
+        assert np.array_equal(trajectory_footprints(traj), np.concatenate([footprint_points(p) for p in traj]))
 
 
 def wall_scene(x=2.0):
@@ -103,6 +119,42 @@ def test_global_path_goes_around_the_wall():
     assert path is not None
     assert costmap.clearance(path).min() > NAVIGATION.footprint_r
     assert path[np.argmin(np.abs(path[:, 0] - 4.0)), 1] > 0.4  # passes the open (+y) end
+
+
+def test_global_path_costs_what_scipys_dijkstra_finds():
+    """The path is 8-connected from the start's cell to the goal's through free cells, and its cost (each step's
+    length times the entered cell's weight) is the least scipy's Dijkstra finds on the same graph."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    costmap, r, margin, penalty = blocked_costmap(), NAVIGATION.footprint_r, NAVIGATION.path_margin, 10.0
+    start, goal = (0.0, 0.0), (8.0, 0.0)
+    path = global_path(costmap, start, goal, r, margin, penalty)
+    i, j = costmap.cell(path)
+    steps = np.stack([np.diff(i), np.diff(j)], axis=-1)
+    assert np.abs(steps).max() == 1 and np.all(np.abs(steps).sum(axis=1) > 0)
+    (si,), (sj,) = costmap.cell(start)
+    (gi,), (gj,) = costmap.cell(goal)
+    assert (i[0], j[0], i[-1], j[-1]) == (si, sj, gi, gj)
+    weight = 1.0 + penalty * np.clip((r + margin - costmap.distance) / margin, 0.0, 1.0)
+    free = costmap.distance > r
+    free[si, sj] = True
+    assert free[i, j].all()
+    cost = float(np.sum(np.hypot(*steps.T) * weight[i[1:], j[1:]]))
+    n0, n1 = costmap.shape
+    a, b = np.meshgrid(np.arange(n0), np.arange(n1), indexing="ij")
+    rows, cols, vals = [], [], []
+    for di in (-1, 0, 1):
+        for dj in (-1, 0, 1):
+            if di or dj:
+                ok = (a + di >= 0) & (a + di < n0) & (b + dj >= 0) & (b + dj < n1)
+                ok[ok] &= free[(a + di)[ok], (b + dj)[ok]]
+                rows.append((a * n1 + b)[ok])
+                cols.append(((a + di) * n1 + b + dj)[ok])
+                vals.append(math.hypot(di, dj) * weight[(a + di)[ok], (b + dj)[ok]])
+    graph = coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n0 * n1,) * 2)
+    best = dijkstra(graph.tocsr(), indices=si * n1 + sj)[gi * n1 + gj]
+    assert cost == pytest.approx(best, rel=1e-12)
 
 
 def test_dwa_avoids_a_wall():

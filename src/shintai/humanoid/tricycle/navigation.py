@@ -78,11 +78,16 @@ def osi_references(theta_c: float, yaw_rate_error: float, xdot_ref: float, dt: f
 def integrate_pose(pose, v: float, w: float, dt: float) -> np.ndarray:
     """One step of Eq. 4.15 with v_b = v and θ̇ = w (exact arc)."""
     x, y, th = pose
+    return np.array(_arc(float(x), float(y), float(th), float(v), float(w), dt))
+
+
+def _arc(x: float, y: float, th: float, v: float, w: float, dt: float) -> tuple[float, float, float]:
+    """:func:`integrate_pose` on floats (the rollouts' inner step): the same IEEE operations as on NumPy's
+    scalars, without an array per step."""
     if abs(w) < 1e-9:
-        return np.array([x + v * dt * math.cos(th), y + v * dt * math.sin(th), th])
+        return x + v * dt * math.cos(th), y + v * dt * math.sin(th), th
     r = v / w
-    return np.array([x + r * (math.sin(th + w * dt) - math.sin(th)), y - r * (math.cos(th + w * dt) - math.cos(th)),
-                     th + w * dt])
+    return x + r * (math.sin(th + w * dt) - math.sin(th)), y - r * (math.cos(th + w * dt) - math.cos(th)), th + w * dt
 
 
 # --- depth sensor -------------------------------------------------------------------------------
@@ -177,6 +182,19 @@ def footprint_points(pose, spec: NavigationSpec = NAVIGATION) -> np.ndarray:
     return np.stack([x + fx * math.cos(th), y + fx * math.sin(th)], axis=-1)
 
 
+def trajectory_footprints(traj, spec: NavigationSpec = NAVIGATION) -> np.ndarray:
+    """:func:`footprint_points` of every pose of ``traj`` (N, 3), stacked (N K, 2) pose by pose: the same
+    products, one array operation for the whole trajectory (the cosines and sines still ``math``'s)."""
+    fx = np.asarray(spec.footprint_x, dtype=float)
+    th = traj[:, 2].tolist()
+    cos = np.array([math.cos(t) for t in th])
+    sin = np.array([math.sin(t) for t in th])
+    out = np.empty((len(th), len(fx), 2))
+    out[..., 0] = traj[:, :1] + fx * cos[:, None]
+    out[..., 1] = traj[:, 1:2] + fx * sin[:, None]
+    return out.reshape(-1, 2)
+
+
 def global_path(costmap: Costmap, start, goal, radius: float, margin: float = 0.0,
                 penalty: float = 10.0) -> np.ndarray | None:
     """Cheapest 8-connected grid path (Dijkstra) from ``start`` to ``goal`` through cells farther than
@@ -192,32 +210,41 @@ def global_path(costmap: Costmap, start, goal, radius: float, margin: float = 0.
     if not (0 <= gi < n0 and 0 <= gj < n1 and 0 <= si < n0 and 0 <= sj < n1):
         return None
     free[si, sj] = True  # the vehicle is where it is
-    dist = np.full(costmap.shape, np.inf)
-    prev = -np.ones(costmap.shape + (2,), dtype=int)
-    dist[si, sj] = 0.0
+    # the search walks Python lists (cell k = i n1 + j): NumPy's element indexing costs more than the arithmetic;
+    # the same float operations and the same heap order, so the same path
+    free, weight = free.ravel().tolist(), weight.ravel().tolist()
+    inf = math.inf
+    dist = [inf] * (n0 * n1)
+    prev = [-1] * (n0 * n1)
+    start, target = si * n1 + sj, gi * n1 + gj
+    dist[start] = 0.0
     heap = [(0.0, si, sj)]
     steps = [(di, dj, math.hypot(di, dj)) for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj]
+    pop, push = heapq.heappop, heapq.heappush
     while heap:
-        d, i, j = heapq.heappop(heap)
-        if (i, j) == (gi, gj):
+        d, i, j = pop(heap)
+        k = i * n1 + j
+        if k == target:
             break
-        if d > dist[i, j]:
+        if d > dist[k]:
             continue
         for di, dj, c in steps:
             a, b = i + di, j + dj
-            if 0 <= a < n0 and 0 <= b < n1 and free[a, b]:
-                nd = d + c * weight[a, b]
-                if nd < dist[a, b]:
-                    dist[a, b] = nd
-                    prev[a, b] = (i, j)
-                    heapq.heappush(heap, (nd, a, b))
-    if not np.isfinite(dist[gi, gj]):
+            if 0 <= a < n0 and 0 <= b < n1:
+                n = a * n1 + b
+                if free[n]:
+                    nd = d + c * weight[n]
+                    if nd < dist[n]:
+                        dist[n] = nd
+                        prev[n] = k
+                        push(heap, (nd, a, b))
+    if dist[target] == inf:
         return None
-    cells = [(gi, gj)]
-    while cells[-1] != (si, sj):
-        cells.append(tuple(prev[cells[-1]]))
+    cells = [target]
+    while cells[-1] != start:
+        cells.append(prev[cells[-1]])
     cells.reverse()
-    ij = np.array(cells)
+    ij = np.array([divmod(k, n1) for k in cells])
     return costmap.centre(ij[:, 0], ij[:, 1])
 
 
@@ -234,9 +261,10 @@ class DynamicWindow:
 
     def rollout(self, pose, v: float, w: float, steps: int = 10) -> np.ndarray:
         dt = self.spec.horizon / steps
-        out = [np.asarray(pose, dtype=float)]
+        v, w = float(v), float(w)
+        out = [tuple(float(q) for q in pose)]
         for _ in range(steps):
-            out.append(integrate_pose(out[-1], v, w, dt))
+            out.append(_arc(*out[-1], v, w, dt))
         return np.array(out)
 
     def plan(self, costmap: Costmap, pose, velocity: tuple[float, float], goal, path=None):
@@ -262,7 +290,7 @@ class DynamicWindow:
                 if w_lim > 0 else np.zeros(1)
             for w in ws:
                 traj = self.rollout(pose, v, w)
-                clear = costmap.clearance(np.concatenate([footprint_points(p, s) for p in traj])).min() - s.footprint_r
+                clear = costmap.clearance(trajectory_footprints(traj, s)).min() - s.footprint_r
                 if clear <= 0.0:
                     continue
                 end = traj[-1, :2]
