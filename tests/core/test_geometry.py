@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from shintai.core.geometry import wrap, wrap_pi
+from shintai.core.geometry import cross3, wrap, wrap_pi
 
 
 def _angles() -> np.ndarray:
@@ -45,3 +45,13 @@ def test_wrap_pi_keeps_plus_pi_and_lands_in_the_half_open_interval():
 def test_wrap_is_the_other_convention():
     assert wrap(math.pi) == -math.pi
     assert np.allclose(wrap(np.array([0.5, 7.0])), [0.5, 7.0 - 2 * math.pi])
+
+
+def test_cross3_is_numpys_cross_bit_for_bit_on_broadcast_shapes():
+    """cross3 gives np.cross's bits (the spine's Jacobians rely on it) on the shapes the spine uses, broadcast both
+    ways, and is the right-handed cross product."""
+    rng = np.random.default_rng(0)
+    for a_shape, b_shape in [((54, 15, 3), (54, 1, 3)), ((15, 3), (15, 3)), ((1, 15, 3), (7, 1, 3)), ((3,), (9, 3))]:
+        a, b = rng.normal(size=a_shape) * 1e3, rng.normal(size=b_shape)
+        assert np.array_equal(cross3(a, b), np.cross(a, b))
+    assert np.array_equal(cross3(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])), [0.0, 0, 1])

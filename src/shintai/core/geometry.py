@@ -1,5 +1,5 @@
-"""Small geometry every body uses, in one place: elementary rotations, the cross-product matrix, angle
-wrapping and unwrapping, roll of a rotation matrix."""
+"""Small geometry every body uses, in one place: elementary rotations, the cross-product matrix and a
+broadcasting cross product, angle wrapping and unwrapping, roll of a rotation matrix."""
 
 from __future__ import annotations
 
@@ -42,6 +42,19 @@ def skew(r) -> np.ndarray:
     """[r]_× with [r]_× a = r × a."""
     x, y, z = r
     return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a × b over the last axis (length 3) of two broadcast arrays: ``np.cross``'s own products and differences
+    (a₁b₂ − a₂b₁, a₂b₀ − a₀b₂, a₀b₁ − a₁b₀, each product rounded before the difference), so the same bits, without
+    its per-call axis handling (≈60 µs on a spine's (54, 15, 3) arrays, most of the cost)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), np.result_type(a, b))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    np.subtract(a1 * b2, a2 * b1, out=out[..., 0])
+    np.subtract(a2 * b0, a0 * b2, out=out[..., 1])
+    np.subtract(a0 * b1, a1 * b0, out=out[..., 2])
+    return out
 
 
 def wrap(a):

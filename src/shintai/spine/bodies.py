@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shintai.core.geometry import cross3
 from shintai.core.runtime import SET, Body, SimulationDiverged, Snapshot, declare
 from shintai.spine.control import Mode
 from shintai.spine.geometry import MuscleSet, SpineModel
@@ -205,7 +206,7 @@ class QuasiStaticSpine(Body):
         centres = np.repeat(p[1:], 3, axis=0)
         joint_of = np.repeat(np.arange(1, chain.n + 1), 3)
         above = joint_of[None, :] <= all_links[:, None]
-        dx = np.cross(axes[None, :, :], x[:, None, :] - centres[None, :, :]) * above[..., None]
+        dx = cross3(axes[None, :, :], x[:, None, :] - centres[None, :, :]) * above[..., None]
         g_theta = -np.einsum("ka,kja->j", forces, dx)
         g_gap = None
         if gap is not None:

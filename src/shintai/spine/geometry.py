@@ -42,12 +42,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from llvmlite import ir
 from numba import njit, types
 from numba.extending import intrinsic
 from scipy.optimize import linprog, nnls
+
+from shintai.core.geometry import cross3
 
 E = np.eye(3)
 
@@ -289,6 +292,17 @@ class SpineModel:
         """∂q/∂g: muscle lengths against the axial joint gaps, (..., m, n) (Rabbit's §3.5.3)."""
         return self.derivatives(theta, gap)[2]
 
+    @cached_property
+    def _segment_ends(self) -> tuple:
+        """For the segments' end and start points (sign +1, −1): their point indices, whether each lies above each
+        joint coordinate (S, 3n) and above each joint's gap (S, n) — the model's constants :meth:`derivatives`
+        uses, formed once."""
+        n, link = self.chain.n, self.muscles.point_link
+        joint_of = np.repeat(np.arange(1, n + 1), 3)  # coordinate k belongs to joint joint_of[k]
+        joint = np.arange(1, n + 1)
+        return tuple((sign, pts, joint_of[None, :] <= link[pts][:, None], joint[None, :] <= link[pts][:, None])
+                     for sign, pts in ((1.0, self.muscles.seg_end), (-1.0, self.muscles.seg_start)))
+
     def derivatives(self, theta, gap=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Lengths q (..., m), J_m (..., m, 3n) and ∂q/∂g (..., m, n) from one forward kinematics."""
         chain, mus = self.chain, self.muscles
@@ -298,17 +312,14 @@ class SpineModel:
         u = d / np.maximum(seg_len, 1e-12)[..., None]
         axes = chain.joint_axes(theta, Q)  # (..., 3n, 3)
         centres = np.repeat(p[..., 1:, :], 3, axis=-2)  # joint i's centre for its 3 coordinates
-        joint_of = np.repeat(np.arange(1, chain.n + 1), 3)  # coordinate k belongs to joint joint_of[k]
         dtheta = np.zeros(x.shape[:-2] + (3 * chain.n, mus.m))
         dgap = np.zeros(x.shape[:-2] + (chain.n, mus.m))
         gap_dirs = R[..., :-1, :, 2]  # ∂p_i/∂g_i = R_{i−1} e_z
-        for sign, pts in ((1.0, mus.seg_end), (-1.0, mus.seg_start)):
+        for sign, pts, above, above_gap in self._segment_ends:
             xs = x[..., pts, :]  # (..., S, 3)
-            above = joint_of[None, :] <= mus.point_link[pts][:, None]  # (S, 3n)
             r = xs[..., :, None, :] - centres[..., None, :, :]  # (..., S, 3n, 3)
-            moment = np.einsum("...ska,...ka->...sk", np.cross(r, u[..., :, None, :]), axes)
+            moment = np.einsum("...ska,...ka->...sk", cross3(r, u[..., :, None, :]), axes)
             dtheta += sign * np.einsum("...sk,sm->...km", moment * above, mus.incidence)
-            above_gap = np.arange(1, chain.n + 1)[None, :] <= mus.point_link[pts][:, None]  # (S, n)
             along = np.einsum("...sa,...ia->...si", u, gap_dirs) * above_gap
             dgap += sign * np.einsum("...si,sm->...im", along, mus.incidence)
         return mus.sum_per_muscle(seg_len), np.swapaxes(dtheta, -1, -2), np.swapaxes(dgap, -1, -2)

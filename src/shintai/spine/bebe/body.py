@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shintai.core import Body, Loop, Module, Recorder, SimulationDiverged
+from shintai.core.geometry import cross3
 from shintai.core.runtime import SET, FunctionModule, declare
 from shintai.spine.bebe.constants import MIDDLE, SPANS
 from shintai.spine.geometry import Chain, MuscleSet, SpineModel
@@ -112,7 +113,7 @@ def point_jacobian(model: SpineModel, R: np.ndarray, p: np.ndarray, Q: np.ndarra
     axes = model.chain.joint_axes(theta, Q)
     centres = np.repeat(p[1:], 3, axis=0)
     below = np.repeat(np.arange(1, model.n + 1), 3) <= link
-    return (np.cross(axes, x - centres) * below[:, None]).T
+    return (cross3(axes, x - centres) * below[:, None]).T
 
 
 class BeBePlant(Body):
