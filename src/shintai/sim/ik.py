@@ -175,11 +175,6 @@ def _problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
     return problem
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a × b for 3-vectors (``np.cross`` costs ~20 µs a call on small arrays)."""
-    return np.array(_cross(a, b))
-
-
 def _cross(a, b) -> tuple[float, float, float]:
     """a × b as three Python floats (``tolist``): the same IEEE double arithmetic as on NumPy scalars, without
     their per-element boxing."""

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shintai.core.geometry import rot_x, rot_y, rot_z, skew
+from shintai.core.geometry import cross3, rot_x, rot_y, rot_z, skew
 from shintai.snake.model import configuration, constraint_matrices
 
 E_X, E_Y, E_Z = np.eye(3)
@@ -137,7 +137,7 @@ def point_jacobian(ch: Chain, k: int) -> tuple[np.ndarray, np.ndarray]:
     ṗ_k = v_h + ω_h × (P_k − P_0) + Σ_{j<k} ω_j × (P_k − P_j), ω_j the world axis of joint j.
     """
     J_psi = np.zeros((3, len(ch.axis)))
-    J_psi[:, : k - 1] = np.cross(ch.axis[: k - 1], ch.P[k] - ch.P[1:k]).T
+    J_psi[:, : k - 1] = cross3(ch.axis[: k - 1], ch.P[k] - ch.P[1:k]).T
     return np.hstack((I3, -skew(ch.P[k] - ch.P[0]))), J_psi
 
 
@@ -208,7 +208,7 @@ def contact_relation(p_i, R_i, plane: Plane) -> np.ndarray:
 def tilt_rows(R: np.ndarray, plane: Plane) -> np.ndarray:
     """G (2×3) with [κ̇, λ̇] = G ω for a frame R turning at ω: d/dt asin(n·e) = ω·(e × n) / cos(asin(n·e))."""
     n = plane.normal
-    rows = [np.cross(R[:, c], n) / math.sqrt(max(1e-300, 1.0 - (n @ R[:, c]) ** 2)) for c in (1, 0)]
+    rows = [cross3(R[:, c], n) / math.sqrt(max(1e-300, 1.0 - (n @ R[:, c]) ** 2)) for c in (1, 0)]
     return np.array(rows)
 
 
@@ -393,7 +393,7 @@ class DoubleArm:
         r = ch.P[2 * self.n] - ch.P[2 * self.n_t]
         E_inv = np.linalg.inv(euler_rate_matrix(euler_zyx(ch.R[2 * self.n - 1])))
         J_t1 = np.zeros((6, 3))
-        J_t1[:3, 0], J_t1[:3, 1], J_t1[:3, 2] = E_X, E_Y, np.cross(E_Z, r)
+        J_t1[:3, 0], J_t1[:3, 1], J_t1[:3, 2] = E_X, E_Y, cross3(E_Z, r)
         J_t1[3:, 2] = E_inv @ E_Z
         _, J_psi = wheel_pose_jacobian(ch, self.n)
         return J_t1, J_psi[:, 2 * self.n_t - 1:]

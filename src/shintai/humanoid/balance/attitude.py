@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from shintai.core.geometry import cross3
 from shintai.humanoid.balance.foot_attitude import quat_to_rot
 from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD
 
@@ -31,7 +32,7 @@ _EZ = np.eye(3)[2]  # the world's up
 def rotation_between(a, b) -> np.ndarray:
     """The smallest rotation taking unit vector ``a`` onto unit vector ``b`` (Rodrigues)."""
     a, b = np.asarray(a, float), np.asarray(b, float)
-    axis = np.cross(a, b)
+    axis = cross3(a, b)
     s, c = float(np.linalg.norm(axis)), float(a @ b)
     if s < 1e-12:
         return np.eye(3)
@@ -60,7 +61,7 @@ class TiltEstimate:
         if self.up is None:
             self.reset(snapshot)
         w = np.asarray(snapshot["imu_gyro"], float)
-        u = self.up - self.dt * np.cross(w, self.up)  # a world-fixed vector seen from a frame turning at ω
+        u = self.up - self.dt * cross3(w, self.up)  # a world-fixed vector seen from a frame turning at ω
         acc = np.asarray(snapshot["imu_acc"], float)
         n = float(np.linalg.norm(acc))
         if n > 0:

@@ -40,6 +40,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from shintai.core.geometry import cross3
 from shintai.humanoid.constants import (
     ARMATURE_BIG,
     ARMATURE_SMALL,
@@ -224,5 +225,5 @@ def ft_reaction(body: MujocoBody, snapshot, name: str) -> tuple[np.ndarray, np.n
     weight = mass * body.model.opt.gravity
     com = body.data.subtree_com[link] - body.site_pos(site)
     force = -rot @ snapshot[f"{name}_force"] - weight
-    torque = -rot @ snapshot[f"{name}_torque"] - np.cross(com, weight)
+    torque = -rot @ snapshot[f"{name}_torque"] - cross3(com, weight)
     return force, torque
