@@ -251,11 +251,10 @@ def test_push_on_a_named_link_as_a_before_physics_hook():
 
 
 def test_the_leg_ik_module_commands_what_leg_ik_solves_for_its_references():
-    """LegIKModule's float path (leg_angles, rot_xy_flat) gives the leg joints leg_ik gives for the waist under
+    """LegIKModule's compiled path (legs_upright, rot_xy_flat) gives the leg joints leg_ik gives for the waist under
     the CoM reference and the soles turned by δ and raised by the force difference, to the bit."""
     from shintai.core.geometry import rot_xy
-    from shintai.humanoid.balance.standing import rot_xy_flat
-    from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik
+    from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_ik, rot_xy_flat
 
     for roll, pitch in ((0.0, 0.0), (0.03, -0.02), (-0.1, 0.2)):
         assert rot_xy_flat(roll, pitch) == tuple(rot_xy(roll, pitch).ravel().tolist())

@@ -154,3 +154,24 @@ def test_joint_limits_are_reported_per_side_and_mirrored():
 def test_bad_arguments_raise_one_clear_value_error(args, word):
     with pytest.raises(ValueError, match=word):
         leg_ik(*args)
+
+
+def test_the_compiled_closed_form_is_its_python_source_bit_for_bit():
+    """closed_form is compiled (numba, no fast-math): on random waist and sole poses, both legs, sole and ankle
+    targets, in and out of reach, it gives the bits its own source gives on Python floats (the arithmetic the
+    stabilizer's and the tricycle's feet used before it was compiled)."""
+    from shintai.core.geometry import rot_xy
+    from shintai.humanoid.robots.leg_ik import closed_form
+
+    rng = np.random.default_rng(7)
+    links = HRP2_LINKS
+    for k in range(400):
+        side = 1.0 if k % 2 else -1.0
+        waist = (rng.normal(0.0, 0.02, 3) + (0.0, 0.0, 0.6 + 0.3 * (k % 7 == 0))).tolist()
+        w = (rot_xy(*rng.normal(0.0, 0.1, 2)) @ np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+             if k % 5 == 0 else rot_xy(*rng.normal(0.0, 0.05, 2))).ravel().tolist()
+        sole = (rng.normal(0.0, 0.05, 3) + (0.0, side * 0.1, 0.0)).tolist()
+        f = rot_xy(*rng.normal(0.0, 0.2, 2)).ravel().tolist()
+        args = (side * links.hip_y, links.hip_z, links.ankle_height, links.thigh, links.shank, k % 3 != 0,
+                *waist, *w, *sole, *f)
+        assert closed_form(*args) == closed_form.py_func(*args)

@@ -50,6 +50,7 @@ from shintai.humanoid.constants import (
     DAMPING_D_FLAT,
     DAMPING_T,
     FLOOR,
+    HRP2_LINKS,
     PLAN_HOLD_S,
     SETTLE_S,
     SOLE,
@@ -59,10 +60,10 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.robots.hrp2 import build_hrp2
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, leg_angles
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, legs_upright
 from shintai.sim.body import MujocoBody
 
-_EYE9 = tuple(np.eye(3).ravel().tolist())  # an upright waist / a level sole, row-major
+_NONE = np.zeros(0)  # no δ or no height correction for legs_upright
 PLATFORM_HEIGHT = VBOARD.deck_height  # m, the V-BOARD's pad top (0.12 m, chosen there), what the boarding steps onto
 CHANNELS = {**PREVIEW_CHANNELS, **STABILIZER_CHANNELS, **DAMPING_CHANNELS, **declare("sole_ref", "support", kind=SET),
             **declare("foot_damping")}
@@ -199,13 +200,6 @@ class StepPreview(PreviewModule):
                 "zmp_ref": np.array([zx + ox, zy + oy])}
 
 
-def rot_xy_flat(roll: float, pitch: float) -> tuple[float, ...]:
-    """:func:`~shintai.core.geometry.rot_xy` (Ry(pitch) Rx(roll)) as its 9 floats, row-major, without the array:
-    the sole attitude δ gives the leg IK each tick."""
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    return cp, sp * sr, sp * cr, 0.0, cr, -sr, -sp, cp * sr, cp * cr
-
-
 class LegIKModule(Module):
     """Stage 4: reads ``com_ref``, ``sole_ref``, ``foot_damping`` (δ: L roll, L pitch, R roll, R pitch)
     and ``sole_dz``; writes the whole ``ctrl`` vector: the ``stand`` keyframe's targets with the leg
@@ -220,33 +214,17 @@ class LegIKModule(Module):
         self.unreachable = 0
         self._eye = np.eye(3)
         self._legs = np.array(self.index["l"] + self.index["r"])  # both legs' actuators, in one assignment
-        self._offset = self.com_offset.tolist()
 
     def update(self, snapshot):
-        # on Python floats (leg_angles), the values leg_ik would convert to
-        cr, off = snapshot["com_ref"].tolist(), self._offset
-        waist = [cr[0] - off[0], cr[1] - off[1], cr[2] - off[2]]
-        soles = snapshot["sole_ref"].tolist()
-        delta = snapshot.get("foot_damping")
-        dz = snapshot.get("sole_dz")
-        if delta is not None:
-            delta = delta.tolist()
-        if dz is not None:
-            dz = dz.tolist()
-        q = []
-        for i, s in enumerate(SIDES):
-            x, y, z = soles[i]
-            rot = _EYE9
-            if delta is not None:
-                rot = rot_xy_flat(delta[2 * i], delta[2 * i + 1])
-            if dz is not None:
-                z += dz[i]
-            angles, reach_error = leg_angles(s, waist, _EYE9, (x, y, z), rot)
-            if reach_error != 0.0:
-                self.unreachable += 1
-            q += angles
+        delta, dz = snapshot.get("foot_damping"), snapshot.get("sole_dz")
         ctrl = self.ctrl0.copy()
-        ctrl[self._legs] = q
+        links = HRP2_LINKS
+        missed, finite = legs_upright(snapshot["com_ref"] - self.com_offset, snapshot["sole_ref"],
+                                      _NONE if delta is None else delta, _NONE if dz is None else dz, links.hip_y,
+                                      links.hip_z, links.ankle_height, links.thigh, links.shank, ctrl, self._legs)
+        if not finite:
+            raise ValueError("leg_ik: target or waist pose is not finite (com_ref, sole_ref, foot_damping or sole_dz)")
+        self.unreachable += missed
         return {"ctrl": ctrl}
 
 

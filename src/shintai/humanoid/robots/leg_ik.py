@@ -36,6 +36,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numba import njit
 
 from shintai.core.geometry import rot_x, rot_y, rot_z
 from shintai.humanoid.constants import HRP2_LINKS, LEG_JOINTS, Hrp2Links, joint_range
@@ -110,25 +111,31 @@ def leg_angles(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2L
                sole: bool = True) -> tuple[list[float], float]:
     """The closed form of the module docstring on Python floats (:func:`leg_ik_floats`' arguments): the six
     angles as a list and ``reach_error`` (0 when reachable), without the limit check (the stabilizer's leg IK:
-    every 4 ms tick, both legs)."""
-    w0, w1, w2, w3, w4, w5, w6, w7, w8 = waist_rot
-    f0, f1, f2, f3, f4, f5, f6, f7, f8 = sole_rot
-    wx, wy, wz = waist_pos
-    px, py, pz = sole_pos
+    every 4 ms tick, both legs). The arithmetic is :func:`closed_form`'s."""
+    *q, reach_error, dist = closed_form(SIDES[side] * links.hip_y, links.hip_z, links.ankle_height, links.thigh,
+                                        links.shank, sole, *waist_pos, *waist_rot, *sole_pos, *sole_rot)
+    if not math.isfinite(dist):
+        raise ValueError(f"leg_ik: target or waist pose is not finite (hip from ankle at distance {dist})")
+    return q, reach_error
+
+
+@njit(cache=True)
+def closed_form(hy, hz, h, l1, l2, sole, wx, wy, wz, w0, w1, w2, w3, w4, w5, w6, w7, w8,
+                px, py, pz, f0, f1, f2, f3, f4, f5, f6, f7, f8):
+    """The closed form of the module docstring, compiled (the same IEEE double operations, in the same order, as on
+    Python floats: no fused multiply-adds, the C library's sin, cos, atan2 and acos; tested bit for bit against
+    its own source run by Python): the hip at ``(0, hy, hz)`` in the waist frame, ``h`` the ankle height, ``l1``,
+    ``l2`` thigh and shank; the waist at (wx, wy, wz) turned by w (row-major), the sole (``sole``; else the ankle)
+    at (px, py, pz) turned by f. Returns (q1 … q6, reach_error, |r|), |r| not finite for a non-finite pose."""
     if sole:  # ankle = sole + R_f (0, 0, ankle_height)
-        h = links.ankle_height
         px, py, pz = px + f2 * h, py + f5 * h, pz + f8 * h
-    hy, hz = SIDES[side] * links.hip_y, links.hip_z  # hip point H = p_w + R_w (0, hy, hz)
-    dx = wx + w1 * hy + w2 * hz - px
+    dx = wx + w1 * hy + w2 * hz - px  # hip point H = p_w + R_w (0, hy, hz)
     dy = wy + w4 * hy + w5 * hz - py
     dz = wz + w7 * hy + w8 * hz - pz
     rx = f0 * dx + f3 * dy + f6 * dz  # r = R_fᵀ (H − p_a)
     ry = f1 * dx + f4 * dy + f7 * dz
     rz = f2 * dx + f5 * dy + f8 * dz
     dist = math.sqrt(rx * rx + ry * ry + rz * rz)
-    if not math.isfinite(dist):
-        raise ValueError(f"leg_ik: target or waist pose is not finite (hip from ankle {(rx, ry, rz)})")
-    l1, l2 = links.thigh, links.shank
     reach_error = max(0.0, dist - (l1 + l2), abs(l1 - l2) - dist)
     c4 = (dist * dist - l1 * l1 - l2 * l2) / (2 * l1 * l2)
     q4 = math.acos(min(1.0, max(-1.0, c4)))
@@ -149,8 +156,42 @@ def leg_angles(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2L
     col2 = s6 * n21 + c6 * n22  # (N Rx(−q6))[2, 2]
     m20 = cb * n20 - sb * col2
     m22 = sb * n20 + cb * col2
-    return [math.atan2(-m01, m11), math.atan2(m21, math.sqrt(m01 * m01 + m11 * m11)), math.atan2(-m20, m22),
-            q4, q5, q6], reach_error
+    return (math.atan2(-m01, m11), math.atan2(m21, math.sqrt(m01 * m01 + m11 * m11)), math.atan2(-m20, m22),
+            q4, q5, q6, reach_error, dist)
+
+
+@njit(cache=True)
+def rot_xy_flat(roll, pitch):
+    """:func:`~shintai.core.geometry.rot_xy` (Ry(pitch) Rx(roll)) as its 9 floats, row-major, without the array:
+    the sole attitude δ gives the leg IK each tick (compiled, for :func:`legs_upright`; callable from Python)."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    return cp, sp * sr, sp * cr, 0.0, cr, -sr, -sp, cp * sr, cp * cr
+
+
+@njit(cache=True)
+def legs_upright(waist, soles, delta, dz, hip_y, hip_z, h, l1, l2, ctrl, legs):
+    """Both legs' :func:`closed_form` under an upright waist at ``waist`` (3,), in one call (the stabilizer's leg
+    IK, :class:`~shintai.humanoid.balance.standing.LegIKModule`): the left and right soles ``soles`` (2, 3) turned
+    by ``delta`` (L roll, L pitch, R roll, R pitch; empty: level) and raised by ``dz`` (L, R; empty: none). The
+    twelve angles (left leg, then right, hip yaw first) are written into ``ctrl`` at ``legs``; returns (the legs
+    that could not reach, whether the pose was finite)."""
+    missed, finite, k = 0, True, 0
+    for i in range(2):
+        x, y, z = soles[i, 0], soles[i, 1], soles[i, 2]
+        f0, f1, f2, f3, f4, f5, f6, f7, f8 = 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
+        if delta.shape[0]:
+            f0, f1, f2, f3, f4, f5, f6, f7, f8 = rot_xy_flat(delta[2 * i], delta[2 * i + 1])
+        if dz.shape[0]:
+            z += dz[i]
+        q1, q2, q3, q4, q5, q6, reach_error, dist = closed_form(
+            hip_y if i == 0 else -hip_y, hip_z, h, l1, l2, True, waist[0], waist[1], waist[2],
+            1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, x, y, z, f0, f1, f2, f3, f4, f5, f6, f7, f8)
+        finite = finite and math.isfinite(dist)
+        missed += reach_error != 0.0
+        for q in (q1, q2, q3, q4, q5, q6):
+            ctrl[legs[k]] = q
+            k += 1
+    return missed, finite
 
 
 def legs_ik(waist_pos, waist_rot, soles: dict, links: Hrp2Links = HRP2_LINKS, sole: bool = True) -> dict[str, LegIKResult]:
