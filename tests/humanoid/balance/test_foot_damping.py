@@ -56,7 +56,7 @@ def test_force_difference_control_splits_the_correction_in_double_support_and_de
 
 
 def test_the_module_steps_both_feet_as_each_foots_law_would():
-    """FootDampingModule runs Eq. 5.1 on both feet's floats at once: the same δ, e_τ and saturation, to the bit,
+    """FootDampingModule runs Eq. 5.1 on both feet in one compiled call: the same δ, e_τ and saturation, to the bit,
     as each foot's FootDamping.step on its arrays (the clip included: the right pitch saturates)."""
     from shintai.humanoid.balance.foot_damping import FootDampingModule
 

@@ -24,6 +24,7 @@ Units: τ in N·m, δ in rad, D in N·m·s/rad (the thesis gives D without units
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from shintai.core.runtime import SET, Channel, Module, Snapshot, declare
 from shintai.humanoid.constants import (
@@ -44,9 +45,34 @@ GAIN = "damping_gain"
 CHANNELS = {**declare("damping_delta", "e_tau", kind=SET), GAIN: Channel(GAIN, SET, delay=1)}
 
 
-def damping_step(delta, e_tau, D, T: float, dt: float):
-    """One forward-Euler step of Eq. 5.1 with e_τ = τᵈ − τ (Eq. 5.2): δ + Δt (e_τ/D − δ/T), on floats or arrays."""
+@njit(cache=True)
+def damping_step(delta, e_tau, D, T, dt):
+    """One forward-Euler step of Eq. 5.1 with e_τ = τᵈ − τ (Eq. 5.2): δ + Δt (e_τ/D − δ/T), on floats or arrays
+    (compiled without fast-math: the same IEEE operations as NumPy's or Python's)."""
     return delta + dt * (e_tau / D - delta / T)
+
+
+@njit(cache=True)
+def _foot_step(out, col, delta, e_tau, saturated, D, tau_d, tau, T, dt, limit):
+    """One foot's Eq. 5.2 and 5.1 (roll, pitch), each δ clipped to ±``limit`` as Python's ``min(max(raw, −limit),
+    limit)`` does; the foot's δ, e_τ, saturated updated in place and δ, e_τ written to ``out``'s columns ``col``,
+    ``col + 1`` (rows δ, e_τ)."""
+    for axis in range(2):
+        e = tau_d[axis] - tau[axis]  # Eq. 5.2
+        raw = damping_step(delta[axis], e, D[axis], T, dt)  # Eq. 5.1
+        x = -limit if -limit > raw else raw
+        d = limit if limit < x else x
+        delta[axis], e_tau[axis], saturated[axis] = d, e, abs(raw) >= limit
+        out[0, col + axis], out[1, col + axis] = d, e
+
+
+@njit(cache=True)
+def _feet_step(out, dl, el, sl, Dl, dr, er, sr, Dr, tau_d_l, tau_d_r, tau_l, tau_r, laws):
+    """:class:`FootDampingModule`'s tick compiled: :func:`_foot_step` for the left foot (δ ``dl``, e_τ ``el``,
+    saturated ``sl``, gains ``Dl``; T, Δt, limit ``laws[0:3]``) and the right (``laws[3:6]``); ``out`` rows δ, e_τ as
+    [L roll, L pitch, R roll, R pitch]."""
+    _foot_step(out, 0, dl, el, sl, Dl, tau_d_l, tau_l, laws[0], laws[1], laws[2])
+    _foot_step(out, 2, dr, er, sr, Dr, tau_d_r, tau_r, laws[3], laws[4], laws[5])
 
 
 def damping_controller_gain(D: float, T: float) -> float:
@@ -102,7 +128,7 @@ class ForceDifferenceControl:
 
     def step(self, f_d_diff: float, f_diff: float, double_support: bool) -> tuple[float, float]:
         e = (f_d_diff - f_diff) if double_support else 0.0
-        z = float(damping_step(self.z_ctrl, e, self.D, self.T, self.dt))
+        z = damping_step.py_func(self.z_ctrl, e, self.D, self.T, self.dt)  # its source: on one float, cheaper than a call
         self.z_ctrl = min(max(z, -self.limit), self.limit)  # = np.clip of a float, without its dispatch
         return -0.5 * self.z_ctrl, 0.5 * self.z_ctrl
 
@@ -123,6 +149,8 @@ class FootDampingModule(Module):
         super().__init__(name, period)
         self.feet = {"L": FootDamping(D=D, T=T), "R": FootDamping(D=D, T=T)}
         self.channel = channel
+        self._laws = tuple(float(v) for law in self.feet.values() for v in (law.T, law.dt, law.limit))
+        self._out = np.zeros((2, 4))  # δ and e_τ of the tick, [L roll, L pitch, R roll, R pitch]
 
     def reset(self, snapshot: Snapshot) -> None:
         for foot in self.feet.values():
@@ -133,22 +161,11 @@ class FootDampingModule(Module):
         gain = snapshot.get(GAIN)
         if gain is not None:
             left.D[:], right.D[:] = gain[:2], gain[2:]
-        # both feet's Eq. 5.1 at once on Python floats, [L roll, L pitch, R roll, R pitch] (FootDamping.step's
-        # maths: the same IEEE operations as on its arrays, without a dozen tiny NumPy calls a tick)
-        tau_d = snapshot["tau_d_L"].tolist() + snapshot["tau_d_R"].tolist()
-        tau = snapshot["tau_L"].tolist() + snapshot["tau_R"].tolist()
-        D = left.D.tolist() + right.D.tolist()
-        delta = left.delta.tolist() + right.delta.tolist()
-        laws = (left, left, right, right)
-        e_tau = [a - b for a, b in zip(tau_d, tau)]  # Eq. 5.2
-        raw = [damping_step(d, e, g, law.T, law.dt) for d, e, g, law in zip(delta, e_tau, D, laws)]  # Eq. 5.1
-        delta = [min(max(r, -law.limit), law.limit) for r, law in zip(raw, laws)]
-        for i, law in ((0, left), (2, right)):  # each foot's state, in place
-            law.e_tau[0], law.e_tau[1] = e_tau[i], e_tau[i + 1]
-            law.delta[0], law.delta[1] = delta[i], delta[i + 1]
-            law.saturated[0], law.saturated[1] = abs(raw[i]) >= law.limit, abs(raw[i + 1]) >= law.limit
+        # both feet's Eq. 5.2 and 5.1 in one compiled call (FootDamping.step's maths, the same IEEE operations)
+        _feet_step(self._out, left.delta, left.e_tau, left.saturated, left.D, right.delta, right.e_tau, right.saturated,
+                   right.D, snapshot["tau_d_L"], snapshot["tau_d_R"], snapshot["tau_L"], snapshot["tau_R"], self._laws)
         if self.recorder is not None:  # the log's signals are formed only when something records them
             self.log(snapshot["t"], **{f"{self.name}.delta_L": left.delta.copy(), f"{self.name}.delta_R": right.delta.copy(),
                                            f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})
-        delta = np.array(delta)
-        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": np.array(e_tau)}
+        delta = self._out[0].copy()
+        return {self.channel: delta, "damping_delta": delta.copy(), "e_tau": self._out[1].copy()}

@@ -63,6 +63,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numba import njit
 
 from shintai.core.constants import GRAVITY
 from shintai.core.geometry import wrap_pi
@@ -70,6 +71,8 @@ from shintai.core.runtime import SET, Module, declare
 from shintai.humanoid.balance.attitude import TiltEstimate
 from shintai.humanoid.balance.foot_attitude import CONTACT_FZ
 from shintai.humanoid.balance.foot_damping import ForceDifferenceControl
+from shintai.humanoid.balance.stabilizer_tick import (COM, OUT_SIZE, READINGS, STATE_SIZE, foot_wrench_rows,
+                                                        lip_tracking)
 from shintai.humanoid.constants import ATTITUDE_TAU, COM_VEL_FILTER, CONTROL_PERIOD, HRP2_LINKS, LIP_K, ZMP_DELAY_T
 from shintai.sim.body import MujocoBody
 
@@ -80,6 +83,7 @@ FOOT_KEYS = {s: (f"tau_d_{f}", f"tau_{f}", f"f_{f}z") for s, f in FOOT.items()} 
 # support code on the loop's "support" channel (a number, so it can travel on a channel)
 SUPPORT_CODE = {"lr": 0.0, "l": 1.0, "r": -1.0}
 SUPPORT_NAME = {v: k for k, v in SUPPORT_CODE.items()}
+_EYE3 = np.eye(3)  # no attitude error: the CoM readings other than "imu"
 STANCE = {name: tuple(i for i, side in enumerate(SIDES) if side in name) for name in SUPPORT_CODE}  # the feet down
 
 CHANNELS = {
@@ -190,25 +194,31 @@ def distribute(zmp_d, points: dict, support: str, total_fz: float) -> Distributi
         raise ValueError(f"distribute: total_fz must be a finite force ≥ 0 N, got {total_fz!r}")
     alpha, fz_l, fz_r, dx, dy = distribution(float(zmp_d[0]), float(zmp_d[1]), float(points["l"][0]),
                                              float(points["l"][1]), float(points["r"][0]), float(points["r"][1]),
-                                             support, total_fz)
+                                             SUPPORT_CODE[support], float(total_fz))
     fz = {"l": fz_l, "r": fz_r}
     # exerted torque about a_j of a downward force f at q_j: (−d_y f, d_x f) (roll, pitch)
     tau_d = {s: np.array([-dy * f, dx * f]) for s, f in fz.items()}
     return Distribution(alpha, fz, tau_d)
 
 
-def distribution(px: float, py: float, lx: float, ly: float, rx: float, ry: float, support: str,
-                 total_fz: float) -> tuple[float, float, float, float, float]:
-    """:func:`distribute`'s arithmetic on Python floats (p_d = (px, py), a_L, a_R; unchecked, the stabilizer's
-    4 ms tick): (α, f_L, f_R, d_x, d_y), d = p_d − p_α each foot's pressure-centre offset from its point."""
-    if support == "l":
+@njit(cache=True)
+def distribution(px, py, lx, ly, rx, ry, code, total_fz):
+    """:func:`distribute`'s arithmetic, compiled (p_d = (px, py), a_L, a_R; ``code`` the support's
+    :data:`SUPPORT_CODE`; unchecked, the stabilizer's 4 ms tick): (α, f_L, f_R, d_x, d_y), d = p_d − p_α each foot's
+    pressure-centre offset from its point. The clip of α to [0, 1] is Python's ``min(1, max(0, ·))``, NaN to 0."""
+    if code == 1.0:
         alpha = 1.0
-    elif support == "r":
+    elif code == -1.0:
         alpha = 0.0
     else:
         ux, uy = lx - rx, ly - ry
         n2 = ux * ux + uy * uy
-        alpha = min(1.0, max(0.0, ((px - rx) * ux + (py - ry) * uy) / n2)) if n2 > 0 else 0.5
+        if n2 > 0:
+            a = ((px - rx) * ux + (py - ry) * uy) / n2
+            a = a if a > 0.0 else 0.0
+            alpha = a if a < 1.0 else 1.0
+        else:
+            alpha = 0.5
     ax, ay = rx + alpha * (lx - rx), ry + alpha * (ly - ry)  # p_α
     # each foot's pressure centre q_j = a_j + (p_d − p_α)
     return alpha, alpha * total_fz, (1.0 - alpha) * total_fz, px - ax, py - ay
@@ -227,8 +237,9 @@ class FootSensors:
     """Both feet's exerted wrenches (sign convention: module docstring) from the ankle F/T sensors: the
     quasi-static reaction of :func:`~shintai.humanoid.robots.hrp2.ft_reaction` (foot weight compensated),
     moved from the sensor site to the sole point, negated. Ids and masses are looked up once, MjData's arrays
-    held as live views (as :class:`~shintai.sim.body.MujocoBody` holds its own) and the arithmetic is on Python
-    floats (it runs every 4 ms tick; ``ft_reaction`` costs ≈0.15 ms a foot)."""
+    held as live views (as :class:`~shintai.sim.body.MujocoBody` holds its own) and the arithmetic is one compiled
+    kernel (:func:`~shintai.humanoid.balance.stabilizer_tick.foot_wrench_rows`; it runs every 4 ms tick,
+    ``ft_reaction`` costs ≈0.15 ms a foot)."""
 
     def __init__(self, body: MujocoBody):
         m, d = body.model, body.data
@@ -241,38 +252,22 @@ class FootSensors:
             f_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_force")])
             t_adr = int(m.sensor_adr[body.id("sensor", f"{s}_ankle_torque")])
             self.rows[s] = (site, sole, link, weight, f_adr, t_adr)
-        self._sensors = d.sensordata
-        # per side, its rows of MjData as views formed once: sensor site attitude and position, the foot's mass centre,
-        # sole point and sole attitude
-        self._views = {s: (d.site_xmat[site], d.site_xpos[site], d.subtree_com[link], d.site_xpos[sole], d.site_xmat[sole])
-                       for s, (site, sole, link, *_) in self.rows.items()}
+        self._index = np.array([[site, sole, link, f_adr, t_adr] for site, sole, link, _, f_adr, t_adr in self.rows.values()],
+                               dtype=np.int64)
+        self._weights = np.array([row[3] for row in self.rows.values()])
+        self._arrays = (d.sensordata, d.site_xmat, d.site_xpos, d.subtree_com)  # live views of MjData, formed once
+        self.w = np.zeros((2, 7))
+
+    def read_rows(self) -> np.ndarray:
+        """Both feet's wrenches as rows (left, right) of (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw), the yaw
+        the angle of the sole's x axis projected on the floor (rad, world); the array is this reader's, rewritten at
+        every read."""
+        foot_wrench_rows(self.w, *self._arrays, self._index, self._weights)
+        return self.w
 
     def read_floats(self) -> dict[str, tuple[float, ...]]:
-        """:meth:`read` on Python floats: side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw), the yaw
-        the angle of the sole's x axis projected on the floor (rad, world)."""
-        sensors = self._sensors.tolist()
-        out = {}
-        for s, (_, _, _, (gx, gy, gz), f_adr, t_adr) in self.rows.items():
-            site_rot, site_pos, foot_com, sole_pos, sole_rot = self._views[s]
-            r = site_rot.tolist()
-            fx, fy, fz = sensors[f_adr:f_adr + 3]
-            tx, ty, tz = sensors[t_adr:t_adr + 3]
-            px, py, pz = site_pos.tolist()
-            cx, cy, cz = foot_com.tolist()
-            cx, cy, cz = cx - px, cy - py, cz - pz
-            # reaction about the sensor: f = −R f_s − m g, τ = −R τ_s − (c × m g)
-            Fx = -(r[0] * fx + r[1] * fy + r[2] * fz) - gx
-            Fy = -(r[3] * fx + r[4] * fy + r[5] * fz) - gy
-            Fz = -(r[6] * fx + r[7] * fy + r[8] * fz) - gz
-            Tx = -(r[0] * tx + r[1] * ty + r[2] * tz) - (cy * gz - cz * gy)
-            Ty = -(r[3] * tx + r[4] * ty + r[5] * tz) - (cz * gx - cx * gz)
-            sx, sy, sz = sole_pos.tolist()
-            lx, ly, lz = px - sx, py - sy, pz - sz  # sensor − sole point
-            tau_x = Tx + ly * Fz - lz * Fy  # the reaction torque about the sole point
-            tau_y = Ty + lz * Fx - lx * Fz
-            q = sole_rot.tolist()
-            out[s] = (Fz, -tau_x, -tau_y, sx, sy, sz, math.atan2(q[3], q[0]))
-        return out
+        """:meth:`read_rows` on Python floats: side → its row."""
+        return {s: tuple(row) for s, row in zip(SIDES, self.read_rows().tolist(), strict=True)}
 
     def read(self) -> dict[str, FootWrench]:
         """Both feet's :class:`FootWrench` (side → wrench)."""
@@ -330,7 +325,6 @@ class StabilizerModule(Module):
         self.ref_ankle_pitch = None if ref_ankle_pitch is None else tuple(float(p) for p in ref_ankle_pitch)
         self.com_reading = com_reading
         self.tilt = TiltEstimate(attitude_tau, period) if com_reading == "imu" else None
-        self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
         self.read_com = (math.nan, math.nan)
         self.truncate = bool(truncate)
         self.body, self.k, self.lip, self.use_force_difference = body, tuple(float(v) for v in k), lip, force_difference
@@ -341,19 +335,20 @@ class StabilizerModule(Module):
         self.force_difference = ForceDifferenceControl(dt=period)
         self.sensors = FootSensors(body)
         self._com_now = body.data.subtree_com[self._root]  # the whole-body CoM, a live view of MjData
-        self.com = [0.0, 0.0, 0.0]
-        self.com_vel = [0.0, 0.0, 0.0]
-        self._prev_ref = None
+        # the LIP tracking's state between ticks (stabilizer_tick.STATE: CoM, its velocity, the last reference, the
+        # feet/imu reading's) and its outputs, both rewritten in place every tick
+        self._state, self._out = np.zeros(STATE_SIZE), np.zeros(OUT_SIZE)
+        self._reading = READINGS[com_reading]
+        self._ankle_links = [self.sensors.rows[s][2] for s in SIDES]
+        self._no_ankles = np.zeros((2, 2))
         self._zero = np.zeros(2)
 
     def reset(self, snapshot) -> None:
-        self.com = self.body.data.subtree_com[self._root].tolist()
-        self.com_vel = [0.0, 0.0, 0.0]
-        self._prev_ref = None
+        self._state[:] = 0.0
+        self._state[COM:COM + 3] = self._com_now
         self.force_difference.z_ctrl = 0.0
         if self.tilt is not None:
             self.tilt.reset(snapshot)
-        self._read_prev, self._read_vel, self._read_support = None, [0.0, 0.0], None
 
     def _ref_ankle_dx(self, snapshot, stance) -> float:
         """The reference ankles' mean x offset from the reference sole points: h_a sin φ_ref, φ_ref the soles' pitch
@@ -368,92 +363,38 @@ class StabilizerModule(Module):
         return sum(h * math.sin(pitch[SIDES[i]]) for i in stance) / len(stance)
 
     def update(self, snapshot):
-        dt = self.period
-        com = self._com_now.tolist()
-        prev, v = self.com, self.com_vel
-        f, a = COM_VEL_FILTER, 1.0 - COM_VEL_FILTER  # ẋ ← 0.9 ẋ + 0.1 Δx/Δt per axis
-        self.com_vel = [f * v[0] + a * (com[0] - prev[0]) / dt, f * v[1] + a * (com[1] - prev[1]) / dt,
-                        f * v[2] + a * (com[2] - prev[2]) / dt]
-        self.com = com
-        cr = snapshot["com_ref"].tolist()
-        zr = snapshot["zmp_ref"].tolist()
-        prev_ref = self._prev_ref if self._prev_ref is not None else cr
-        vr = [(cr[0] - prev_ref[0]) / dt, (cr[1] - prev_ref[1]) / dt]
-        self._prev_ref = cr
-        support = SUPPORT_NAME[float(snapshot["support"])]
-        w = self.sensors.read_floats()  # side → (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw)
-        soles = snapshot["sole_ref"].tolist()
-        # the foot-origin frame: actual CoM, ZMP and torques relative to the actual stance feet (their mean
-        # point and mean yaw), re-expressed on the reference stance feet, which have no yaw (module docstring)
-        stance = STANCE[support]
-        n = len(stance)
-        _, _, _, feet_x, feet_y, feet_z, feet_yaw = zip(*[w[SIDES[i]] for i in stance])
-        ref_x, ref_y, _ = zip(*[soles[i] for i in stance])
-        psi = mean_yaw(feet_yaw)
-        ax = sum(feet_x) / n
-        ay = sum(feet_y) / n
-        rx = sum(ref_x) / n
-        ry = sum(ref_y) / n
+        code = float(snapshot["support"])
+        support = SUPPORT_NAME[code]
+        err = self.tilt.update(snapshot) if self.tilt is not None else _EYE3
+        w = self.sensors.read_rows()  # left, right: (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw)
+        ankles, ankle_dx = self._no_ankles, math.nan
         if self.foot_origin == "ankle":  # hrpsys's foot origin: the ankle links' origins (module docstring)
-            d = self.body.data
-            ax = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][0]) for i in stance) / n
-            ay = sum(float(d.xpos[self.sensors.rows[SIDES[i]][2]][1]) for i in stance) / n
-            rx += self._ref_ankle_dx(snapshot, stance)
-
-        c, s = math.cos(psi), math.sin(psi)
-
-        def turn(x, y):  # into_yawed(x, y, ψ), its cosine and sine formed once a tick
-            return c * x + s * y, -s * x + c * y
-
-        def to_ref(x, y):  # a world point into the reference stance frame: Rz(−ψ)(p − a) + r
-            x, y = turn(x - ax, y - ay)
-            return x + rx, y + ry
-
-        # measured ZMP of the feet in contact (the sole points on the floor plane): Σ(a f + (τ_y, −τ_x)) / Σ f
-        num_x = num_y = total = 0.0
-        for fz, tau_x, tau_y, px, py, _, _ in w.values():
-            if fz > CONTACT_FZ:
-                num_x += px * fz + tau_y
-                num_y += py * fz - tau_x
-                total += fz
-        act_x, act_y = to_ref(num_x / total, num_y / total) if total > 0 else (math.nan, math.nan)
+            ankles = self.body.data.xpos[self._ankle_links, :2]
+            ankle_dx = self._ref_ankle_dx(snapshot, STANCE[support])
+        # the CoM filter, the foot-origin frame (the actual CoM, ZMP and torques relative to the actual stance feet,
+        # their mean point and mean yaw, re-expressed on the reference stance feet, which have no yaw: module
+        # docstring), the measured ZMP and [55] Eq. 26, compiled (stabilizer_tick.lip_tracking)
         k1, k2, k3 = self.k
-        if self.tilt is not None:
-            err = self.tilt.update(snapshot)
-        if self.lip and total > 0:
-            cx, cy = to_ref(com[0], com[1])
-            vx, vy = turn(self.com_vel[0], self.com_vel[1])
-            if self.com_reading != "world":  # the offset from the stance feet ("imu": through the estimated attitude)
-                ex, ey = com[0] - ax, com[1] - ay
-                if self.tilt is not None:
-                    az = sum(feet_z) / n
-                    ex, ey, _ = (err @ np.array([ex, ey, com[2] - az])).tolist()
-                cx, cy = turn(ex, ey)
-                cx, cy = cx + rx, cy + ry
-                if self._read_prev is not None and self._read_support == support:
-                    f = COM_VEL_FILTER
-                    self._read_vel = [f * self._read_vel[0] + (1 - f) * (cx - self._read_prev[0]) / dt,
-                                      f * self._read_vel[1] + (1 - f) * (cy - self._read_prev[1]) / dt]
-                self._read_prev, self._read_support = (cx, cy), support
-                vx, vy = self._read_vel
+        soles = snapshot["sole_ref"]
+        lip_tracking(self._out, self._state, w, self._com_now, snapshot["com_ref"], snapshot["zmp_ref"], soles, code,
+                     k1, k2, k3, self.period, COM_VEL_FILTER, CONTACT_FZ, self.lip, self._reading, err, ankles, ankle_dx)
+        pd_x, pd_y, act_x, act_y, cx, vx, c, s, ax, ay, rx, ry = self._out.tolist()
+        if not math.isnan(cx):
             self.read_com = (cx, vx)
-            # [55] Eq. 26 (lip_feedback, on floats)
-            pd_x = zr[0] + k1 * (cr[0] - cx) + k2 * (vr[0] - vx) + k3 * (zr[0] - act_x)
-            pd_y = zr[1] + k1 * (cr[1] - cy) + k2 * (vr[1] - vy) + k3 * (zr[1] - act_y)
-        else:
-            pd_x, pd_y = zr[0], zr[1]
         if self.truncate:
             pd_x, pd_y = truncate_zmp(np.array([pd_x, pd_y]), support_polygon(soles, support)).tolist()
         zmp_d = np.array([pd_x, pd_y])
-        (lx, ly, _), (rx_, ry_, _) = soles
+        rows = w.tolist()
+        (lx, ly, _), (rx_, ry_, _) = soles.tolist()
         if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
-            (lx, ly), (rx_, ry_) = (to_ref(*w[side][3:5]) for side in SIDES)
-        alpha, fz_l, fz_r, dx, dy = distribution(pd_x, pd_y, lx, ly, rx_, ry_, support, self.weight)
+            (lx, ly), (rx_, ry_) = ((c * x + s * y + rx, -s * x + c * y + ry)  # Rz(−ψ)(p − a) + r
+                                    for x, y in ((row[3] - ax, row[4] - ay) for row in rows))
+        alpha, fz_l, fz_r, dx, dy = distribution(pd_x, pd_y, lx, ly, rx_, ry_, code, self.weight)
         act = np.array([act_x, act_y])
         out = {"zmp_d": zmp_d, "zmp_act": act}
-        for side, fd in (("l", fz_l), ("r", fz_r)):
+        for side, fd, row in (("l", fz_l, rows[0]), ("r", fz_r, rows[1])):
             on = side in support
-            fz, tau_x, tau_y, *_, yaw = w[side]
+            fz, tau_x, tau_y, *_, yaw = row
             tau_d_key, tau_key, fz_key = FOOT_KEYS[side]
             # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j
             out[tau_d_key] = np.array([-dy * fd, dx * fd]) if on else self._zero
@@ -463,10 +404,10 @@ class StabilizerModule(Module):
         dz = (0.0, 0.0)
         if self.use_force_difference:
             # Δf of the exerted vertical forces (downward: −f_z), see the sign convention
-            z_r, z_l = self.force_difference.step(fz_r - fz_l, w["r"][0] - w["l"][0], support == "lr")
+            z_r, z_l = self.force_difference.step(fz_r - fz_l, rows[1][0] - rows[0][0], support == "lr")
             dz = (z_l, z_r)
         out["sole_dz"] = np.array(dz)
         if self.recorder is not None:
             self.log(snapshot["t"], **{f"{self.name}.zmp_d": zmp_d, f"{self.name}.zmp_act": act,
-                                       f"{self.name}.com": np.array(com), f"{self.name}.alpha": alpha})
+                                       f"{self.name}.com": self._state[COM:COM + 3].copy(), f"{self.name}.alpha": alpha})
         return out
