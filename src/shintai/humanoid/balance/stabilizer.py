@@ -78,8 +78,6 @@ from shintai.sim.body import MujocoBody
 
 # --- constants ------------------------------------------------------------------------------------
 SIDES = ("l", "r")
-FOOT = {"l": "L", "r": "R"}  # the foot_damping module's names
-FOOT_KEYS = {s: (f"tau_d_{f}", f"tau_{f}", f"f_{f}z") for s, f in FOOT.items()}  # each foot's channels (below)
 # support code on the loop's "support" channel (a number, so it can travel on a channel)
 SUPPORT_CODE = {"lr": 0.0, "l": 1.0, "r": -1.0}
 SUPPORT_NAME = {v: k for k, v in SUPPORT_CODE.items()}
@@ -341,7 +339,6 @@ class StabilizerModule(Module):
         self._reading = READINGS[com_reading]
         self._ankle_links = [self.sensors.rows[s][2] for s in SIDES]
         self._no_ankles = np.zeros((2, 2))
-        self._zero = np.zeros(2)
 
     def reset(self, snapshot) -> None:
         self._state[:] = 0.0
@@ -383,31 +380,30 @@ class StabilizerModule(Module):
             self.read_com = (cx, vx)
         if self.truncate:
             pd_x, pd_y = truncate_zmp(np.array([pd_x, pd_y]), support_polygon(soles, support)).tolist()
-        zmp_d = np.array([pd_x, pd_y])
         rows = w.tolist()
         (lx, ly, _), (rx_, ry_, _) = soles.tolist()
         if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
             (lx, ly), (rx_, ry_) = ((c * x + s * y + rx, -s * x + c * y + ry)  # Rz(−ψ)(p − a) + r
                                     for x, y in ((row[3] - ax, row[4] - ay) for row in rows))
         alpha, fz_l, fz_r, dx, dy = distribution(pd_x, pd_y, lx, ly, rx_, ry_, code, self.weight)
-        act = np.array([act_x, act_y])
-        out = {"zmp_d": zmp_d, "zmp_act": act}
+        feet = []  # per foot: τᵈ (roll, pitch), τ (roll, pitch); a swinging foot gets 0 and 0
         for side, fd, row in (("l", fz_l, rows[0]), ("r", fz_r, rows[1])):
-            on = side in support
-            fz, tau_x, tau_y, *_, yaw = row
-            tau_d_key, tau_key, fz_key = FOOT_KEYS[side]
-            # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j
-            out[tau_d_key] = np.array([-dy * fd, dx * fd]) if on else self._zero
-            # τ about the foot's own roll and pitch axes, the axes δ turns it about
-            out[tau_key] = np.array(into_yawed(tau_x, tau_y, yaw)) if on else self._zero
-            out[fz_key] = np.array(fz)
-        dz = (0.0, 0.0)
+            if side in support:
+                # the distributor's τᵈ: a downward force f at q_j exerts (−d_y f, d_x f) (roll, pitch) about a_j; τ
+                # about the foot's own roll and pitch axes, the axes δ turns it about
+                feet += [-dy * fd, dx * fd, *into_yawed(row[1], row[2], row[6])]
+            else:
+                feet += [0.0, 0.0, 0.0, 0.0]
+        dz_l = dz_r = 0.0
         if self.use_force_difference:
             # Δf of the exerted vertical forces (downward: −f_z), see the sign convention
-            z_r, z_l = self.force_difference.step(fz_r - fz_l, rows[1][0] - rows[0][0], support == "lr")
-            dz = (z_l, z_r)
-        out["sole_dz"] = np.array(dz)
+            dz_r, dz_l = self.force_difference.step(fz_r - fz_l, rows[1][0] - rows[0][0], support == "lr")
+        # the tick's outputs in one array, each channel a view of it (the Loop copies what it keeps)
+        res = np.array([pd_x, pd_y, act_x, act_y, *feet, dz_l, dz_r])
+        zmp_d, act = res[0:2], res[2:4]
+        out = {"zmp_d": zmp_d, "zmp_act": act, "tau_d_L": res[4:6], "tau_L": res[6:8], "tau_d_R": res[8:10],
+               "tau_R": res[10:12], "f_Lz": rows[0][0], "f_Rz": rows[1][0], "sole_dz": res[12:14]}
         if self.recorder is not None:
-            self.log(snapshot["t"], **{f"{self.name}.zmp_d": zmp_d, f"{self.name}.zmp_act": act,
+            self.log(snapshot["t"], **{f"{self.name}.zmp_d": zmp_d.copy(), f"{self.name}.zmp_act": act.copy(),
                                        f"{self.name}.com": self._state[COM:COM + 3].copy(), f"{self.name}.alpha": alpha})
         return out
