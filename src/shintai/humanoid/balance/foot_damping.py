@@ -149,7 +149,6 @@ class FootDampingModule(Module):
         super().__init__(name, period)
         self.feet = {"L": FootDamping(D=D, T=T), "R": FootDamping(D=D, T=T)}
         self.channel = channel
-        self._laws = tuple(float(v) for law in self.feet.values() for v in (law.T, law.dt, law.limit))
         self._out = np.zeros((2, 4))  # δ and e_τ of the tick, [L roll, L pitch, R roll, R pitch]
 
     def reset(self, snapshot: Snapshot) -> None:
@@ -163,7 +162,8 @@ class FootDampingModule(Module):
             left.D[:], right.D[:] = gain[:2], gain[2:]
         # both feet's Eq. 5.2 and 5.1 in one compiled call (FootDamping.step's maths, the same IEEE operations)
         _feet_step(self._out, left.delta, left.e_tau, left.saturated, left.D, right.delta, right.e_tau, right.saturated,
-                   right.D, snapshot["tau_d_L"], snapshot["tau_d_R"], snapshot["tau_L"], snapshot["tau_R"], self._laws)
+                   right.D, snapshot["tau_d_L"], snapshot["tau_d_R"], snapshot["tau_L"], snapshot["tau_R"],
+                   (left.T, left.dt, left.limit, right.T, right.dt, right.limit))  # each foot's, read every tick
         if self.recorder is not None:  # the log's signals are formed only when something records them
             self.log(snapshot["t"], **{f"{self.name}.delta_L": left.delta.copy(), f"{self.name}.delta_R": right.delta.copy(),
                                            f"{self.name}.D_L": left.D.copy(), f"{self.name}.D_R": right.D.copy()})

@@ -333,7 +333,7 @@ class StabilizerModule(Module):
         self.force_difference = ForceDifferenceControl(dt=period)
         self.sensors = FootSensors(body)
         self._com_now = body.data.subtree_com[self._root]  # the whole-body CoM, a live view of MjData
-        # the LIP tracking's state between ticks (stabilizer_tick.STATE: CoM, its velocity, the last reference, the
+        # the LIP tracking's state between ticks (stabilizer_tick's slots: CoM, its velocity, the last reference, the
         # feet/imu reading's) and its outputs, both rewritten in place every tick
         self._state, self._out = np.zeros(STATE_SIZE), np.zeros(OUT_SIZE)
         self._reading = READINGS[com_reading]
@@ -364,8 +364,9 @@ class StabilizerModule(Module):
         support = SUPPORT_NAME[code]
         err = self.tilt.update(snapshot) if self.tilt is not None else _EYE3
         w = self.sensors.read_rows()  # left, right: (f_z, τ roll, τ pitch, sole point x, y, z, sole yaw)
-        ankles, ankle_dx = self._no_ankles, math.nan
-        if self.foot_origin == "ankle":  # hrpsys's foot origin: the ankle links' origins (module docstring)
+        ankle = self.foot_origin == "ankle"
+        ankles, ankle_dx = self._no_ankles, 0.0
+        if ankle:  # hrpsys's foot origin: the ankle links' origins (module docstring)
             ankles = self.body.data.xpos[self._ankle_links, :2]
             ankle_dx = self._ref_ankle_dx(snapshot, STANCE[support])
         # the CoM filter, the foot-origin frame (the actual CoM, ZMP and torques relative to the actual stance feet,
@@ -374,15 +375,15 @@ class StabilizerModule(Module):
         k1, k2, k3 = self.k
         soles = snapshot["sole_ref"]
         lip_tracking(self._out, self._state, w, self._com_now, snapshot["com_ref"], snapshot["zmp_ref"], soles, code,
-                     k1, k2, k3, self.period, COM_VEL_FILTER, CONTACT_FZ, self.lip, self._reading, err, ankles, ankle_dx)
-        pd_x, pd_y, act_x, act_y, cx, vx, c, s, ax, ay, rx, ry = self._out.tolist()
-        if not math.isnan(cx):
+                     k1, k2, k3, self.period, COM_VEL_FILTER, CONTACT_FZ, self.lip, self._reading, err, ankle, ankles, ankle_dx)
+        pd_x, pd_y, act_x, act_y, cx, vx, c, s, ax, ay, rx, ry, tracked = self._out.tolist()
+        if tracked:
             self.read_com = (cx, vx)
         if self.truncate:
             pd_x, pd_y = truncate_zmp(np.array([pd_x, pd_y]), support_polygon(soles, support)).tolist()
         rows = w.tolist()
         (lx, ly, _), (rx_, ry_, _) = soles.tolist()
-        if self.foot_origin == "ankle":  # hrpsys distributes over the actual soles, in the foot-origin frame
+        if ankle:  # hrpsys distributes over the actual soles, in the foot-origin frame
             (lx, ly), (rx_, ry_) = ((c * x + s * y + rx, -s * x + c * y + ry)  # Rz(−ψ)(p − a) + r
                                     for x, y in ((row[3] - ax, row[4] - ay) for row in rows))
         alpha, fz_l, fz_r, dx, dy = distribution(pd_x, pd_y, lx, ly, rx_, ry_, code, self.weight)

@@ -1,16 +1,17 @@
 """The stabilizer's per-tick arithmetic as compiled kernels (issue 30): the feet's exerted wrenches from the ankle F/T
-sensors and the LIP tracking of [55] Eq. 26 in the foot-origin frame — steps 1 and the sensing of
+sensors and the LIP tracking of [55] Eq. 26 in the foot-origin frame — step 1 and the sensing of
 :mod:`~shintai.humanoid.balance.stabilizer` (its module docstring holds the method, the frames and the sign convention;
 :class:`~shintai.humanoid.balance.stabilizer.StabilizerModule` calls these every 4 ms).
 
 Compiled without fast-math, these are the same IEEE operations in the same order as the Python-float code they
-replaced, so every result is bit for bit that code's (tests/humanoid/balance/test_stabilizer_tick.py runs each
-kernel's source under Python, ``.py_func``, against the compiled kernel). One exception, said where it is: the
-``"imu"`` CoM reading's 3×3 attitude product is written out as sums, where NumPy's ``@`` may fuse them.
+replaced (62ab338): tests/humanoid/balance/test_stabilizer_tick.py runs each kernel's source under Python
+(``.py_func``) against the compiled kernel, and the replacement was checked against the old code on every humanoid
+scenario (identical metrics and logs at smoke size) and on the module's options (identical states). One exception:
+the ``"imu"`` CoM reading's 3×3 attitude product is written out as sums, where NumPy's ``@`` may fuse them.
 
-The state vector :data:`STATE` (one float array the module owns) carries, between ticks, the CoM of the last tick and
-its filtered velocity, the CoM reference of the last tick, and the ``"feet"``/``"imu"`` reading's last offset, its
-filtered velocity and its support code.
+The state vector (one float array of :data:`STATE_SIZE` the module owns; its slots below) carries, between ticks, the
+CoM of the last tick and its filtered velocity, the CoM reference of the last tick, and the ``"feet"``/``"imu"``
+reading's last offset, its filtered velocity and its support code.
 """
 
 from __future__ import annotations
@@ -20,18 +21,14 @@ import math
 import numpy as np
 from numba import njit
 
-# STATE's slots: CoM (3), CoM velocity (3), last CoM reference (3), has-reference flag, reading's last (x, y), its
+# the state's slots: CoM (3), CoM velocity (3), last CoM reference (3), has-reference flag, reading's last (x, y), its
 # velocity (x, y), has-reading flag, the reading's support code
 COM, COM_VEL, REF, HAS_REF, READ, READ_VEL, HAS_READ, READ_SUPPORT = 0, 3, 6, 9, 10, 12, 14, 15
 STATE_SIZE = 16
 # the LIP kernel's outputs: p_d (x, y), measured ZMP (x, y), the reading (x, ẋ), the frame's cos ψ, sin ψ, its
-# actual origin a (x, y) and reference origin r (x, y)
-OUT_SIZE = 12
+# actual origin a (x, y) and reference origin r (x, y), and 1.0 when Eq. 26 ran (LIP tracking on, a foot loaded)
+OUT_SIZE = 13
 READINGS = {"world": 0, "feet": 1, "imu": 2}  # the CoM reading's code
-
-
-def new_state() -> np.ndarray:
-    return np.zeros(STATE_SIZE)
 
 
 @njit(cache=True)
@@ -65,20 +62,22 @@ def foot_wrench_rows(w, sensors, site_xmat, site_xpos, subtree_com, rows, weight
 
 @njit(cache=True)
 def _wrap_pi(angle):
-    """core.geometry.wrap_pi (π − ((π − a) mod 2π), Python's floored float modulo, as numba's is)."""
+    """:func:`shintai.core.geometry.wrap_pi` (π − ((π − a) mod 2π), Python's floored float modulo, as numba's is),
+    written here: numba's disk cache of a kernel is keyed on its own file only, so a callee compiled from another
+    file could go stale in it (tests/humanoid/balance/test_stabilizer_tick.py holds the two equal bit for bit)."""
     return math.pi - (math.pi - angle) % (2 * math.pi)
 
 
 @njit(cache=True)
 def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_filter, contact_fz, lip, reading,
-                 err, ankles, ankle_dx):
+                 err, ankle, ankles, ankle_dx):
     """One tick of the stabilizer's step 1 (stabilizer module docstring) into ``out`` (:data:`OUT_SIZE`), ``state``
-    (:data:`STATE`) updated: the CoM velocity filter (ẋ ← f ẋ + (1 − f) Δx/Δt), the foot-origin frame of the
+    (:data:`STATE_SIZE`, the slots above) updated: the CoM velocity filter (ẋ ← f ẋ + (1 − f) Δx/Δt), the foot-origin frame of the
     stance feet (``code``: 0 both, 1 left, −1 right; their mean point and mean yaw, re-expressed on the reference
     soles ``soles``), the measured ZMP of the feet in contact (f_z > ``contact_fz``), the CoM reading (``reading``:
     0 world, 1 feet, 2 imu with the attitude error ``err``) and Eq. 26 (``lip``; p_d = p_ref without it or with no
-    foot loaded). ``ankles`` (2 × 2, left, right: the ankle links' x, y) replace the sole points as the frame's origin
-    when ``ankle_dx`` is finite, the reference origin moved by ``ankle_dx`` (hrpsys's ankle foot origin)."""
+    foot loaded). With ``ankle`` (hrpsys's ankle foot origin) ``ankles`` (2 × 2, left, right: the ankle links' x, y)
+    replace the sole points as the frame's origin and ``ankle_dx`` moves the reference origin."""
     # the CoM and its filtered velocity (world)
     a = 1.0 - vel_filter
     for i in range(3):
@@ -106,7 +105,7 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
             n += 1
     psi = w[first, 6] + turn / n
     ax, ay, az, rx, ry = ax / n, ay / n, az / n, rx / n, ry / n
-    if math.isfinite(ankle_dx):  # hrpsys's foot origin: the ankle links' origins
+    if ankle:  # hrpsys's foot origin: the ankle links' origins
         bx = by = 0.0
         for k in range(2):
             if (k == 0 and code >= 0) or (k == 1 and code <= 0):
@@ -128,7 +127,8 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
         x, y = num_x / total - ax, num_y / total - ay
         act_x, act_y = c * x + s * y + rx, -s * x + c * y + ry
     cx = vx = math.nan
-    if lip and total > 0:
+    tracked = lip and total > 0
+    if tracked:
         x, y = com[0] - ax, com[1] - ay
         cx, cy = c * x + s * y + rx, -s * x + c * y + ry
         u, v = state[COM_VEL], state[COM_VEL + 1]
@@ -154,3 +154,4 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
         pd_x, pd_y = zr[0], zr[1]
     out[0], out[1], out[2], out[3], out[4], out[5] = pd_x, pd_y, act_x, act_y, cx, vx
     out[6], out[7], out[8], out[9], out[10], out[11] = c, s, ax, ay, rx, ry
+    out[12] = 1.0 if tracked else 0.0
