@@ -327,6 +327,9 @@ CONSTANTS_KEPT_IN_PLACE = {
     ("shintai.humanoid.tricycle.hrp2_limbs", "_EYE"): "the waist frame's own pose, private to the IK",
     ("shintai.humanoid.tricycle.switching", "Y_AXIS"): "a frame's axis, not a parameter",
     ("shintai.spine.mocap.retarget", "TO_ROBOT"): "the BVH-to-robot axis permutation (frames' axes), not a parameter",
+    **{("shintai.humanoid.balance.stabilizer_tick", n): "a slot of the LIP kernel's state or output array, not a parameter"
+       for n in ("COM", "COM_VEL", "REF", "HAS_REF", "READ", "READ_VEL", "HAS_READ", "READ_SUPPORT", "STATE_SIZE",
+                 "OUT_SIZE")},
 }
 LITERAL_CALLS = {"array", "diag", "radians", "deg2rad", "asarray"}  # np.array([...]) of numbers is a number too
 
