@@ -28,6 +28,9 @@ DEG = math.pi / 180.0
 # ------------------------------------------------------------------------------------------------
 
 CONTROL_PERIOD = 0.004  # s, hrpsys real-time period "約 4 ms" (§A.2.1, Fig. A.14; spec-A §4.4)
+# not a thesis number: issue 30's aim for the standing stack's and the tricycle's 4 ms tick, as a multiple of bare mj_step
+# for the same physics steps (shintai bench reports each against it)
+TICK_OVERHEAD_TARGET = 1.5
 # F_thre: a foot is on the board/floor when it pushes more than this — the SLC's start/stop test on
 # f_Lz, f_Rz (§5.4.1, Fig. 5.5) and the feet counted in the measured ZMP.
 F_THRE = 25.0  # N
