@@ -97,7 +97,8 @@ def lip_feedback(zmp_ref, com_ref, com_vel_ref, com, com_vel, zmp, k=LIP_K):
 
 
 def mean_yaw(yaws: list[float]) -> float:
-    """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°."""
+    """The stance feet's mean yaw, taken about the first foot's so that +179° and −179° average to 180°, not 0°
+    (the rule the tick's compiled frame, :func:`~shintai.humanoid.balance.stabilizer_tick.lip_tracking`, follows)."""
     first, turn = yaws[0], 0  # the first's own term is 0 (an int, as sum's start)
     for y in yaws[1:]:
         turn += wrap_pi(y - first)

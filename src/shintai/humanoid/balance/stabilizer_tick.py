@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 # the state's slots: CoM (3), CoM velocity (3), last CoM reference (3), has-reference flag, reading's last (x, y), its
@@ -90,7 +89,7 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
     state[REF], state[REF + 1], state[REF + 2] = cr[0], cr[1], cr[2]
     # the stance feet: their mean point and yaw (the first foot's yaw plus the mean wrapped difference)
     first, n = 0, 0
-    ax = ay = az = rx = ry = turn = 0.0
+    ax = ay = az = rx = ry = bx = by = turn = 0.0
     for k in range(2):
         if (k == 0 and code >= 0) or (k == 1 and code <= 0):
             if n == 0:
@@ -102,15 +101,12 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
             az += w[k, 5]
             rx += soles[k, 0]
             ry += soles[k, 1]
+            bx += ankles[k, 0]
+            by += ankles[k, 1]
             n += 1
     psi = w[first, 6] + turn / n
     ax, ay, az, rx, ry = ax / n, ay / n, az / n, rx / n, ry / n
     if ankle:  # hrpsys's foot origin: the ankle links' origins
-        bx = by = 0.0
-        for k in range(2):
-            if (k == 0 and code >= 0) or (k == 1 and code <= 0):
-                bx += ankles[k, 0]
-                by += ankles[k, 1]
         ax, ay = bx / n, by / n
         rx += ankle_dx
     c, s = math.cos(psi), math.sin(psi)
@@ -133,14 +129,11 @@ def lip_tracking(out, state, w, com, cr, zr, soles, code, k1, k2, k3, dt, vel_fi
         cx, cy = c * x + s * y + rx, -s * x + c * y + ry
         u, v = state[COM_VEL], state[COM_VEL + 1]
         vx, vy = c * u + s * v, -s * u + c * v
-        if reading != 0:  # the offset from the stance feet ("imu": through the estimated attitude)
-            ex, ey = com[0] - ax, com[1] - ay
-            if reading == 2:  # err (ex, ey, ez) as sums (NumPy's @ may fuse them: float rounding)
-                ez = com[2] - az
-                ex, ey = (err[0, 0] * ex + err[0, 1] * ey + err[0, 2] * ez,
-                          err[1, 0] * ex + err[1, 1] * ey + err[1, 2] * ez)
-            cx, cy = c * ex + s * ey, -s * ex + c * ey
-            cx, cy = cx + rx, cy + ry
+        if reading != 0:  # the offset (x, y) from the stance feet ("imu": through the estimated attitude)
+            if reading == 2:  # err (x, y, z) as sums (NumPy's @ may fuse them: float rounding)
+                z = com[2] - az
+                x, y = err[0, 0] * x + err[0, 1] * y + err[0, 2] * z, err[1, 0] * x + err[1, 1] * y + err[1, 2] * z
+                cx, cy = c * x + s * y + rx, -s * x + c * y + ry
             if state[HAS_READ] != 0.0 and state[READ_SUPPORT] == code:
                 f = vel_filter
                 state[READ_VEL] = f * state[READ_VEL] + (1 - f) * (cx - state[READ]) / dt
