@@ -15,13 +15,14 @@ n_c = 2. Rules (i) tail wheel lifted, (ii') n_g ≤ n_σ ≤ n − n_l and (iii)
 (``head_end_lifted``, the default, see constants.TwoPointGains). Both are available and tested.
 
 η (3.6) is computed analytically: V_{u,1} term directly, V_{u,2} and V_{u,3} by the chain rule through
-∂A/∂φ, ∂B/∂φ, ∂J_{n,2}/∂φ (model.py) and the gradient of a Gram determinant. V_{u,2} uses the identity
+∂A/∂φ, ∂B/∂φ, ∂J_{n,2}/∂φ (model.py's closed forms) and the gradient of a Gram determinant. The tick's
+arithmetic — those matrices for one state and mode, η and (3.4)–(3.5) — is compiled in two_point_tick.py; the
+SVDs stay NumPy's LAPACK calls (linalg.py). V_{u,2} uses the identity
 det(A_{c,σ}^T A_{c,σ}) = det(A_σ^T A_σ) (Schur complement on the −I_3 block, spec §2.7).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,21 +30,10 @@ import numpy as np
 from shintai.core.runtime import Module, whole_multiple
 from shintai.snake.constants import CH3_GAINS, CH3_ROBOT, SnakeGeometry, TwoPointGains
 from shintai.snake.linalg import singular_values, thin_svd
-from shintai.snake.model import (
-    Configuration,
-    check_mode,
-    configuration,
-    a_matrix_derivative,
-    b_matrix_derivative,
-    constraint_matrices,
-    second_point_jacobian_derivative,
-    second_point_jacobians,
-    tail_pose,
-)
+from shintai.snake.model import Configuration, check_mode, tail_pose
+from shintai.snake.two_point_tick import gram_det_gradient_into, input_terms, objective_terms, stacked_matrices
 
-
-_EPS = np.finfo(float).eps
-_MINUS_I3 = -np.eye(3)
+_NO_SVD = np.zeros((1, 1)), np.zeros(1), np.zeros((1, 1))  # stands for the SVD of A_σ when k_{u,2} = 0 (not read)
 
 
 def candidate_modes(n: int, n_g: int, n_l: int, n_c: int, head_end_lifted: bool = True) -> np.ndarray:
@@ -87,10 +77,8 @@ def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     finite at rank loss.
     """
     U, s, Vt = thin_svd(X) if svd is None else svd
-    s2 = (s * s).tolist()
-    # Π_{j≠i} s_j² and Π s_j² multiplied from j = 0 in order, as np.prod does (on floats: a few singular values)
-    others = [math.prod(s2[:i] + s2[i + 1:]) for i in range(len(s2))]
-    return math.prod(s2), 2.0 * (U * (s * others)) @ Vt
+    grad = np.empty(X.shape)
+    return gram_det_gradient_into(U, s, Vt, grad), grad
 
 
 @dataclass(frozen=True)
@@ -121,38 +109,49 @@ class TwoPointLaw:
         # The rows of every candidate, grouped by n_σ so that all candidates of one size are evaluated by
         # one batched SVD (built once; §3.2.4's point is the cost of this search).
         n = geometry.n
-        self._full = np.zeros((n + 3, 6)), np.empty((n + 3, n))  # _stacks' A_c, B_c of the all-grounded mode
-        self._full[0][n:, 3:] = _MINUS_I3
+        self._all_rows = two_point_rows(np.ones(n, dtype=bool))
         self._rows: dict[bytes, np.ndarray] = {}  # two_point_rows per grounded pattern, built when first used
         sizes = self.candidates.sum(axis=1)
         self._groups = []
         for size in np.unique(sizes):
             members = np.flatnonzero(sizes == size)
             self._groups.append((members, np.array([two_point_rows(self.candidates[i]) for i in members])))
+        # two_point_tick's buffers: A_{c,σ}, B_{c,σ}, A_σ, ∂A_σ/∂φ, ∂B_{c,σ}/∂φ, c_c; filled again every call
+        self._A_c, self._B_c, self._A_s = np.zeros((n + 3, 6)), np.zeros((n + 3, n)), np.zeros((n, 3))
+        self._dA_s, self._dB_c, self._c_c = np.zeros((n, n, 3)), np.zeros((n, n + 3, n)), np.zeros(6)
+        self._derivatives = (gains.k_u[1] != 0.0, gains.k_u[2] != 0.0)  # which of ∂A, ∂B η needs (3.6)
+        self._k_u = np.array(gains.k_u, dtype=float)
 
     def controlled(self, cfg: Configuration) -> np.ndarray:
         """c_c = [w̃_h; w̃_t] (3.2); w̃_t from the forward kinematics (2.3)–(2.5)."""
         return np.concatenate((cfg.w_h, tail_pose(cfg)))
 
-    def _stacks(self, cfg: Configuration):
-        """A (2.8), J_{n,2} (2.13) and the stacked A_c, B_c of the all-grounded mode (2.15).
+    def _state(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
+        w_h, phi = np.asarray(w_h, dtype=float), np.asarray(phi, dtype=float)
+        if w_h.shape != (3,):
+            raise ValueError(f"w_h must be [x_h, y_h, theta_h] (3 numbers), got shape {w_h.shape}")
+        if phi.shape != (self.geometry.n,):
+            raise ValueError(f"phi must hold the n = {self.geometry.n} yaw angles, got shape {phi.shape}")
+        return w_h, phi
 
-        A_{c,σ} and B_{c,σ} of any mode are row selections of these (rows of the grounded wheels + the last 3).
-        """
-        n = cfg.n
-        A, B = constraint_matrices(cfg)
-        J1, J2 = second_point_jacobians(cfg, n)
-        A_full, B_full = self._full  # reused: callers take row selections (copies) of them
-        A_full[:n, :3] = A
-        A_full[n:, :3] = J1
-        B_full[:n] = B
-        np.negative(J2, out=B_full[n:])
-        return A, J2, A_full, B_full
+    def _matrices(self, w_h, phi, rows, derivatives=(False, False)):
+        """A_{c,σ}, B_{c,σ} (2.15) of ``rows`` (views of the buffers) and A_σ, filled by two_point_tick at (w̃_h, φ)."""
+        stacked_matrices(w_h, phi, self.geometry.l, rows, self._A_c, self._B_c, self._A_s, self._dA_s, self._dB_c,
+                         self._c_c, derivatives)
+        r = len(rows)
+        return self._A_c[:r], self._B_c[:r], self._A_s[:r - 3]
+
+    def _mode_rows(self, grounded) -> np.ndarray:
+        grounded = check_mode(grounded, self.geometry.n)
+        key = grounded.tobytes()
+        rows = self._rows.get(key)
+        if rows is None:
+            rows = self._rows[key] = two_point_rows(grounded)
+        return rows
 
     def mode_objectives(self, w_h, phi) -> np.ndarray:
         """V_m (3.19) of every candidate at the state (w̃_h, φ), shape (len(candidates),)."""
-        cfg = configuration(w_h, phi, self.geometry.l)
-        _, _, A_full, B_full = self._stacks(cfg)
+        A_full, B_full, _ = self._matrices(*self._state(w_h, phi), self._all_rows)
         k_m1, k_m2 = self.gains.k_m
         V = np.zeros(len(self.candidates))
         for members, rows in self._groups:
@@ -170,53 +169,31 @@ class TwoPointLaw:
     def input(self, w_h, phi, grounded, c_d, c_d_dot) -> Step:
         """u_σ = u_c + u_v (3.3)–(3.6) for mode ``grounded``, then the input limit (3.20)."""
         g = self.gains
-        cfg = configuration(w_h, phi, self.geometry.l)
-        grounded = check_mode(grounded, cfg.n)
-        A, J2, A_full, B_full = self._stacks(cfg)
-        key = grounded.tobytes()
-        rows = self._rows.get(key)
-        if rows is None:
-            rows = self._rows[key] = two_point_rows(grounded)
-        A_c, B_c = A_full[rows], B_full[rows]
-        c_c = self.controlled(cfg)
-        xi = np.asarray(c_d_dot, float) + g.k_p * (np.asarray(c_d, float) - c_c)
-
-        svd_b = U, s, Vt = thin_svd(B_c)
-        keep = s > max(B_c.shape) * _EPS * s[0]
-        U, s_k, Vt_k = U[:, keep], s[keep], Vt[keep]
-        u_c = Vt_k.T @ ((U.T @ (A_c @ xi)) / s_k)  # (3.4), B^† = V S^{-1} U^T
-        V_u, eta = self._objective(cfg, grounded, A, B_c, J2, svd_b)
-        u_v = g.k_v * (eta - Vt_k.T @ (Vt_k @ eta))  # (3.5), I − B^†B = I − V V^T
-        u = u_c + u_v
-        u_norm = float(math.sqrt(u @ u))
+        w_h, phi = self._state(w_h, phi)
+        A_c, B_c, A_s = self._matrices(w_h, phi, self._mode_rows(grounded), self._derivatives)
+        svd_b = thin_svd(B_c)
+        V_u, eta = self._objective(phi, A_s, svd_b)
+        u = np.empty(len(phi))
+        u_norm = input_terms(A_c, svd_b, eta, self._c_c, np.asarray(c_d, float), np.asarray(c_d_dot, float),
+                             g.k_p, g.k_v, u)
         stopped = u_norm > g.u_lim  # (3.20)
         sigma_a = float(singular_values(A_c)[-1])
-        sigma_b = float(s[-1])
+        sigma_b = float(svd_b[1][-1])
         V_m = g.k_m[0] * sigma_a + g.k_m[1] * sigma_b
-        return Step(np.zeros_like(u) if stopped else u, u_norm, bool(stopped), c_c, sigma_a, sigma_b, V_m, V_u)
+        return Step(np.zeros_like(u) if stopped else u, u_norm, bool(stopped), self._c_c.copy(), sigma_a, sigma_b,
+                    V_m, V_u)
 
     def objective(self, w_h, phi, grounded) -> tuple[float, np.ndarray]:
         """V_u (3.12)–(3.16) of mode ``grounded`` at (w̃_h, φ) and its gradient η = ∂V_u/∂φ (3.6)."""
-        cfg = configuration(w_h, phi, self.geometry.l)
-        grounded = check_mode(grounded, cfg.n)
-        A, J2, _, B_full = self._stacks(cfg)
-        return self._objective(cfg, grounded, A, B_full[two_point_rows(grounded)], J2)
+        w_h, phi = self._state(w_h, phi)
+        _, B_c, A_s = self._matrices(w_h, phi, self._mode_rows(grounded), self._derivatives)
+        return self._objective(phi, A_s, thin_svd(B_c))
 
-    def _objective(self, cfg, grounded, A, B_c, J2, svd_b=None) -> tuple[float, np.ndarray]:
-        k_u1, k_u2, k_u3 = self.gains.k_u
-        V1, eta = joint_limit_objective(cfg.phi, self.gains.phi_th)
-        V, eta = k_u1 * V1, k_u1 * eta
-        if k_u2:  # V_{u,2} = det(A_{c,σ}^T A_{c,σ}) = det(A_σ^T A_σ) (3.14)
-            det_a, grad_a = gram_det_gradient(A[grounded])
-            V += k_u2 * det_a
-            eta = eta + k_u2 * np.einsum("mrc,rc->m", a_matrix_derivative(cfg)[:, grounded, :], grad_a)
-        if k_u3:  # V_{u,3} = det(B_{c,σ} B_{c,σ}^T) (3.15), ∂B_{c,σ} = [∂B_σ; −∂J_{n,2}]
-            det_b, grad_b = gram_det_gradient(B_c, svd_b)
-            dB_c = np.concatenate((b_matrix_derivative(cfg)[:, grounded, :],
-                                   -second_point_jacobian_derivative(cfg, cfg.n)), axis=1)
-            V += k_u3 * det_b
-            eta = eta + k_u3 * np.einsum("mrc,rc->m", dB_c, grad_b)
-        return float(V), eta
+    def _objective(self, phi, A_s, svd_b) -> tuple[float, np.ndarray]:
+        eta = np.empty(len(phi))
+        svd_a = thin_svd(A_s) if self._derivatives[0] else _NO_SVD
+        V_u = objective_terms(phi, self.gains.phi_th, self._k_u, svd_a, self._dA_s, svd_b, self._dB_c, eta)
+        return float(V_u), eta
 
 
 _LOGGED = ("selected", "V_m_best", "c", "c_d", "mode", "grounded", "phi", "u_norm", "stopped", "sigma_a", "sigma_b",
