@@ -35,9 +35,10 @@ ROWS = (
                "number). Setup: t_s1 = 30 s, c_{c,e1} = [0.1, 0, π, 0.1, −0.5, 0], c_{c,e2} = [0.55, 0, π, 0.55, "
                "−0.5, 0], φ(0) = [0, π/9, π/9, π/6, π/9, π/6, π/6, π/6, 0], other constants as §3.3",
         difference="MuJoCo with a free box whose size, mass and friction are ours (not printed): the box is carried "
-                   "0.555 m and never leaves the cage; max head/tail error 8.3 mm; RMS 1.7 mm and final 4.0 mm "
-                   "exceed the 1 mm bounds taken from our kinematic prototype (the error grows while a grounded "
-                   "wheel hangs or a lifted one touches)",
+                   "0.53 m and never leaves the cage; max head/tail error 8.1 mm; RMS 1.5 mm exceeds the 1 mm bound "
+                   "taken from our kinematic prototype (the error grows while a grounded wheel hangs or a lifted one "
+                   "touches); final 0.8 mm. Last-bit changes of the command scatter these (RMS 1.1–1.6 mm, final "
+                   "0.1–2.0 mm: notes/caging.md)",
     ),
     Row(
         key="001:fig3.10",
