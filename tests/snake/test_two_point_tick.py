@@ -78,7 +78,7 @@ def test_input_equals_pinv_reference(k_u):
         for gain, X, dX in ((k_u[1], A_s, dA_s), (k_u[2], B_c, dB_c)):
             det, grad = gram_gradient(X)
             V, eta = V + gain * det, eta + gain * np.einsum("mrc,rc->m", dX, grad)
-        B_pinv = np.linalg.pinv(B_c)
+        B_pinv = np.linalg.pinv(B_c, rtol=None)  # the cutoff max(rows, cols)·ε·s_0 of the law
         u = B_pinv @ A_c @ (c_d_dot + gains.k_p * (c_d - c_c)) + gains.k_v * (np.eye(N) - B_pinv @ B_c) @ eta
         step = law.input(w_h, phi, grounded, c_d, c_d_dot)
         assert step.V_u == pytest.approx(V, rel=1e-9, abs=1e-12)
@@ -103,3 +103,43 @@ def test_bad_state_shapes_are_refused():
         law.input([0, 0, 0], np.zeros(8), law.candidates[0], np.zeros(6), np.zeros(6))
     with pytest.raises(ValueError, match="w_h"):
         law.select_mode([0, 0], np.zeros(N))
+
+
+def test_pinv_cutoff_on_a_straight_body():
+    """φ = 0: the x and y rows of −J_{n,2} are parallel, B_{c,σ} loses rank (s_min/s_0 ≈ 1e−17); the truncated
+    pseudo-inverse keeps the command finite and equal to pinv's with the same cutoff."""
+    law = TwoPointLaw(gains=replace(CH3_GAINS, u_lim=1e9))
+    w_h, phi, grounded = np.array([1.0, 2.0, 0.3]), np.zeros(N), law.candidates[6]
+    c_d, c_d_dot = np.array([1.0, 2.0, 0.3, 0.0, 0.0, 0.0]), np.ones(6)
+    A_c, B_c, *_, c_c = numpy_matrices(w_h, phi, grounded)
+    s = np.linalg.svd(B_c, compute_uv=False)
+    assert s[-1] / s[0] < 1e-12  # the case the cutoff is for
+    eta = law.objective(w_h, phi, grounded)[1]
+    B_pinv = np.linalg.pinv(B_c, rtol=None)
+    u = B_pinv @ A_c @ (c_d_dot + CH3_GAINS.k_p * (c_d - c_c)) + CH3_GAINS.k_v * (np.eye(N) - B_pinv @ B_c) @ eta
+    step = law.input(w_h, phi, grounded, c_d, c_d_dot)
+    assert np.abs(step.u).max() < 1e3 and np.allclose(step.u, u, rtol=1e-9, atol=1e-9)
+
+
+def test_tall_stack_and_both_mode_gains():
+    """All wheels grounded (B_{c,σ} 12 × 9, more rows than joints) with k_m = (0.7, 1): σ's and V_m (3.19)."""
+    law = TwoPointLaw(gains=replace(CH3_GAINS, k_m=(0.7, 1.0), u_lim=1e9))
+    w_h, phi = random_case(np.random.default_rng(3))
+    grounded = np.ones(N, bool)
+    A_c, B_c, *_ = numpy_matrices(w_h, phi, grounded)
+    step = law.input(w_h, phi, grounded, np.zeros(6), np.zeros(6))
+    sigma_a, sigma_b = (np.linalg.svd(X, compute_uv=False)[-1] for X in (A_c, B_c))
+    assert step.sigma_a == pytest.approx(sigma_a, rel=1e-9) and step.sigma_b == pytest.approx(sigma_b, rel=1e-9)
+    assert step.V_m == pytest.approx(0.7 * sigma_a + sigma_b, rel=1e-9)
+    V = law.mode_objectives(w_h, phi)
+    k = 5
+    A_k, B_k, *_ = numpy_matrices(w_h, phi, law.candidates[k])
+    assert V[k] == pytest.approx(0.7 * np.linalg.svd(A_k, compute_uv=False)[-1]
+                                 + np.linalg.svd(B_k, compute_uv=False)[-1], rel=1e-9)
+
+
+@pytest.mark.parametrize("c_d", [np.ones(3), np.ones(7), np.ones((6, 1))])
+def test_bad_target_shapes_are_refused(c_d):
+    law = TwoPointLaw()
+    with pytest.raises(ValueError, match="c_d"):
+        law.input([0, 0, 0], np.full(N, 0.2), law.candidates[0], c_d, np.zeros(6))

@@ -36,6 +36,14 @@ from shintai.snake.two_point_tick import gram_det_gradient_into, input_terms, ob
 _NO_SVD = np.zeros((1, 1)), np.zeros(1), np.zeros((1, 1))  # stands for the SVD of A_σ when k_{u,2} = 0 (not read)
 
 
+def _vector(x, size: int, what: str) -> np.ndarray:
+    """``x`` as a contiguous float64 vector of ``size`` numbers (what the compiled tick reads), or a clear error."""
+    v = np.ascontiguousarray(x, dtype=float)
+    if v.shape != (size,):
+        raise ValueError(f"{what} ({size} numbers), got shape {v.shape}")
+    return v
+
+
 def candidate_modes(n: int, n_g: int, n_l: int, n_c: int, head_end_lifted: bool = True) -> np.ndarray:
     """Grounded patterns (rows, shape (m, n), True = grounded) kept by the two-stage pruning of §3.2.4.
 
@@ -76,6 +84,7 @@ def gram_det_gradient(X: np.ndarray, svd=None) -> tuple[float, np.ndarray]:
     2 U diag(s_i Π_{j≠i} s_j²) V^T. This is 2 X adj(X^T X) (tall) or 2 adj(X X^T) X (wide), and stays
     finite at rank loss.
     """
+    X = np.asarray(X, dtype=float)
     U, s, Vt = thin_svd(X) if svd is None else svd
     grad = np.empty(X.shape)
     return gram_det_gradient_into(U, s, Vt, grad), grad
@@ -127,12 +136,7 @@ class TwoPointLaw:
         return np.concatenate((cfg.w_h, tail_pose(cfg)))
 
     def _state(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
-        w_h, phi = np.asarray(w_h, dtype=float), np.asarray(phi, dtype=float)
-        if w_h.shape != (3,):
-            raise ValueError(f"w_h must be [x_h, y_h, theta_h] (3 numbers), got shape {w_h.shape}")
-        if phi.shape != (self.geometry.n,):
-            raise ValueError(f"phi must hold the n = {self.geometry.n} yaw angles, got shape {phi.shape}")
-        return w_h, phi
+        return _vector(w_h, 3, "w_h must be [x_h, y_h, theta_h]"), _vector(phi, self.geometry.n, "phi must hold the yaw angles")
 
     def _matrices(self, w_h, phi, rows, derivatives=(False, False)):
         """A_{c,σ}, B_{c,σ} (2.15) of ``rows`` (views of the buffers) and A_σ, filled by two_point_tick at (w̃_h, φ)."""
@@ -174,8 +178,8 @@ class TwoPointLaw:
         svd_b = thin_svd(B_c)
         V_u, eta = self._objective(phi, A_s, svd_b)
         u = np.empty(len(phi))
-        u_norm = input_terms(A_c, svd_b, eta, self._c_c, np.asarray(c_d, float), np.asarray(c_d_dot, float),
-                             g.k_p, g.k_v, u)
+        u_norm = input_terms(A_c, svd_b, eta, self._c_c, _vector(c_d, 6, "c_d must be [w_h; w_t]"),
+                             _vector(c_d_dot, 6, "c_d_dot must be [w_h; w_t] rates"), float(g.k_p), float(g.k_v), u)
         stopped = u_norm > g.u_lim  # (3.20)
         sigma_a = float(singular_values(A_c)[-1])
         sigma_b = float(svd_b[1][-1])
@@ -192,7 +196,7 @@ class TwoPointLaw:
     def _objective(self, phi, A_s, svd_b) -> tuple[float, np.ndarray]:
         eta = np.empty(len(phi))
         svd_a = thin_svd(A_s) if self._derivatives[0] else _NO_SVD
-        V_u = objective_terms(phi, self.gains.phi_th, self._k_u, svd_a, self._dA_s, svd_b, self._dB_c, eta)
+        V_u = objective_terms(phi, float(self.gains.phi_th), self._k_u, svd_a, self._dA_s, svd_b, self._dB_c, eta)
         return float(V_u), eta
 
 

@@ -1,10 +1,11 @@
 """The 50 ms tick of seed 001 §3.2 compiled: the matrices of one state and mode, and u_σ = u_c + u_v (3.3)–(3.6).
 
-Two kernels around NumPy's LAPACK SVDs (linalg.py), called by :class:`~shintai.snake.two_point.TwoPointLaw`:
+Three kernels around NumPy's LAPACK SVDs (linalg.py), called by :class:`~shintai.snake.two_point.TwoPointLaw`:
 
 * :func:`stacked_matrices` — A_{c,σ}, B_{c,σ} (2.15) of the rows ``rows`` (the grounded wheels, then the three of
   (2.13)), A_σ and, when asked, ∂A_σ/∂φ and ∂B_{c,σ}/∂φ for η (3.6), and c_c (3.2);
-* :func:`input_terms` — V_u and η (3.12)–(3.16) from the SVDs of A_σ and B_{c,σ}, then (3.4)–(3.5).
+* :func:`objective_terms` — V_u and η (3.12)–(3.16) from the SVDs of A_σ and B_{c,σ};
+* :func:`input_terms` — u_σ = u_c + u_v (3.3)–(3.5) from the SVD of B_{c,σ} and η.
 
 The closed forms are model.py's (constraint_matrices (2.6)–(2.9), second_point_jacobians (2.13), tail_pose,
 a_matrix_derivative, b_matrix_derivative, second_point_jacobian_derivative), written here as loops over the n
@@ -30,7 +31,7 @@ def stacked_matrices(w_h, phi, l, rows, A_c, B_c, A_s, dA_s, dB_c, c_c, derivati
     """Fill A_c[:r], B_c[:r] (r = len(rows)), A_s[:m], c_c and, for ``derivatives`` = (∂A, ∂B), dA_s[:, :m] and
     dB_c[:, :r] (first axis φ_q); m = r − 3 grounded wheels ``rows[:m]`` (0-based), second control point wheel n.
 
-    A_{c,σ} = [[A_σ, O], [J_{n,1}, −I_3]], B_{c,σ} = [B_σ; −J_{n,2}] (2.14)–(2.15) with, for wheel i,
+    A_{c,σ} = [[A_σ, O], [J_{n,1}, −I_3]], B_{c,σ} = [B_σ; −J_{n,2}] (2.15) of (2.14) with, for wheel i,
     A_i = [sin θ_i, −cos θ_i, −l(1 + cos(θ_i − θ_h) + 2 Σ_{j<i} cos(θ_i − θ_j))] and
     B_{i,k} = l + 2l Σ_{j=k}^{i−1} cos(θ_i − θ_j) (k ≤ i), 0 (k > i)  (2.6)–(2.9);
     J_{n,2}[:, k] = [Σ_{j≥k} w_j l (−sin θ_j), Σ_{j≥k} w_j l cos θ_j, 1] with w_j = 2 (j < n), 1 (j = n) (2.13);
@@ -172,8 +173,8 @@ def objective_terms(phi, phi_th, k_u, svd_a, dA_s, svd_b, dB_c, eta):
 @njit(cache=True)
 def input_terms(A_c, svd_b, eta, c_c, c_d, c_d_dot, k_p, k_v, u):
     """u_σ = u_c + u_v (3.3) into ``u``; returns ‖u_σ‖. ξ = ċ_{c,d} + K_p(c_{c,d} − c_c) with K_p = k_p I_6;
-    u_c = B_{c,σ}^† A_{c,σ} ξ (3.4), B^† = V S⁻¹ Uᵀ over the singular values above max(rows, cols)·ε·s_0 (NumPy's
-    pinv cutoff); u_v = k_v (I − B^†B) η (3.5), I − B^†B = I − V Vᵀ on the same singular vectors."""
+    u_c = B_{c,σ}^† A_{c,σ} ξ (3.4), B^† = V S⁻¹ Uᵀ over the singular values above max(rows, cols)·ε·s_0 (the old
+    law's cutoff, as ``np.linalg.pinv(B, rtol=None)`` and ``lstsq(rcond=None)``); u_v = k_v (I − B^†B) η (3.5), I − B^†B = I − V Vᵀ on the same singular vectors."""
     U, s, Vt = svd_b
     r, n = U.shape[0], Vt.shape[1]
     cut = max(r, n) * _EPS * s[0]
