@@ -136,7 +136,8 @@ class TwoPointLaw:
         return np.concatenate((cfg.w_h, tail_pose(cfg)))
 
     def _state(self, w_h, phi) -> tuple[np.ndarray, np.ndarray]:
-        return _vector(w_h, 3, "w_h must be [x_h, y_h, theta_h]"), _vector(phi, self.geometry.n, "phi must hold the yaw angles")
+        n = self.geometry.n
+        return _vector(w_h, 3, "w_h must be [x_h, y_h, theta_h]"), _vector(phi, n, "phi must hold the yaw angles")
 
     def _matrices(self, w_h, phi, rows, derivatives=(False, False)):
         """A_{c,σ}, B_{c,σ} (2.15) of ``rows`` (views of the buffers) and A_σ, filled by two_point_tick at (w̃_h, φ)."""

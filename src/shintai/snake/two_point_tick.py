@@ -36,7 +36,8 @@ def stacked_matrices(w_h, phi, l, rows, A_c, B_c, A_s, dA_s, dB_c, c_c, derivati
     B_{i,k} = l + 2l Σ_{j=k}^{i−1} cos(θ_i − θ_j) (k ≤ i), 0 (k > i)  (2.6)–(2.9);
     J_{n,2}[:, k] = [Σ_{j≥k} w_j l (−sin θ_j), Σ_{j≥k} w_j l cos θ_j, 1] with w_j = 2 (j < n), 1 (j = n) (2.13);
     ∂A_i/∂φ_q = [q ≤ i]·[cos θ_i, sin θ_i, l(sin(θ_i − θ_h) + 2 E_{i,q})], E_{i,q} = Σ_{j<q} sin(θ_i − θ_j);
-    ∂B_{i,k}/∂φ_q = −2l [k < q ≤ i](E_{i,q} − E_{i,k}); ∂J_{n,2}[:, k]/∂φ_q = Σ_{j≥max(k,q)} w_j l [−cos θ_j, −sin θ_j, 0].
+    ∂B_{i,k}/∂φ_q = −2l [k < q ≤ i](E_{i,q} − E_{i,k});
+    ∂J_{n,2}[:, k]/∂φ_q = Σ_{j≥max(k,q)} w_j l [−cos θ_j, −sin θ_j, 0].
     """
     n = phi.shape[0]
     r = rows.shape[0]
@@ -174,7 +175,8 @@ def objective_terms(phi, phi_th, k_u, svd_a, dA_s, svd_b, dB_c, eta):
 def input_terms(A_c, svd_b, eta, c_c, c_d, c_d_dot, k_p, k_v, u):
     """u_σ = u_c + u_v (3.3) into ``u``; returns ‖u_σ‖. ξ = ċ_{c,d} + K_p(c_{c,d} − c_c) with K_p = k_p I_6;
     u_c = B_{c,σ}^† A_{c,σ} ξ (3.4), B^† = V S⁻¹ Uᵀ over the singular values above max(rows, cols)·ε·s_0 (the old
-    law's cutoff, as ``np.linalg.pinv(B, rtol=None)`` and ``lstsq(rcond=None)``); u_v = k_v (I − B^†B) η (3.5), I − B^†B = I − V Vᵀ on the same singular vectors."""
+    law's cutoff, as ``np.linalg.pinv(B, rtol=None)`` and ``lstsq(rcond=None)``); u_v = k_v (I − B^†B) η (3.5),
+    I − B^†B = I − V Vᵀ on the same singular vectors."""
     U, s, Vt = svd_b
     r, n = U.shape[0], Vt.shape[1]
     cut = max(r, n) * _EPS * s[0]
