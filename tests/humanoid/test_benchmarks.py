@@ -15,8 +15,11 @@ def test_tricycle_overhead_runs_both_configurations_for_the_same_simulated_time(
         assert out[f"{name}_overhead_ratio_min"] <= out[f"{name}_overhead_ratio"] <= out[f"{name}_overhead_ratio_max"]
         assert math.isfinite(out[f"{name}_overhead_ratio_cpu"]) and out[f"{name}_overhead_ratio_cpu"] > 0.0
         assert out[f"{name}_leg_ik_us"] > 0.0  # the feet solve every tick
-        split = out[f"{name}_arm_ik_us"] + out[f"{name}_leg_ik_us"] + out[f"{name}_control_other_us"]
+        split = sum(out[f"{name}_{k}_us"] for k in ("arm_ik", "leg_ik", "angle_estimates", "control_other"))
         assert math.isclose(split, out[f"{name}_control_us"], rel_tol=1e-9)
+        assert out[f"{name}_angle_estimates_us"] > 0.0 and out[f"{name}_signals_us"] > 0.0  # every tick measures, logs
+        assert math.isclose(out[f"{name}_signals_us"] + out[f"{name}_rest_other_us"], out[f"{name}_rest_us"],
+                            rel_tol=1e-9)
     assert out["pedaling_arm_ik_us"] == 0.0 and out["driving_arm_ik_us"] > 0.0  # only the ride has hands
 
 

@@ -7,7 +7,9 @@
   mj_step for its steps; the ratio is the pairs' median); ``sim_per_wall`` is simulated seconds per wall second;
   the control share is split further into the limbs' IK (``arm_ik_us``: the hands' DLS solves,
   :func:`shintai.sim.ik.solve` with their targets; ``leg_ik_us``: the feet's closed form,
-  :mod:`shintai.humanoid.robots.leg_ik`, and any DLS fallback) and ``control_other_us`` (diagnostics, laws, players);
+  :mod:`shintai.humanoid.robots.leg_ik`, and any DLS fallback), the switching diagnostics' method-(a) angles
+  (``angle_estimates_us``, Fig. 3.14) and ``control_other_us`` (laws, players, switchers); the rest into the
+  recorded signals (``signals_us``) and ``rest_other_us`` (snapshot, combining, applying, the loop);
 * ``humanoid.leg-ik`` — the analytic leg IK (:mod:`shintai.humanoid.robots.leg_ik`) against the DLS IK per call on
   the same 500 sole targets of a pedalling-like foot path;
 * ``humanoid.standing-overhead`` — the standing stack's 4 ms tick (:class:`~shintai.humanoid.balance.standing.Standing`)
@@ -25,6 +27,7 @@ from __future__ import annotations
 
 import math
 import time
+from types import SimpleNamespace
 
 import mujoco
 import numpy as np
@@ -60,38 +63,45 @@ class PhysicsClock(Clock):
         super().__init__([body], "step")
 
 
-def timed_rig(rig, limbs=()):
+def timed_rig(rig, limbs=(), diagnostics=()):
     """Run ``rig`` (:func:`~shintai.scenarios.experiment.run_rig`); (wall time, the run, its physics seconds, the
-    seconds in the IK of ``limbs``: ``{"arm_ik": the hands' DLS solves, "leg_ik": the feet's closed form and DLS
-    fallbacks}``, the process's CPU time in the run)."""
+    seconds in named parts of the tick — ``{"arm_ik": the hands' DLS solves, "leg_ik": the feet's closed form and DLS
+    fallbacks, "angle_estimates": method (a)'s angles in the switching ``diagnostics`` (Fig. 3.14), "signals": the
+    rig's recorded signals}`` — and the process's CPU time in the run)."""
     physics = PhysicsClock(rig.body)
     hands, feet = [lb for lb in limbs if lb.kind == "hand"], [lb for lb in limbs if lb.kind == "foot"]
     arm_ik, leg_ik, fallback = Clock(hands, "dls_solve"), Clock(feet, "closed_form"), Clock(feet, "dls_solve")
+    estimates = Clock(diagnostics, "measure")
+    hooks = [SimpleNamespace(record=hook) for hook in rig.record.values()]  # each recording hook, to be clocked
+    signals = Clock(hooks, "record")
+    rig.record = dict(zip(rig.record, (h.record for h in hooks)))
     t0, c0 = time.perf_counter(), time.process_time()
     run = run_rig(rig)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    return wall, run, physics.seconds, {"arm_ik": arm_ik.seconds, "leg_ik": leg_ik.seconds + fallback.seconds}, cpu
+    parts = {"arm_ik": arm_ik.seconds, "leg_ik": leg_ik.seconds + fallback.seconds, "angle_estimates": estimates.seconds,
+             "signals": signals.seconds}
+    return wall, run, physics.seconds, parts, cpu
 
 
 def pedaling_run(seconds: float):
     """The E2 controller for ``seconds`` of simulated time; returns (body, wall time, run, physics seconds,
-    IK seconds, CPU seconds: :func:`timed_rig`)."""
+    the tick's timed parts, CPU seconds: :func:`timed_rig`)."""
     dt = DELTA_T * 0.25
     schedule = crank_schedule(seconds / (2 * dt) * D_THETA_C / (2 * 3.141592653589793), dt)
     body = riding.build_riding(crank_error=(0.01, 0.0))
     feet = riding_limbs(body, "foot")
     legs, diag = legs_switcher(feet, schedule)
     rig = pedal_rig(body, legs, feet, schedule, lambda s: legs.active == f"legs:{s}-active", diag)
-    return body, *timed_rig(rig, feet.values())
+    return body, *timed_rig(rig, feet.values(), [diag])
 
 
 def driving_run(seconds: float):
     """Arms and legs on the slalom script (Δt = 0.2 s) for about ``seconds``; (body, wall time, run,
-    physics seconds, IK seconds, CPU seconds)."""
+    physics seconds, the tick's timed parts, CPU seconds)."""
     schedule = OperationSchedule(0.0, 0.0, slalom_goals(30 * DEG, 10 * DEG, 60 * DEG), DELTA_T * 0.25, D_THETA_H, D_THETA_C)
     schedule.samples = schedule.samples[:max(1, int(seconds / (2 * schedule.phase)) - 1)]
     ride = Ride(schedule)
-    return ride.body, *timed_rig(ride.rig(), (*ride.feet.values(), *ride.hands.values()))
+    return ride.body, *timed_rig(ride.rig(), (*ride.feet.values(), *ride.hands.values()), [ride.leg_diag, ride.arm_diag])
 
 
 def tick_shares(prefix: str, wall: float, physics: float, loop, bare: float) -> dict:
@@ -104,11 +114,15 @@ def tick_shares(prefix: str, wall: float, physics: float, loop, bare: float) -> 
             f"{prefix}rest_us": 1e6 * (wall - physics - control) / ticks, f"{prefix}physics_vs_bare": physics / bare}
 
 
-def control_split(prefix: str, shares: dict, ik_seconds: dict, ticks: int) -> dict:
-    """The control share split (us per control tick): each limb group's IK (:func:`timed_rig`) and the rest of the
-    modules' time (``control_other``: the switching diagnostics, impedance laws, players, logging in the modules)."""
-    out = {f"{prefix}{k}_us": 1e6 * v / ticks for k, v in ik_seconds.items()}
-    out[f"{prefix}control_other_us"] = shares[f"{prefix}control_us"] - sum(out.values())
+def control_split(prefix: str, shares: dict, parts: dict, ticks: int) -> dict:
+    """The control and rest shares split (us per control tick, :func:`timed_rig`'s parts): each limb group's IK and
+    the switching diagnostics' angle estimates, then ``control_other`` (the rest of the modules' time: impedance
+    laws, players, the role switchers, logging in the modules); the recorded signals, then ``rest_other`` (snapshot,
+    combining, applying, the recorder, the loop itself)."""
+    control = ("arm_ik", "leg_ik", "angle_estimates")
+    out = {f"{prefix}{k}_us": 1e6 * parts[k] / ticks for k in (*control, "signals")}
+    out[f"{prefix}control_other_us"] = shares[f"{prefix}control_us"] - sum(out[f"{prefix}{k}_us"] for k in control)
+    out[f"{prefix}rest_other_us"] = shares[f"{prefix}rest_us"] - out[f"{prefix}signals_us"]
     return out
 
 
@@ -121,15 +135,15 @@ def tricycle_overhead(seconds: float = 6.0, pairs: int = 3) -> dict:
     process's CPU time (what other processes' load leaves out); the tick's shares are the fastest run's."""
     out = {"overhead_target": TICK_OVERHEAD_TARGET}
     for name, run in (("pedaling", pedaling_run), ("driving", driving_run)):
-        done, cpu_ratios = [], []  # (body, wall, run, physics seconds, IK seconds, the bare run right after)
+        done, cpu_ratios = [], []  # (body, wall, run, physics seconds, timed parts, the bare run right after)
         for _ in range(pairs):
-            body, wall, result, physics, ik_s, cpu = run(seconds)
+            body, wall, result, physics, parts, cpu = run(seconds)
             steps = int(round(body.t / body.model.opt.timestep))
             c0 = time.process_time()
-            done.append((body, wall, result, physics, ik_s, bare_steps(body.model, "ride", steps)))
+            done.append((body, wall, result, physics, parts, bare_steps(body.model, "ride", steps)))
             cpu_ratios.append(cpu / (time.process_time() - c0))
         ratios = [wall / bare for _, wall, *_, bare in done]
-        body, wall, result, physics, ik_s, bare = min(done, key=lambda r: r[1])
+        body, wall, result, physics, parts, bare = min(done, key=lambda r: r[1])
         steps = int(round(body.t / body.model.opt.timestep))
         shares = tick_shares(f"{name}_", wall, physics, result.loop, bare)
         out.update({f"{name}_sim_time_s": body.t, f"{name}_physics_steps": steps, f"{name}_wall_s": wall,
@@ -138,7 +152,7 @@ def tricycle_overhead(seconds: float = 6.0, pairs: int = 3) -> dict:
                     f"{name}_overhead_ratio_cpu": float(np.median(cpu_ratios)),
                     f"{name}_meets_target": bool(np.median(ratios) <= TICK_OVERHEAD_TARGET),
                     f"{name}_sim_per_wall": body.t / wall, f"{name}_bare_sim_per_wall": body.t / bare,
-                    **shares, **control_split(f"{name}_", shares, ik_s, result.loop.tick)})
+                    **shares, **control_split(f"{name}_", shares, parts, result.loop.tick)})
     return out
 
 
