@@ -105,20 +105,23 @@ def test_bad_state_shapes_are_refused():
         law.select_mode([0, 0], np.zeros(N))
 
 
-def test_pinv_cutoff_on_a_straight_body():
-    """φ = 0: the x and y rows of −J_{n,2} are parallel, B_{c,σ} loses rank (s_min/s_0 ≈ 1e−17); the truncated
-    pseudo-inverse keeps the command finite and equal to pinv's with the same cutoff."""
-    law = TwoPointLaw(gains=replace(CH3_GAINS, u_lim=1e9))
-    w_h, phi, grounded = np.array([1.0, 2.0, 0.3]), np.zeros(N), law.candidates[6]
+@pytest.mark.parametrize("bend, kept", [(0.0, False), (1e-11, True)])
+def test_pinv_cutoff_on_a_straight_body(bend, kept):
+    """φ ≈ 0: the x and y rows of −J_{n,2} are nearly parallel and B_{c,σ} nearly loses rank. Straight (s_min/s_0 ≈
+    1e−17) the singular value is cut and the command stays finite; bent by 1e−11 rad (≈ 2e−13) it is above the
+    cutoff max(rows, cols)·ε·s_0 and kept, so (3.4) commands a huge rate (which (3.20) would stop). Both equal
+    pinv's with the same cutoff."""
+    law = TwoPointLaw(gains=replace(CH3_GAINS, u_lim=1e30))
+    w_h, phi, grounded = np.array([1.0, 2.0, 0.3]), bend * np.random.default_rng(0).normal(size=N), law.candidates[6]
     c_d, c_d_dot = np.array([1.0, 2.0, 0.3, 0.0, 0.0, 0.0]), np.ones(6)
     A_c, B_c, *_, c_c = numpy_matrices(w_h, phi, grounded)
     s = np.linalg.svd(B_c, compute_uv=False)
-    assert s[-1] / s[0] < 1e-12  # the case the cutoff is for
+    assert (s[-1] > max(B_c.shape) * np.finfo(float).eps * s[0]) == kept and s[-1] / s[0] < 1e-12
     eta = law.objective(w_h, phi, grounded)[1]
     B_pinv = np.linalg.pinv(B_c, rtol=None)
     u = B_pinv @ A_c @ (c_d_dot + CH3_GAINS.k_p * (c_d - c_c)) + CH3_GAINS.k_v * (np.eye(N) - B_pinv @ B_c) @ eta
     step = law.input(w_h, phi, grounded, c_d, c_d_dot)
-    assert np.abs(step.u).max() < 1e3 and np.allclose(step.u, u, rtol=1e-9, atol=1e-9)
+    assert (step.u_norm > 1e6) == kept and np.allclose(step.u, u, rtol=1e-9, atol=1e-9)
 
 
 def test_tall_stack_and_both_mode_gains():
