@@ -267,10 +267,11 @@ def test_handle_angle_from_hand_points_on_the_raked_axis():
 
 
 def test_method_a_fit_and_role_table_are_their_numpy_formulas_bit_for_bit():
-    """fit_angle (scalar steps on Python floats, dots as ndarray.dot) gives atan2(Σ a·(z × w), Σ z·w) exactly as
-    the NumPy expressions do, and active_leg's modulo is np.mod's (the estimates feed the role switches)."""
+    """fit_angle (every step on Python floats, the dot products summed left to right) gives atan2(Σ a·(z × w), Σ z·w)
+    exactly as the NumPy expressions do (BLAS ddot, np.cross), and active_leg's modulo is np.mod's (the estimates
+    feed the role switches and the hands' IK targets)."""
     rng = np.random.default_rng(7)
-    for _ in range(500):
+    for _ in range(5000):
         axis = rng.normal(size=3)
         a = axis / np.linalg.norm(axis)
         centre, points, zeros = rng.normal(size=3), rng.normal(size=(2, 3)), rng.normal(size=(2, 3))

@@ -51,19 +51,20 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
     """:func:`fit_angle` with the unit axis ``a`` and the projected θ = 0 directions ``zs`` given
     (constant per model: the per-tick estimates take them from a cache).
 
-    The three dot products per point stay NumPy's (``ndarray.dot``: the same BLAS call as ``@``, without the
-    ufunc machinery); the elementwise steps (the projection, the cross product) run on Python floats, the same
-    IEEE operations one by one."""
+    On Python floats, the same IEEE operations one by one as the NumPy form it replaced: a 3-vector dot product
+    summed left to right is BLAS's ``ddot`` bit for bit (checked, ``test_switching``); the angle stays
+    ``np.arctan2``, whose last bits differ from ``math.atan2``'s."""
     num = den = 0.0
     a0, a1, a2 = a.tolist()
+    c0, c1, c2 = axis_point.tolist()
     for p, z in zip(points, zs):
-        w = np.subtract(p, axis_point)  # = np.asarray(p, dtype=float) - axis_point
-        s = float(a.dot(w))
-        w0, w1, w2 = w.tolist()
+        p0, p1, p2 = p.tolist() if isinstance(p, np.ndarray) else (float(x) for x in p)
+        w0, w1, w2 = p0 - c0, p1 - c1, p2 - c2
+        s = a0 * w0 + a1 * w1 + a2 * w2
         w0, w1, w2 = w0 - a0 * s, w1 - a1 * s, w2 - a2 * s  # on the plane normal to the axis: w − a (a·w)
         z0, z1, z2 = z.tolist()
-        num += float(a.dot(np.array([z1 * w2 - z2 * w1, z2 * w0 - z0 * w2, z0 * w1 - z1 * w0])))  # a·(z × w)
-        den += float(z.dot(np.array([w0, w1, w2])))
+        num += a0 * (z1 * w2 - z2 * w1) + a1 * (z2 * w0 - z0 * w2) + a2 * (z0 * w1 - z1 * w0)  # a·(z × w)
+        den += z0 * w0 + z1 * w1 + z2 * w2
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
