@@ -25,6 +25,7 @@ from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
+Y_AXIS.setflags(write=False)  # read-only: _crank_zero caches it by identity
 
 
 def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> float:
@@ -74,7 +75,8 @@ _CRANK_ZERO: dict = {}  # (leg, axis bytes) -> (unit axis, projected θ_c = 0 di
 
 
 def _crank_zero(leg: str, axis_dir) -> tuple[np.ndarray, np.ndarray]:
-    key = (leg, np.asarray(axis_dir, dtype=float).tobytes())
+    # the default axis (every per-tick estimate) by identity, any other by its bits
+    key = (leg, None if axis_dir is Y_AXIS else np.asarray(axis_dir, dtype=float).tobytes())
     hit = _CRANK_ZERO.get(key)
     if hit is None:
         a = np.asarray(axis_dir, dtype=float)
