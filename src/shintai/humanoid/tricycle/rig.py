@@ -33,7 +33,7 @@ from shintai.humanoid.constants import (
 from shintai.humanoid.tricycle.active import grip_plan
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.operation import SIDES, OperationSchedule, role_switcher
-from shintai.humanoid.tricycle.riding import PEDAL
+from shintai.humanoid.tricycle.riding import PEDAL, SOLE
 from shintai.humanoid.tricycle.switching import (
     SwitchingDiagnostic,
     active_arm,
@@ -155,6 +155,7 @@ def pedal_rig(body, module, feet, schedule, active_of, diag=None) -> Rig:
     vehicle_xy = body.data.xpos[body.id("body", "tricycle")][:2]
     start_xy = start[:2]
     pedal_xpos = {side: body.data.site_xpos[body.id("site", PEDAL[side[0]])] for side in feet}
+    sole_xpos = {side: body.data.site_xpos[body.id("site", SOLE[side[0]])] for side in feet}
     side_keys = {side: tuple(f"{k}_{side}" for k in ("fz", "fx", "active", "on_pedal")) for side in feet}
     centre = crank_centre()
 
@@ -170,8 +171,9 @@ def pedal_rig(body, module, feet, schedule, active_of, diag=None) -> Rig:
             out[k_fz] = force[2]
             out[k_fx] = force[0]  # along the crank tangent at the dead centres
             out[k_active] = float(active_of(side))
-            # evaluation only: where the sole sits on its pedal (the pedal's top site, vehicle frame)
-            out[k_on] = limb.point(snap) - limb.frame.to_vehicle(pedal_xpos[side])
+            # evaluation only: where the sole sits on its pedal (the pedal's top site, vehicle frame), both from the FK
+            # at the recording (of the snapshot's state; the control's limb.point is one physics step older)
+            out[k_on] = limb.frame.to_vehicle(sole_xpos[side]) - limb.frame.to_vehicle(pedal_xpos[side])
         return out
 
     return Rig(body, [module], duration=schedule.duration + 2 * schedule.phase, record={1: signals},
