@@ -12,7 +12,9 @@ from shintai.humanoid.constants import DEG, THETA_C_INIT
 from shintai.humanoid.robots.hrp2 import ft_reaction
 from shintai.humanoid.tricycle import riding
 from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
-from shintai.humanoid.tricycle.vehicle import grip_position, pedal_position
+from shintai.humanoid.tricycle.rig import FeetCrankAngle, pedal_axles
+from shintai.humanoid.tricycle.switching import estimate_crank_angle
+from shintai.humanoid.tricycle.vehicle import crank_centre, grip_position, pedal_position
 
 
 @pytest.fixture(scope="module")
@@ -64,6 +66,29 @@ def test_limb_force_and_vehicle_frame_match_their_reference_forms():
     assert frame.pose()[0][2] == pytest.approx(before[2] + 0.1, abs=1e-9)
     with pytest.raises(ValueError):
         frame.pose()[1][0, 0] = 1.0  # the cached pose is read-only
+
+
+def test_compiled_crank_estimate_is_the_pedal_axle_fit_bit_for_bit():
+    """FeetCrankAngle (the legs' per-tick diagnostic, compiled) gives estimate_crank_angle(pedal_axles(...)) exactly, on
+    the seated robot moved to random postures (its free root turned, every joint moved), and fails as fit_angle does."""
+    body = riding.build_riding(theta_c=THETA_C_INIT)
+    feet = riding_limbs(body, "foot")
+    compiled, centre = FeetCrankAngle(feet), crank_centre()
+    rng = np.random.default_rng(3)
+    ride, root = body.model.key("ride").qpos, body.model.joint("root").qposadr[0]
+    angles = []
+    for i in range(200):
+        body.data.qpos[:] = ride
+        body.data.qpos[root + 3:root + 7] += rng.normal(scale=0.2, size=4)  # the waist (and vehicle frame) turned
+        body.data.qpos[root + 3:root + 7] /= np.linalg.norm(body.data.qpos[root + 3:root + 7])
+        body.data.qpos[root + 7:] += rng.normal(scale=0.1, size=body.model.nq - root - 7)
+        mujoco.mj_kinematics(body.model, body.data)
+        snap = {"t": float(i)}
+        angles.append(compiled(snap))
+        assert angles[-1] == estimate_crank_angle(pedal_axles(feet, snap), centre)
+    assert np.ptp(angles) > 0.1  # the postures did move the estimate
+    with pytest.raises(ValueError, match="one vehicle frame"):
+        FeetCrankAngle({"left": feet["left"], "right": riding_limbs(body, "foot")["right"]})
 
 
 @pytest.mark.parametrize("theta_deg", [0, 90, 200, 290])

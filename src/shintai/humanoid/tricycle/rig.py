@@ -35,9 +35,12 @@ from shintai.humanoid.tricycle.hrp2_limbs import riding_limbs
 from shintai.humanoid.tricycle.operation import SIDES, OperationSchedule, role_switcher
 from shintai.humanoid.tricycle.riding import PEDAL, SOLE
 from shintai.humanoid.tricycle.switching import (
+    Y_AXIS,
     SwitchingDiagnostic,
     active_arm,
     active_leg,
+    axle_fit_terms,
+    crank_zero,
     estimate_crank_angle,
     estimate_handle_angle,
 )
@@ -80,11 +83,39 @@ def pedal_axles(feet: dict, snapshot) -> dict:
     return axles
 
 
+class FeetCrankAngle:
+    """θ_c ∈ [0, 2π) by method (a) from the feet's pedal-axle points about the nominal crank centre: the number
+    ``estimate_crank_angle(pedal_axles(feet, snapshot), crank_centre())`` gives, bit for bit, with the sums compiled
+    (:func:`~shintai.humanoid.tricycle.switching.axle_fit_terms`; the legs' switching diagnostic runs it every
+    control tick). ``feet``: :class:`~shintai.humanoid.tricycle.hrp2_limbs.Hrp2Limb` feet sharing one vehicle frame;
+    it reads their sole sites from the body's data when called, as their ``point`` does at its first call in a tick."""
+
+    def __init__(self, feet: dict):
+        limbs = list(feet.values())
+        self.frame, self.body = limbs[0].frame, limbs[0].body
+        if any(limb.frame is not self.frame for limb in limbs):
+            raise ValueError("FeetCrankAngle: the feet share one vehicle frame")
+        self.sites = np.array([limb._site_id for limb in limbs])
+        self.centre = crank_centre()  # the nominal model's (constant)
+        zero = [crank_zero(leg, Y_AXIS) for leg in feet]
+        self.axis, self.zs = zero[0][0], np.array([z for _, z in zero])
+        self._data = None
+
+    def __call__(self, snapshot) -> float:
+        if self._data is not self.body.data:  # the data's rows, as views taken once (each access builds an array)
+            d = self._data = self.body.data
+            self._xpos, self._xmat = d.site_xpos, d.site_xmat
+        p, r = self.frame.pose()
+        num, den = axle_fit_terms(p, r, self._xpos, self._xmat, self.sites, PEDAL_HALF_THICKNESS, self.centre,
+                                  self.axis, self.zs)
+        if num == 0.0 and den == 0.0:
+            raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
+        return float(np.arctan2(num, den)) % (2 * np.pi)  # estimate_crank_angle's last steps
+
+
 def crank_diagnostic(feet: dict) -> SwitchingDiagnostic:
     """Fig. 3.14 for the legs: θ_c by method (a) from both feet about the nominal crank centre."""
-    centre = crank_centre()  # the nominal model's (constant)
-    return SwitchingDiagnostic(lambda s: estimate_crank_angle(pedal_axles(feet, s), centre),
-                               lambda a: active_leg(a, DELTA_C), SWITCH_HYSTERESIS)
+    return SwitchingDiagnostic(FeetCrankAngle(feet), lambda a: active_leg(a, DELTA_C), SWITCH_HYSTERESIS)
 
 
 def handle_diagnostic(hands: dict) -> SwitchingDiagnostic:
@@ -98,11 +129,12 @@ class CrankEstimate:
 
     def __init__(self, body):
         self.feet = riding_limbs(body, "foot")
+        self._measure = FeetCrankAngle(self.feet)
         self.t, self.angle = None, None
 
     def __call__(self, snapshot) -> float:
         if snapshot["t"] != self.t:
-            measured = estimate_crank_angle(pedal_axles(self.feet, snapshot), crank_centre())
+            measured = self._measure(snapshot)
             self.angle = measured if self.angle is None else self.angle + wrap_pi(measured - self.angle)
             self.t = snapshot["t"]
         return self.angle

@@ -18,6 +18,7 @@ import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
+from numba import njit
 
 from shintai.core.geometry import wrap_pi
 from shintai.humanoid.constants import TRICYCLE, TricycleSpec
@@ -25,7 +26,7 @@ from shintai.humanoid.tricycle.active import PEDAL_PHASE_OFFSET, v
 from shintai.humanoid.tricycle.vehicle import grip_position, steer_axis, steer_point
 
 Y_AXIS = np.array([0.0, 1.0, 0.0])
-Y_AXIS.setflags(write=False)  # read-only: _crank_zero caches it by identity
+Y_AXIS.setflags(write=False)  # read-only: crank_zero caches it by identity
 
 
 def fit_angle(points: Sequence, zero_dirs: Sequence, axis_point, axis_dir) -> float:
@@ -53,7 +54,7 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
     (constant per model: the per-tick estimates take them from a cache).
 
     On Python floats, the same IEEE operations one by one as the NumPy form it replaced: a 3-vector dot product
-    summed left to right is BLAS's ``ddot`` bit for bit (checked, ``test_switching``); the angle stays
+    summed left to right is BLAS's ``ddot`` bit for bit (checked, ``test_laws``); the angle stays
     ``np.arctan2``, whose last bits differ from ``math.atan2``'s."""
     num = den = 0.0
     a0, a1, a2 = a.tolist()
@@ -71,10 +72,38 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
     return float(np.arctan2(num, den))
 
 
+@njit(cache=True)
+def axle_fit_terms(p, r, site_xpos, site_xmat, sites, h, centre, a, zs):
+    """:func:`_fit`'s two sums (Σ a·(z × w), Σ z·w) for the pedal-axle points of the sole sites ``sites``, compiled:
+    each site's point in the vehicle frame (p, r: its pose in the world) less ``h`` along the sole normal (the site's
+    z axis, turned into the vehicle frame), then the fit about the unit axis ``a`` through ``centre`` with the θ = 0
+    directions ``zs`` (one row per site) — the per-tick crank estimate of
+    :class:`~shintai.humanoid.tricycle.rig.FeetCrankAngle`. The same IEEE operations in the same order as
+    ``rig.pedal_axles`` then :func:`_fit` on Python floats (rᵀ v summed left to right is ``r.T.dot(v)``'s BLAS
+    result, as a 3-vector dot is ``ddot``'s; no fused multiply-adds): bit for bit (``test_rig``)."""
+    num = 0.0
+    den = 0.0
+    a0, a1, a2 = a[0], a[1], a[2]
+    for k in range(len(sites)):
+        s = sites[k]
+        w0, w1, w2 = site_xpos[s, 0] - p[0], site_xpos[s, 1] - p[1], site_xpos[s, 2] - p[2]
+        m0, m1, m2 = site_xmat[s, 2], site_xmat[s, 5], site_xmat[s, 8]  # the sole normal, world
+        x0 = (r[0, 0] * w0 + r[1, 0] * w1 + r[2, 0] * w2) - h * (r[0, 0] * m0 + r[1, 0] * m1 + r[2, 0] * m2)
+        x1 = (r[0, 1] * w0 + r[1, 1] * w1 + r[2, 1] * w2) - h * (r[0, 1] * m0 + r[1, 1] * m1 + r[2, 1] * m2)
+        x2 = (r[0, 2] * w0 + r[1, 2] * w1 + r[2, 2] * w2) - h * (r[0, 2] * m0 + r[1, 2] * m1 + r[2, 2] * m2)
+        w0, w1, w2 = x0 - centre[0], x1 - centre[1], x2 - centre[2]
+        sa = a0 * w0 + a1 * w1 + a2 * w2
+        w0, w1, w2 = w0 - a0 * sa, w1 - a1 * sa, w2 - a2 * sa
+        z0, z1, z2 = zs[k, 0], zs[k, 1], zs[k, 2]
+        num += a0 * (z1 * w2 - z2 * w1) + a1 * (z2 * w0 - z0 * w2) + a2 * (z0 * w1 - z1 * w0)
+        den += z0 * w0 + z1 * w1 + z2 * w2
+    return num, den
+
+
 _CRANK_ZERO: dict = {}  # (leg, axis bytes) -> (unit axis, projected θ_c = 0 direction)
 
 
-def _crank_zero(leg: str, axis_dir) -> tuple[np.ndarray, np.ndarray]:
+def crank_zero(leg: str, axis_dir) -> tuple[np.ndarray, np.ndarray]:
     # the default axis (every per-tick estimate) by identity, any other by its bits
     key = (leg, None if axis_dir is Y_AXIS else np.asarray(axis_dir, dtype=float).tobytes())
     hit = _CRANK_ZERO.get(key)
@@ -91,7 +120,7 @@ def estimate_crank_angle(feet: dict, crank_centre, axis_dir=Y_AXIS) -> float:
     At θ_c = 0 the left pedal points forward (φ = π/2) and the right one backward (module
     :mod:`shintai.humanoid.tricycle.active`); θ_c turns about +y.
     """
-    zero = [_crank_zero(leg, axis_dir) for leg in feet]
+    zero = [crank_zero(leg, axis_dir) for leg in feet]
     if not zero:
         raise ValueError("estimate_crank_angle: no foot points")
     angle = _fit(list(feet.values()), [z for _, z in zero], np.asarray(crank_centre, dtype=float), zero[0][0])
