@@ -8,7 +8,7 @@ import pytest
 
 from shintai.humanoid.constants import HRP2_LINKS, STANDING_POSTURE
 from shintai.humanoid.robots.hrp2 import build_hrp2, side_posture
-from shintai.humanoid.robots.leg_ik import JOINT_NAMES, LIMITS, hip_point, leg_fk, leg_ik, legs_ik
+from shintai.humanoid.robots.leg_ik import JOINT_NAMES, LIMITS, hip_point, inside_limits, leg_fk, leg_ik, legs_ik
 from shintai.sim import ik
 
 
@@ -144,6 +144,9 @@ def test_joint_limits_are_reported_per_side_and_mirrored():
         assert result.reachable and np.allclose(result.q, q, atol=1e-12)
         assert result.within_limits is inside
         assert result.violated == (() if inside else ("l_hip_yaw",))
+        assert inside_limits(side, result.q.tolist()) is inside  # the per-tick form of within_limits
+    assert not inside_limits("r", [math.nan, 0.0, -0.3, 0.6, -0.3, 0.0])
+    assert inside_limits("r", [lo for lo, _ in LIMITS["r"].tolist()])  # the range's ends are inside
 
 
 @pytest.mark.parametrize("args, word", [

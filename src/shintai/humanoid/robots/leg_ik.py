@@ -107,6 +107,16 @@ def leg_ik_floats(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hr
     return LegIKResult(np.array(q), reach_error == 0.0, reach_error, not violated, violated)
 
 
+def inside_limits(side: str, q) -> bool:
+    """Every angle of ``q`` inside Table A.2's range of leg ``side`` (:attr:`LegIKResult.within_limits`, without
+    naming the joints outside it; a NaN is outside): with :func:`leg_angles`' ``reach_error == 0`` it is
+    :attr:`LegIKResult.ok`, for a caller that needs only that (the tricycle's feet, every tick)."""
+    for v, (lo, hi) in zip(q, _LIMITS[side]):
+        if not lo <= v <= hi:
+            return False
+    return True
+
+
 def leg_angles(side: str, waist_pos, waist_rot, sole_pos, sole_rot, links: Hrp2Links = HRP2_LINKS,
                sole: bool = True) -> tuple[list[float], float]:
     """The closed form of the module docstring on Python floats (:func:`leg_ik_floats`' arguments): the six

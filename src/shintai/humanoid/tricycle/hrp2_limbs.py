@@ -36,7 +36,7 @@ import numpy as np
 
 from shintai.humanoid.constants import PEDAL_SOLE_PITCH
 from shintai.humanoid.robots.hrp2 import SIDES
-from shintai.humanoid.robots.leg_ik import leg_ik_floats
+from shintai.humanoid.robots.leg_ik import inside_limits, leg_angles
 from shintai.humanoid.tricycle.active import R_y
 from shintai.humanoid.tricycle.riding import ANKLE_FT, ARM, HAND, LEG, SOLE, WRIST_FT
 from shintai.humanoid.tricycle.switching import estimate_handle_angle
@@ -197,9 +197,9 @@ class Hrp2Limb:
         x, y, z = xi.tolist() if isinstance(xi, np.ndarray) else (float(v) for v in xi)
         (o0, o1, o2), (r0, r1, r2, r3, r4, r5, r6, r7, r8) = self._to_waist  # ξ → waist, on Python floats
         pos = (o0 + r0 * x + r1 * y + r2 * z, o1 + r3 * x + r4 * y + r5 * z, o2 + r6 * x + r7 * y + r8 * z)
-        result = leg_ik_floats(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
-        if result.ok:
-            return result.q
+        q, reach_error = leg_angles(self.side[0], _ORIGIN, _EYE, pos, self._sole_in_waist)
+        if reach_error == 0.0 and inside_limits(self.side[0], q):  # = leg_ik_floats(...).ok, without its result
+            return np.array(q)
         self.fallbacks += 1
         return None
 
