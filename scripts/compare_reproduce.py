@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Compare two ``shintai reproduce`` folders: does every scenario give the same metrics?
 
-    python scripts/compare_reproduce.py BEFORE AFTER [--rename OLD=NEW ...] [--ignore REGEX]
+    python scripts/compare_reproduce.py BEFORE AFTER [--rename OLD=NEW ...] [--ignore REGEX] [--rtol R]
 
-For each scenario in either folder: its metrics (keys and values, exactly; NaN equals NaN), its checks
-(value, threshold, ok) and its error. Wall-clock figures are ignored (``wall_time_s`` and metrics matching
+For each scenario in either folder: its metrics (keys and values, exactly; NaN equals NaN; with ``--rtol`` floats
+within a relative R, for a change declared to differ by rounding), its checks (value, threshold, ok) and its error. Wall-clock figures are ignored (``wall_time_s`` and metrics matching
 ``--ignore``, by default timing names). ``--rename`` maps a metric renamed on purpose. Exit 0 when
 everything compared is identical, 1 otherwise; one line per scenario, then the differences.
 """
@@ -25,9 +25,14 @@ def load(folder: Path) -> dict[str, dict]:
     return {p.parent.name: json.loads(p.read_text()) for p in sorted(folder.glob("*/metrics.json"))}
 
 
+RTOL = [0.0]  # the relative tolerance on floats (--rtol); 0: exactly
+
+
 def same(a, b) -> bool:
-    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
-        return True
+    if isinstance(a, float) and isinstance(b, float):
+        if math.isnan(a) or math.isnan(b):
+            return math.isnan(a) and math.isnan(b)
+        return a == b or abs(a - b) <= RTOL[0] * max(abs(a), abs(b))
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
     if isinstance(a, list) and isinstance(b, list):
@@ -66,7 +71,9 @@ def main(argv=None) -> int:
     ap.add_argument("after", type=Path)
     ap.add_argument("--rename", action="append", default=[], metavar="OLD=NEW")
     ap.add_argument("--ignore", default=TIMING, help="regex of metric names not compared (default: timing)")
+    ap.add_argument("--rtol", type=float, default=0.0, help="relative tolerance on floats (default 0: exactly)")
     args = ap.parse_args(argv)
+    RTOL[0] = args.rtol
     rename = dict(r.split("=", 1) for r in args.rename)
     before, after = load(args.before), load(args.after)
     ignore = re.compile(args.ignore)
@@ -78,7 +85,9 @@ def main(argv=None) -> int:
             continue
         diffs = compare(before[sid], after[sid], rename, ignore)
         n = len(before[sid].get("metrics", {}))
-        print(f"{sid}: {'identical' if not diffs else f'{len(diffs)} differences'} ({n} metrics)")
+        verdict = ("identical" if not args.rtol else f"equal within rtol {args.rtol:g}") if not diffs else \
+            f"{len(diffs)} differences"
+        print(f"{sid}: {verdict} ({n} metrics)")
         for d in diffs:
             print(f"    {d}")
         bad += bool(diffs)
