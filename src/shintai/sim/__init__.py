@@ -14,6 +14,7 @@ experiments/ — one declared scenario per file (accounts in notes/)
 export — Every body's MuJoCo model, exported as MJCF that opens in MuJoCo's own ``simulate`` viewer and any …
 film — Films of a run rendered after it: record the trajectory while the body steps, render it in processes
 ik — Inverse kinematics: damped least squares on MuJoCo site Jacobians (``mj_jacSite``), for any MuJoCo body
+ik_chain — The DLS IK of :mod:`shintai.sim.ik` for one serial chain of hinge joints and one site, compiled (issue 30)
 models — The MuJoCo models of ``shintai.sim`` for export (:mod:`shintai.sim.export`)
 plots — The figures of the sim experiments (``sim.wall-force``), drawn with ``ctx.figure``
 spec — MjSpec building blocks shared by the bodies: the scene (floor, light, integrator), a limited hinge, a …

@@ -8,7 +8,8 @@
   their Table A.2 ranges) for the target ξ, as joint-servo targets. A foot uses the closed-form leg
   IK (:mod:`shintai.humanoid.robots.leg_ik`, issue 13 item 2) and falls back to the DLS IK
   (:mod:`shintai.sim.ik`) only where the closed form gives no answer inside the limits (see
-  :meth:`Hrp2Limb.solve`); a hand, 7 joints for a 5-constraint target, uses the DLS IK.
+  :meth:`Hrp2Limb.solve`); a hand, 7 joints for a 5-constraint target, uses the DLS IK, compiled on the arm's chain
+  (:mod:`shintai.sim.ik_chain`; the same search as :mod:`shintai.sim.ik`, equal to rounding).
   An unreachable ξ (IK does not converge inside the joint limits, the Reachability-Map stand-in)
   keeps the previous command — the second branch of Eq. 3.14 applied to the joint input; such
   ticks are counted in ``unreachable``.
@@ -43,6 +44,7 @@ from shintai.humanoid.tricycle.switching import estimate_handle_angle
 from shintai.humanoid.tricycle.vehicle import steer_axis
 from shintai.sim import ik
 from shintai.sim.body import MujocoBody
+from shintai.sim.ik_chain import ChainIK
 
 KINDS = ("hand", "foot")
 BAR_IN_HAND = np.array([1.0, 0.0, 0.0])  # the grasped bar runs along the grasp site's x axis (hrp2.py)
@@ -142,6 +144,8 @@ class Hrp2Limb:
         # snapshot object is the key (kept referenced, so a new tick's snapshot is never mistaken for it).
         self._point = self._force = (None, None)
         self._bar, self._turn = np.zeros(3), np.zeros(4)  # a hand's target: scratch vector and quaternion
+        # a hand's DLS IK: the arm's seven hinges are one serial chain (sim.ik_chain, issue 30: 2.4x faster a solve)
+        self._chain = ChainIK(body.model, self.site, self.joints) if kind == "hand" else None
 
     def point(self, snapshot) -> np.ndarray:
         """Contact point (grasp centre / sole) from the robot's FK, vehicle frame [m]."""
@@ -205,9 +209,13 @@ class Hrp2Limb:
 
     def dls_solve(self, xi) -> ik.IKResult:
         """The DLS IK (:func:`shintai.sim.ik.solve`) of this limb's joints for ξ, from its previous command
-        (the rest of the body as measured; the tricycle's feet used it alone before issue 13)."""
+        (the rest of the body as measured; the tricycle's feet used it alone before issue 13); a hand's as
+        :class:`~shintai.sim.ik_chain.ChainIK`, the same search compiled on the arm's chain."""
         q0 = self.body.data.qpos.copy()
         q0[self._coords] = self.q
+        if self._chain is not None:  # a hand: sim.ik's search on the arm's chain, compiled (equal to rounding)
+            target = self.target(xi)
+            return self._chain.solve(q0, target.pos, target.axis)
         return ik.solve(self.body, {self.site: self.target(xi)}, q0, self.joints)
 
     def reachable(self, xi) -> bool:
