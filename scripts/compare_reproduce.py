@@ -4,7 +4,8 @@
     python scripts/compare_reproduce.py BEFORE AFTER [--rename OLD=NEW ...] [--ignore REGEX] [--rtol R]
 
 For each scenario in either folder: its metrics (keys and values, exactly; NaN equals NaN; with ``--rtol`` floats
-within a relative R, for a change declared to differ by rounding), its checks (value, threshold, ok) and its error. Wall-clock figures are ignored (``wall_time_s`` and metrics matching
+within a relative R, for a change declared to differ by rounding; an infinity equals only itself), its checks (value,
+threshold, ok) and its error. Wall-clock figures are ignored (``wall_time_s`` and metrics matching
 ``--ignore``, by default timing names). ``--rename`` maps a metric renamed on purpose. Exit 0 when
 everything compared is identical, 1 otherwise; one line per scenario, then the differences.
 """
@@ -32,6 +33,8 @@ def same(a, b) -> bool:
     if isinstance(a, float) and isinstance(b, float):
         if math.isnan(a) or math.isnan(b):
             return math.isnan(a) and math.isnan(b)
+        if math.isinf(a) or math.isinf(b):  # an infinity equals only itself, whatever the tolerance
+            return a == b
         return a == b or abs(a - b) <= RTOL[0] * max(abs(a), abs(b))
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)

@@ -81,6 +81,9 @@ class ChainIK:
         self.data.qpos[:] = q0
         mujoco.mj_kinematics(self.model, self.data)  # the chain's parent, the rest of the body as in q0
         local, world = (_NO_AXIS, _NO_AXIS) if axis is None else (np.asarray(v, dtype=float) for v in axis)
+        if axis is not None and not (local.shape == world.shape == (3,) and all(
+                math.isfinite(n) and n > 0 for n in (float(local.dot(local)), float(world.dot(world))))):
+            raise ValueError(f"ChainIK: the axis target is two non-zero finite 3-vectors (site, world), got {axis!r}")
         q, ok, pos_err, rot_err = chain_dls(self._parent_xpos, self._parent_xmat, self.geometry, self.site,
                                             self.coords, self.limits, q0, np.asarray(pos, dtype=float), local, world,
                                             axis is not None, tol, rot_tol, max_iter, damping, max_step)

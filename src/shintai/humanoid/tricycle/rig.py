@@ -85,10 +85,11 @@ def pedal_axles(feet: dict, snapshot) -> dict:
 
 class FeetCrankAngle:
     """θ_c ∈ [0, 2π) by method (a) from the feet's pedal-axle points about the nominal crank centre: the number
-    ``estimate_crank_angle(pedal_axles(feet, snapshot), crank_centre())`` gives, bit for bit, with the sums compiled
-    (:func:`~shintai.humanoid.tricycle.switching.axle_fit_terms`; the legs' switching diagnostic runs it every
-    control tick). ``feet``: :class:`~shintai.humanoid.tricycle.hrp2_limbs.Hrp2Limb` feet sharing one vehicle frame;
-    it reads their sole sites from the body's data when called, as their ``point`` does at its first call in a tick."""
+    ``estimate_crank_angle(pedal_axles(feet, snapshot), crank_centre())`` gives, with the sums compiled
+    (:func:`~shintai.humanoid.tricycle.switching.axle_fit_terms`: bit for bit on a BLAS that sums 3-vector products
+    left to right; the legs' switching diagnostic runs it every control tick). ``feet``:
+    :class:`~shintai.humanoid.tricycle.hrp2_limbs.Hrp2Limb` feet sharing one vehicle frame; it reads their sole sites
+    from the body's data when called, as their ``point`` does at its first call in a tick."""
 
     def __init__(self, feet: dict):
         limbs = list(feet.values())

@@ -53,9 +53,10 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
     """:func:`fit_angle` with the unit axis ``a`` and the projected θ = 0 directions ``zs`` given
     (constant per model: the per-tick estimates take them from a cache).
 
-    On Python floats, the same IEEE operations one by one as the NumPy form it replaced: a 3-vector dot product
-    summed left to right is BLAS's ``ddot`` bit for bit (checked, ``test_laws``); the angle stays
-    ``np.arctan2``, whose last bits differ from ``math.atan2``'s."""
+    On Python floats: the NumPy form it replaced bit for bit where the BLAS sums a 3-vector ``ddot`` left to right
+    (OpenBLAS's Haswell and Zen kernels; its SkylakeX ones, an AVX-512 machine's default, differ in the last bit:
+    tests/blas.py, ``test_laws``), and the same on every BLAS; the angle stays ``np.arctan2``, whose last bits differ
+    from ``math.atan2``'s."""
     num = den = 0.0
     a0, a1, a2 = a.tolist()
     c0, c1, c2 = axis_point.tolist()
@@ -79,8 +80,8 @@ def axle_fit_terms(p, r, site_xpos, site_xmat, sites, h, centre, a, zs):
     z axis, turned into the vehicle frame), then the fit about the unit axis ``a`` through ``centre`` with the θ = 0
     directions ``zs`` (one row per site) — the per-tick crank estimate of
     :class:`~shintai.humanoid.tricycle.rig.FeetCrankAngle`. The same IEEE operations in the same order as
-    ``rig.pedal_axles`` then :func:`_fit` on Python floats (rᵀ v summed left to right is ``r.T.dot(v)``'s BLAS
-    result, as a 3-vector dot is ``ddot``'s; no fused multiply-adds): bit for bit (``test_rig``)."""
+    ``rig.pedal_axles`` then :func:`_fit` on Python floats (no fused multiply-adds): their bits where the BLAS sums
+    ``r.T.dot(v)`` and a 3-vector ``ddot`` left to right, as :func:`_fit` says (``test_rig``)."""
     num = 0.0
     den = 0.0
     a0, a1, a2 = a[0], a[1], a[2]
