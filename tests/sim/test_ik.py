@@ -155,7 +155,7 @@ def test_cached_problem_is_per_model_and_gives_the_same_answer():
     again = ik_module.solve(a, {"r_sole": target}, joints=joints)
     other = ik_module.solve(b, {"r_sole": target}, joints=joints)
     assert first.ok and np.array_equal(first.q, again.q) and np.array_equal(first.q, other.q)
-    assert ik_module._problem(a.model, joints) is not ik_module._problem(b.model, joints)
+    assert ik_module.cached_problem(a.model, joints) is not ik_module.cached_problem(b.model, joints)
 
 
 def test_reused_buffers_do_not_carry_over_between_solves(robot):

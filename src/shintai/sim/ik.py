@@ -161,7 +161,7 @@ _PROBLEMS: dict = {}  # (id(model), joints) -> (model, _Problem): the scratch da
 _PROBLEMS_MAX = 32
 
 
-def _problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
+def cached_problem(model: mujoco.MjModel, joints: Iterable[str] | None) -> _Problem:
     """A cached :class:`_Problem` for this model and joint set (building one allocates an ``MjData``,
     which cost more than the IK itself at one solve per limb per 4 ms control tick)."""
     key = (id(model), None if joints is None else tuple(joints))
@@ -370,7 +370,7 @@ def solve(body_or_model: MujocoBody | mujoco.MjModel, targets: Mapping[str, Targ
     model = body_or_model.model if isinstance(body_or_model, MujocoBody) else body_or_model
     if q0 is None:
         q0 = body_or_model.data.qpos if isinstance(body_or_model, MujocoBody) else model.qpos0
-    problem = _problem(model, joints)
+    problem = cached_problem(model, joints)
     stack = problem.stack(targets)
     err = stack.err
     reg = problem.reg(len(err), damping)  # the DLS damping term, formed once

@@ -22,6 +22,7 @@ import mujoco
 import numpy as np
 from numba import njit
 
+from shintai.sim import ik
 from shintai.sim.ik import IKResult
 
 _HINGE = int(mujoco.mjtJoint.mjJNT_HINGE)
@@ -33,7 +34,6 @@ class ChainIK:
     ``ik.solve(model, {site: Target(pos, axis=(local, world))}, q0, joints)`` with its defaults."""
 
     def __init__(self, model: mujoco.MjModel, site: str, joints: Sequence[str]):
-        self.model, self.data = model, mujoco.MjData(model)
         ids = [model.joint(j).id for j in joints]
         if not ids:
             raise ValueError("ChainIK: give at least one joint")
@@ -44,8 +44,11 @@ class ChainIK:
         for prev, body, name in zip(bodies, bodies[1:], joints[1:]):
             if int(model.body_parentid[body]) != prev:
                 raise ValueError(f"ChainIK: joint {name!r} is not on the child body of the previous joint's")
-        if len(set(bodies)) != len(bodies) or any(int(model.body_jntnum[b]) != 1 for b in bodies):
+        if any(int(model.body_jntnum[b]) != 1 for b in bodies):
             raise ValueError("ChainIK: one joint per body of the chain")
+        # sim.ik's problem for these joints: its scratch data, the joints' qpos addresses and limits
+        problem = ik.cached_problem(model, joints)
+        self.model, self.data = model, problem.data
         s = model.site(site).id
         tail, b = [], int(model.site_bodyid[s])
         while b != bodies[-1]:  # fixed bodies between the last joint's body and the site's
@@ -63,10 +66,7 @@ class ChainIK:
         for row, j in zip(self.geometry, ids):
             row[12:15], row[15:18], row[18] = model.jnt_axis[j], model.jnt_pos[j], model.qpos0[model.jnt_qposadr[j]]
         self.site = np.concatenate([model.site_pos[s], _quat_mat(model.site_quat[s]).ravel()])
-        self.coords = np.array([model.jnt_qposadr[j] for j in ids])
-        limited = model.jnt_limited[ids].astype(bool)
-        self.limits = np.stack([np.where(limited, model.jnt_range[ids, 0], -np.inf),
-                                np.where(limited, model.jnt_range[ids, 1], np.inf)], axis=1)
+        self.coords, self.limits = problem.qadr, np.stack([problem.lo, problem.hi], axis=1)
         self.n = len(ids)
         self._parent_xpos, self._parent_xmat = self.data.xpos[self.parent], self.data.xmat[self.parent]
 
@@ -81,8 +81,7 @@ class ChainIK:
         self.data.qpos[:] = q0
         mujoco.mj_kinematics(self.model, self.data)  # the chain's parent, the rest of the body as in q0
         local, world = (_NO_AXIS, _NO_AXIS) if axis is None else (np.asarray(v, dtype=float) for v in axis)
-        if axis is not None and not (local.shape == world.shape == (3,) and all(
-                math.isfinite(n) and n > 0 for n in (float(local.dot(local)), float(world.dot(world))))):
+        if not local.shape == world.shape == (3,):  # (their norms are checked where they are normalised)
             raise ValueError(f"ChainIK: the axis target is two non-zero finite 3-vectors (site, world), got {axis!r}")
         q, ok, pos_err, rot_err = chain_dls(self._parent_xpos, self._parent_xmat, self.geometry, self.site,
                                             self.coords, self.limits, q0, np.asarray(pos, dtype=float), local, world,
@@ -220,8 +219,12 @@ def chain_dls(parent_pos, parent_xmat, geometry, site, coords, limits, q0, targe
     rows = 6 if has_axis else 3
     local, world = np.zeros(3), np.zeros(3)
     if has_axis:
-        local[:] = local_axis / math.sqrt(local_axis[0] ** 2 + local_axis[1] ** 2 + local_axis[2] ** 2)
-        world[:] = world_axis / math.sqrt(world_axis[0] ** 2 + world_axis[1] ** 2 + world_axis[2] ** 2)
+        norm_local = math.sqrt(local_axis[0] ** 2 + local_axis[1] ** 2 + local_axis[2] ** 2)
+        norm_world = math.sqrt(world_axis[0] ** 2 + world_axis[1] ** 2 + world_axis[2] ** 2)
+        if not (0.0 < norm_local < np.inf and 0.0 < norm_world < np.inf):
+            raise ValueError("ChainIK: the axis target is two non-zero finite 3-vectors (site, world)")
+        local[:] = local_axis / norm_local
+        world[:] = world_axis / norm_world
     parent_rot = parent_xmat.reshape(3, 3)
     lo, hi = limits[:, 0], limits[:, 1]
     q = np.empty(n)
