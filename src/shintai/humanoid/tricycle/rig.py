@@ -43,6 +43,7 @@ from shintai.humanoid.tricycle.switching import (
     crank_zero,
     estimate_crank_angle,
     estimate_handle_angle,
+    fit_angle_of,
 )
 from shintai.humanoid.tricycle.vehicle import crank_centre, pedal_position
 from shintai.scenarios.experiment import Rig
@@ -96,7 +97,7 @@ class FeetCrankAngle:
         self.frame, self.body = limbs[0].frame, limbs[0].body
         if any(limb.frame is not self.frame for limb in limbs):
             raise ValueError("FeetCrankAngle: the feet share one vehicle frame")
-        self.sites = np.array([limb._site_id for limb in limbs])
+        self.sites = np.array([self.body.id("site", limb.site) for limb in limbs])
         self.centre = crank_centre()  # the nominal model's (constant)
         zero = [crank_zero(leg, Y_AXIS) for leg in feet]
         self.axis, self.zs = zero[0][0], np.array([z for _, z in zero])
@@ -109,9 +110,7 @@ class FeetCrankAngle:
         p, r = self.frame.pose()
         num, den = axle_fit_terms(p, r, self._xpos, self._xmat, self.sites, PEDAL_HALF_THICKNESS, self.centre,
                                   self.axis, self.zs)
-        if num == 0.0 and den == 0.0:
-            raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
-        return float(np.arctan2(num, den)) % (2 * np.pi)  # estimate_crank_angle's last steps
+        return fit_angle_of(num, den) % (2 * np.pi)  # estimate_crank_angle's last steps
 
 
 def crank_diagnostic(feet: dict) -> SwitchingDiagnostic:

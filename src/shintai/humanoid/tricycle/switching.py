@@ -68,6 +68,11 @@ def _fit(points: Sequence, zs: Sequence, axis_point: np.ndarray, a: np.ndarray) 
         z0, z1, z2 = z.tolist()
         num += a0 * (z1 * w2 - z2 * w1) + a1 * (z2 * w0 - z0 * w2) + a2 * (z0 * w1 - z1 * w0)  # a·(z × w)
         den += z0 * w0 + z1 * w1 + z2 * w2
+    return fit_angle_of(num, den)
+
+
+def fit_angle_of(num: float, den: float) -> float:
+    """The fit's angle atan2(Σ a·(z × w), Σ z·w) from its two sums (:func:`_fit`, :func:`axle_fit_terms`)."""
     if num == 0.0 and den == 0.0:
         raise ValueError("fit_angle: the points lie on the axis; the angle is undefined")
     return float(np.arctan2(num, den))
