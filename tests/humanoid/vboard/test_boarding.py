@@ -29,10 +29,10 @@ def test_the_scene_the_robot_on_the_floor_the_scooter_ahead_drives_off_steps_ont
 
 @pytest.fixture(scope="module")
 def short_run(smoke):
-    """The smoke run, both variants up to 3.4 s: past the right landings (≈3.12 s without SLC, ≈3.22 s with),
-    before the fall without SLC (≈4.4 s). The metrics and the recorded f_Rz, right pad switch of the SLC run."""
+    """The smoke run, both variants up to 3.6 s: past the right landings (≈3.31 s without SLC, ≈3.38 s with, the
+    soles not creeping on the pads: vboard.constants.NOSLIP_ITERATIONS; with creep they were ≈3.12 and ≈3.22 s). The metrics and the recorded f_Rz, right pad switch of the SLC run."""
     run = smoke(SID)
-    assert run.result["params"]["max_s"] == 3.4 and run.result.get("error") is None, run.result.get("error")
+    assert run.result["params"]["max_s"] == 3.6 and run.result.get("error") is None, run.result.get("error")
     with np.load(run.out / "log.npz") as log:
         signals = {k: log[f"slc.{k}"] for k in ("f_Rz", "f_Rz_t", "switch_r")}
     return run.result["metrics"], signals
@@ -42,9 +42,9 @@ def test_the_slc_window_opens_on_the_left_landing_and_closes_on_the_right_landin
     m, log = short_run
     # the plan's left swing is 1.2–2.0 s and the right's 2.2–3.0 s; the left foot unloads through 25 N at
     # ≈1.2 s, which must not start SLC (the guard fix), nor the right's lift-off chatter at ≈2.2 s stop it
-    assert 1.9 < m["t_left_landing_s"] < 2.05 and 2.9 < m["t_right_landing_s"] < 3.3
+    assert 1.9 < m["t_left_landing_s"] < 2.05 and 2.9 < m["t_right_landing_s"] < 3.5
     assert m["slc_duration_s"] == pytest.approx(m["t_right_landing_s"] - m["t_left_landing_s"])
-    assert 1.0 < m["window_without_slc_s"] < 1.3  # same guards, no learning: the same swing, landing ≈0.1 s earlier
+    assert 1.0 < m["window_without_slc_s"] < 1.45  # same guards, no learning: the same swing, landing ≈0.07 s earlier
     # SLC stops on the thesis's guard, f_Rz > F_thre = 25 N (§5.4.1, Table 5.2), the right foot's first placement:
     # f_Rz ≤ 25 N through the swing up to the stop, > 25 N on the stop's tick
     t, f = log["f_Rz_t"], log["f_Rz"]

@@ -104,8 +104,8 @@ def test_after_self_boarding_learning_starts_when_both_feet_have_landed():
     loop.run(3.0)
     assert sched.state == "learning" and ride.governor.t_start is None  # the right foot is still in the air
     assert ride.foot_pitch.theta.tolist() == [0.0, 0.0]
-    loop.run(0.4)
-    assert sched.t_stop is not None and 3.1 < sched.t_stop < 3.35
+    loop.run(0.5)
+    assert sched.t_stop is not None and 3.1 < sched.t_stop < 3.45  # ≈3.38 s (the soles held on the pads; ≈3.2 s creeping)
     assert ride.governor.t_start == pytest.approx(sched.t_stop + 0.004)  # the next tick (the governor runs first)
     learned = sched.D[1]
     assert learned > 22.0 and sched.D[3] == learned and not ride.fallen()

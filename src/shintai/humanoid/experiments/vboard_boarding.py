@@ -159,5 +159,5 @@ experiment(
         "F_thre_n": ThesisValue(25.0, "seed 000 §5.4.1: '本稿では,F_thre = 25[N] として設定する'"),
     },
     rig=rig, variants=VARIANTS, filmed=VARIANTS, metrics=metrics, plots=plots.boarding, video=True,
-    smoke={"max_s": 3.4},  # past both landings, before the fall without SLC
+    smoke={"max_s": 3.6},  # past both landings, before the fall without SLC
 )

@@ -1,5 +1,7 @@
 """``humanoid.vboard-levels``: HRP2 lowered onto the V-BOARD from a lift, behaviour level 1 (a fixed posture) and
-level 2 (the balance stack) — ZMP and board pitch against θ_O (seed 000 §6.2.1, Figs. 6.1, 6.3–6.4)."""
+level 2 (the balance stack) — ZMP and board pitch against θ_O (seed 000 §6.2.1, Figs. 6.1, 6.3–6.4). The variants
+``creep_noslip``/``creep`` are issue 26 item 5's probe of level 2's turn (:mod:`shintai.humanoid.vboard.sole_creep`:
+plot ``sole_creep``, metrics ``creep_*``)."""
 
 from __future__ import annotations
 
@@ -7,15 +9,20 @@ import numpy as np
 
 from shintai.humanoid.constants import DEG, LIFT_SPEED
 from shintai.humanoid.vboard import plots
-from shintai.humanoid.vboard.constants import D_VBOARD, EARLY_S
+from shintai.humanoid.vboard.constants import CREEP_S, D_VBOARD, EARLY_S
 from shintai.humanoid.vboard.ride import VboardRide, theta_o, touchdown
+from shintai.humanoid.vboard.sole_creep import creep_rig, readings
 from shintai.scenarios.experiment import Rig, variant_metric
 from shintai.scenarios.registry import Check, Param, ThesisValue, experiment
 
 VIEW = {"track": "waist", "azimuth": 120.0, "elevation": -10.0, "distance": 3.0}
+LEVEL_RUNS = ("level1", "level2")
+CREEP = {"creep_noslip": "noslip", "creep": "creep"}  # variant → sole_creep's ride name
 
 
 def rig(params, variant, seed):
+    if variant in CREEP:
+        return creep_rig(variant == "creep", seed, params["creep_s"], params["damping_d"])
     ride = VboardRide(level=1 if variant == "level1" else 2, theta_o_error_deg=params["theta_o_error_deg"],
                       D=params["damping_d"], speed=params["lift_speed_mps"], seed=seed)
     return Rig(ride.body, stages=ride.stages, channels=ride.channels, duration=params["max_s"],
@@ -43,9 +50,11 @@ def summary(run) -> dict:
 
 def metrics(runs, params):
     out = {}
-    for name, run in runs.items():
-        for k, v in summary(run).items():
+    for name in LEVEL_RUNS:
+        for k, v in summary(runs[name]).items():
             out[variant_metric(k, name)] = v
+    for variant, name in CREEP.items():
+        out.update(readings(runs[variant], name))
     out["drift_ratio"] = abs(out["drift_level2_m"]) / max(abs(out["drift_level1_m"]), 1e-9)
     return out
 
@@ -63,6 +72,8 @@ experiment(
         Param("damping_d", D_VBOARD, "foot damping gain D at level 2 [N m s/rad] (§5.4.2: SLC reached ≈40)",
               lo=1.0, hi=1000.0),
         Param("lift_speed_mps", LIFT_SPEED, "lowering speed of the lift [m/s] (ours)", lo=0.005, hi=1.0),
+        Param("creep_s", CREEP_S, "length of the sole-creep probe's two level-2 rides [s] (issue 26 item 5)",
+              lo=2.5, hi=60.0),
     ],
     checks=[
         Check("zmp_x_max_early_level1_mm", ">", 120.0,
@@ -88,7 +99,7 @@ experiment(
                                                      "zmp_x_max_early_level1_mm"),
             "theta_o_r_deg": ThesisValue(-1.7871, "seed 000 §6.2.1 / Eq. A.1, θ_RO", None),
             "theta_o_l_deg": ThesisValue(-1.9972, "seed 000 §6.2.1 / Eq. A.1, θ_LO", None)},
-    rig=rig, variants=("level1", "level2"), filmed=("level1", "level2"), metrics=metrics, plots=plots.levels, video=True,
+    rig=rig, variants=LEVEL_RUNS + tuple(CREEP), filmed=LEVEL_RUNS, metrics=metrics, plots=plots.levels, video=True,
     stochastic=True,  # the sensors' noise (Table 6.1) is drawn from the run's seed
-    smoke={"max_s": 2.5},
+    smoke={"max_s": 2.5, "creep_s": 2.5},
 )

@@ -10,6 +10,7 @@
 * :mod:`~shintai.humanoid.vboard.governed_ride` — the ride governed by MLC and its analysis (§6.4, Figs. 6.15–6.17).
 * :mod:`~shintai.humanoid.vboard.solc` — SOLC, SLC then MLC on one switcher (§7.4.2, Table 7.7).
 * :mod:`~shintai.humanoid.vboard.sign_chain` — issue 26's probe: each link's response to a common-mode foot-pitch step.
+* :mod:`~shintai.humanoid.vboard.sole_creep` — issue 26 item 5's probe: the soles' creep on the pads turns level 2.
 * :mod:`~shintai.humanoid.vboard.ankle_pivot` — issue 26's candidate (e): the commanded foot pitch as an ankle joint angle.
 * :mod:`~shintai.humanoid.vboard.plots` — the V-BOARD scenarios' figures (Figs. 4.10, 5.6–5.8, 6.3–6.4, 6.9, 6.15–6.17, 7.19–7.21).
 """

@@ -47,7 +47,7 @@ from shintai.humanoid.constants import (
 )
 from shintai.humanoid.learning.slc import SLC, SLCParams, SLCSchedule
 from shintai.humanoid.robots.hrp2 import add_hrp2, side_posture
-from shintai.humanoid.vboard.constants import BOARDING_ZMP_TRUNCATION, PEAK_GAP_S, PEAK_SMOOTH_S
+from shintai.humanoid.vboard.constants import BOARDING_ZMP_TRUNCATION, NOSLIP_ITERATIONS, PEAK_GAP_S, PEAK_SMOOTH_S
 from shintai.humanoid.vboard.vehicle import BOARD, SIDES, add_vboard, install_firmware
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import fill_keyframe, scene_spec, set_joints
@@ -60,6 +60,7 @@ def boarding_body(x: float = BOARD_X, v: VboardSpec = VBOARD, substeps: int = SU
     with the V-BOARD's axle ``x`` ahead, its halves level and its drives off; ``body.firmware`` is the
     scooter's firmware (run before every physics step)."""
     spec = scene_spec("hrp2-vboard-boarding", *SCENE)
+    spec.option.noslip_iterations = NOSLIP_ITERATIONS  # the soles do not creep on the pads (vboard.constants)
     add_vboard(spec, spec.worldbody, pos=(x, 0.0, 0.0), v=v)
     add_hrp2(spec, spec.worldbody, [0.0, 0.0, 1.0])
     spec.add_key(name="stand")

@@ -28,13 +28,15 @@ COM_READING = "world"
 # references at the soles' midpoint as the stack starts, the soles commanded flat; "fig6.1" as §6.2.1 places the robot:
 # '図 6.1 において平行二輪電動スクーターの中心を座標系の原点とする.この点を目標 ZMP の位置 (0,0)' (the references moved
 # onto the scooter's centre once, at the lift's hand-over), the boarding posture's soles ('ボード上面にロボット足裏が乗るように
-# … 搭乗姿勢の全身の関節角度をロボット実機へ指令する': the pads' pitch θ_O) as the soles' reference pitch, and the soles
-# not creeping on the pads (NOSLIP_ITERATIONS). Measured with com_reading="feet": level 2 then neither accelerates
-# nor creeps (notes/vboard-plant-id.md); not the default until the ch. 6 rows are re-run with it.
+# … 搭乗姿勢の全身の関節角度をロボット実機へ指令する': the pads' pitch θ_O) as the soles' reference pitch. Measured with
+# com_reading="feet": level 2 then neither accelerates nor creeps (notes/vboard-plant-id.md); not the default.
 PLACEMENT = "soles"
 PLACEMENTS = ("soles", "fig6.1")
-NOSLIP_ITERATIONS = 10  # chosen: MuJoCo's no-slip passes for "fig6.1"; without them a standing rider's soles creep back on
-# the pads ≈0.4 mm/s (measured: −5.1 → −7.7 mm in 4.5 s), which rubber under 58 kg does not; with 10, < 0.1 mm in 7 s
+# MuJoCo's no-slip passes in every scene with a rider on the V-BOARD (vboard.stand, vboard.boarding; issue 26 item 5).
+# Chosen: without them MuJoCo's soft contacts let a standing rider's soles creep back on the pads ≈0.47 mm/s (level 2,
+# D = 40: 12 mm in 13 s, the left 0.64 mm more than the right), which a rubber sole under 58 kg does not; with 10,
+# < 0.15 mm in 13 s. The differential creep is what turned level 2 about itself (notes/vboard-levels.md, sole_creep)
+NOSLIP_ITERATIONS = 10
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"
 PLANTS = ("board", "table6.2")
 MODES = ("corrected", "saturated", "plain")
@@ -86,3 +88,7 @@ PROBE_STEP_DEG = 1.0  # deg, chosen: the common-mode step of the commanded foot 
 PROBE_T_STEP = 2.5  # s, chosen: after the lift has let go (≈1.0 s) and the stack has settled
 PROBE_AFTER = (0.05, 0.2, 0.5, 1.0)  # s after the step at which the links are read (issue 26)
 PROBE_WINDOW = 0.01  # s, chosen: each reading is the mean over ±this (the acceleration is a 4 ms difference)
+# the sole-creep probe (issue 26 item 5, vboard.sole_creep): level 2 at D_VBOARD, with and without MuJoCo's no-slip
+CREEP_S = 14.0  # s, chosen: the span over which level 2 at D = 40 turned itself from ≈0 to 0.14 rad/s (measured)
+CREEP_FROM_S = 1.0  # s after the lift lets go, chosen: the creep is read from here (the landing has settled)
+CREEP_RECORD_EVERY = 5  # control ticks between the probe's samples (20 ms), chosen

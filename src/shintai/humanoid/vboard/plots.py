@@ -198,8 +198,9 @@ def boarding(ctx, runs, params):
 
 
 def levels(ctx, runs, params):
+    level_runs = {name: runs[name] for name in ("level1", "level2")}
     with ctx.figure("zmp_and_pitch", 4, 2, figsize=(12, 11), sharex="col") as (_fig, ax):
-        for j, (name, run) in enumerate(runs.items()):
+        for j, (name, run) in enumerate(level_runs.items()):
             rec, ride = run.log, run.state
             t0 = touchdown(run)
             t = rec.times("x") - t0
@@ -217,12 +218,37 @@ def levels(ctx, runs, params):
             for a in ax[:, j]:
                 a.legend(fontsize=7)
     with ctx.figure("travel", 1, 1, figsize=(8, 4)) as (_fig, ax):
-        for name, run in runs.items():
+        for name, run in level_runs.items():
             t0 = touchdown(run)
             ax.plot(run.log.times("x") - t0, run.log.values("x"), label=name)
         ax.set_xlabel("t [s] from boarding")
         ax.set_ylabel("scooter x [m]")
         ax.legend()
+    sole_creep(ctx, {"no-slip (default)": runs["creep_noslip"], "soft contacts (sole_creep)": runs["creep"]})
+
+
+def sole_creep(ctx, runs):
+    """Issue 26 item 5's chain at level 2 (vboard.sole_creep), both rides: each sole on its pad, the pitch-torque
+    difference beside −f̄_z (s_L − s_R), the damping's δ_R − δ_L, and the turn ω."""
+    with ctx.figure("sole_creep", 4, 1, figsize=(10, 11), sharex=True) as (_fig, ax):
+        for (label, run), color in zip(runs.items(), ("k", "r")):
+            rec = run.log
+            t = rec.times("omega")
+            sl, sr = rec.values("sole_l") * 1e3, rec.values("sole_r") * 1e3
+            ax[0].plot(t, sl, color=color, label=f"left, {label}")
+            ax[0].plot(t, sr, color=color, ls="--", label=f"right, {label}")
+            tau = rec.values("tau_diff")
+            ax[1].plot(t, tau - tau[0], color=color, label=f"τ_L − τ_R, {label}")
+            ax[1].plot(t, -rec.values("f_z") * ((sl - sr) - (sl[0] - sr[0])) * 1e-3, color=color, ls=":",
+                       label=f"−f̄_z (s_L − s_R), {label}")
+            ax[2].plot(t, rec.values("delta_diff") / DEG, color=color, label=label)
+            ax[3].plot(t, rec.values("omega"), color=color, label=label)
+        for a, y in zip(ax, ("sole on its pad, x [mm]", "pitch-torque difference,\nfrom the start [N·m]",
+                             "δ_R − δ_L [deg]", "ω [rad/s]")):
+            a.set_ylabel(y)
+            a.legend(fontsize=7)
+        ax[0].set_title("Level 2, D = 40: the soles' creep on the pads turns the scooter (issue 26 item 5)")
+        ax[3].set_xlabel("t [s]")
 
 
 def posture(ctx, runs, params):

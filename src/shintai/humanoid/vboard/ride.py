@@ -26,7 +26,7 @@ from shintai.humanoid.constants import ATTITUDE_TAU, CONTROL_PERIOD, LIFT_GAP, L
 from shintai.humanoid.law_params import check_real
 from shintai.humanoid.vboard.ankle_pivot import AnklePivotIK
 from shintai.humanoid.vboard.constants import (COM_READING, D_VBOARD, EXCITE_AMPLITUDE, EXCITE_PERIOD, FIRMWARE_LAW, LEVELS,
-                                             NOSLIP_ITERATIONS, PLACEMENT, PLACEMENTS)
+                                             PLACEMENT, PLACEMENTS)
 from shintai.humanoid.vboard.governor import SpeedGovernor
 from shintai.humanoid.vboard.stand import build_vboard_stand
 from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
@@ -59,7 +59,9 @@ class VboardRide:
     ``"fig6.1"`` puts them on the scooter's centre at the hand-over, :class:`CentreReference`); ``firmware`` the scooter's law (:class:`~shintai.humanoid.vboard.vehicle.VboardFirmware`'s ``law``; lift-placed start);
     ``foot_pitch_about`` ``"ankle"`` turns the commanded pitch about the ankles, as an ankle joint angle
     (:mod:`~shintai.humanoid.vboard.ankle_pivot`; needs ``foot_origin="ankle"``; default ``"sole"``);
-    ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)). The governor slot (level 3):
+    ``posture`` §4.3.3's chest posture control (Fig. 4.10 (B)); ``sole_creep`` turns MuJoCo's no-slip passes off,
+    so that the soles creep on the pads as soft contacts let them (the rides before issue 26 item 5,
+    :mod:`~shintai.humanoid.vboard.sole_creep`). The governor slot (level 3):
     ``governor(lift)`` → the module (the lift, or None, for its start gate), default a
     :class:`~shintai.humanoid.vboard.governor.SpeedGovernor` on ``gains`` ((K_P, K_I, K_D) for v, for ω) with MLC
     if ``learn``. ``standing``: instead of the lift-placed start, a
@@ -74,7 +76,8 @@ class VboardRide:
                  speed: float = LIFT_SPEED, seed: int = 0, noise: bool = True, posture: bool = False,
                  standing: Standing | None = None, supervisor: Module | None = None,
                  com_reading: str = COM_READING, attitude_tau: float = ATTITUDE_TAU, foot_origin: str = "sole",
-                 placement: str = PLACEMENT, firmware: str = FIRMWARE_LAW, foot_pitch_about: str = "sole"):
+                 placement: str = PLACEMENT, firmware: str = FIRMWARE_LAW, foot_pitch_about: str = "sole",
+                 sole_creep: bool = False):
         if level not in LEVELS:
             raise ValueError(f"level must be one of {LEVELS}, got {level!r}")
         if placement not in PLACEMENTS:
@@ -97,8 +100,6 @@ class VboardRide:
         self.lift = None
         if standing is None:
             body = build_vboard_stand(self.scooter, law=firmware)
-            if fig61:
-                body.model.opt.noslip_iterations = NOSLIP_ITERATIONS
             if lift:
                 root = body.model.joint("root").qposadr[0]
                 body.model.key("stand").qpos[root + 2] += check_real("lift gap", gap, 0.0, 0.2)
@@ -123,6 +124,8 @@ class VboardRide:
             if posture:
                 raise ValueError("chest posture control rides the lift-placed start only")
             self.standing, body = standing, standing.body
+        if sole_creep:  # MuJoCo's soft contacts alone: the soles creep on the pads (vboard.constants.NOSLIP_ITERATIONS)
+            body.model.opt.noslip_iterations = 0
         self.body = body
         self.sensors = ScooterSensors(body, scooter_velocity, seed=seed, noise=noise)
         self.posture = ChestPitchControl() if posture else None

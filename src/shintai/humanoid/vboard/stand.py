@@ -22,7 +22,7 @@ import numpy as np
 from shintai.humanoid.balance.scooter import posture_on_pads
 from shintai.humanoid.constants import SCENE, SUBSTEPS, VBOARD, VboardSpec
 from shintai.humanoid.robots.hrp2 import add_hrp2
-from shintai.humanoid.vboard.constants import FIRMWARE_LAW
+from shintai.humanoid.vboard.constants import FIRMWARE_LAW, NOSLIP_ITERATIONS
 from shintai.humanoid.vboard.vehicle import PAD, add_vboard, install_firmware, vboard_state
 from shintai.sim.body import MujocoBody
 from shintai.sim.spec import fill_keyframe, scene_spec
@@ -41,6 +41,7 @@ def standing_posture(model: mujoco.MjModel, v: VboardSpec = VBOARD) -> np.ndarra
 def build_vboard_stand(v: VboardSpec = VBOARD, substeps: int = SUBSTEPS, law: str = FIRMWARE_LAW) -> MujocoBody:
     """HRP2 standing on the V-BOARD (keyframe ``stand``), the firmware (its ``law``) installed."""
     spec = scene_spec("hrp2-vboard", *SCENE)
+    spec.option.noslip_iterations = NOSLIP_ITERATIONS  # the soles do not creep on the pads (vboard.constants)
     add_vboard(spec, spec.worldbody, v=v)
     add_hrp2(spec, spec.worldbody, [0.0, 0.0, 1.0])
     spec.add_key(name="stand")
