@@ -34,7 +34,7 @@ PLACEMENT = "soles"
 PLACEMENTS = ("soles", "fig6.1")
 # MuJoCo's no-slip passes in every scene with a rider on the V-BOARD (vboard.stand, vboard.boarding; issue 26 item 5).
 # Chosen: without them MuJoCo's soft contacts let a standing rider's soles creep back on the pads ≈0.47 mm/s (level 2,
-# D = 40: 12 mm in 13 s, the left 0.64 mm more than the right), which a rubber sole under 58 kg does not; with 10,
+# D = 40: 5–6 mm in 13 s, the left 0.52 mm more than the right; vboard.sole_creep), which a rubber sole under 58 kg does not; with 10,
 # < 0.15 mm in 13 s. The differential creep is what turned level 2 about itself (notes/vboard-levels.md, sole_creep)
 NOSLIP_ITERATIONS = 10
 START_DELAY = 0.5  # s, chosen: the stack settles this long after the lift lets go before the "start button"

@@ -22,7 +22,7 @@ from shintai.humanoid.constants import CONTROL_PERIOD
 from shintai.humanoid.vboard.constants import (CREEP_FROM_S, CREEP_RECORD_EVERY, CREEP_S, D_VBOARD, THETA_O_ERROR_DEG,
                                              VIEW)
 from shintai.humanoid.vboard.ride import VboardRide
-from shintai.humanoid.vboard.vehicle import board_pitch, scooter_velocity
+from shintai.humanoid.vboard.vehicle import scooter_velocity
 from shintai.scenarios.experiment import Rig, run_rig
 
 RIDES = ("noslip", "creep")  # MuJoCo's no-slip passes on (the default) / off (soft contacts alone)
@@ -40,13 +40,12 @@ def creep_rig(creep: bool, seed: int = 0, duration: float = CREEP_S, D: float = 
         return float(d.site_xmat[pad[s]].reshape(3, 3)[:, 0] @ (d.site_xpos[sole[s]] - d.site_xpos[pad[s]]))
 
     def record(snapshot):
-        th = board_pitch(snapshot)
         _, w = scooter_velocity(snapshot)
         delta = np.asarray(snapshot["damping_delta"], float)
         return {"sole_l": on_pad("l"), "sole_r": on_pad("r"), "omega": w,
                 "tau_diff": float(snapshot["tau_L"][1] - snapshot["tau_R"][1]),
                 "f_z": 0.5 * float(snapshot["f_Lz"] + snapshot["f_Rz"]),
-                "delta_diff": float(delta[3] - delta[1]), "pitch_diff": th["r"] - th["l"]}
+                "delta_diff": float(delta[3] - delta[1])}
     return Rig(body, stages=r.stages, channels=r.channels, duration=duration + CONTROL_PERIOD,
                until=lambda s: r.fallen(), record={CREEP_RECORD_EVERY: record}, view=VIEW, state=r)
 
